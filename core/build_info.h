@@ -1,0 +1,5 @@
+#pragma once
+namespace vgi {
+// `git describe` of the source tree at build time ("unknown" outside git).
+const char* gitRevision();
+}  // namespace vgi

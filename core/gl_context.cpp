@@ -1,0 +1,85 @@
+#include "core/gl_context.h"
+
+#include <glad/gl.h>
+
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace vgi {
+
+GlBackend parseGlBackend(const std::string& name) {
+  if (name == "auto") return GlBackend::Auto;
+  if (name == "egl") return GlBackend::Egl;
+  if (name == "osmesa") return GlBackend::Osmesa;
+  fail("--gl: unknown backend '", name, "' (auto, egl, osmesa)");
+}
+
+std::unique_ptr<GlContext> GlContext::create(GlBackend backend) {
+  if (backend == GlBackend::Egl) return createEglContext();
+  if (backend == GlBackend::Osmesa) return createOsmesaContext();
+  std::string eglError;
+  try {
+    return createEglContext();
+  } catch (const Error& e) {
+    eglError = e.what();
+  }
+  try {
+    return createOsmesaContext();
+  } catch (const Error& e) {
+    fail("no OpenGL 4.5 core context could be created.\n  egl: ", eglError, "\n  osmesa: ", e.what());
+  }
+}
+
+bool GlContext::isSoftware() const {
+  return renderer_.find("llvmpipe") != std::string::npos ||
+         renderer_.find("softpipe") != std::string::npos ||
+         renderer_.find("lavapipe") != std::string::npos;
+}
+
+void loadGlFunctions(GlProcLoader loader, const std::string& backend) {
+  int v = gladLoadGL(reinterpret_cast<GLADloadfunc>(loader));
+  if (!v) fail(backend, ": could not load OpenGL entry points");
+  int major = GLAD_VERSION_MAJOR(v), minor = GLAD_VERSION_MINOR(v);
+  if (major < 4 || (major == 4 && minor < 5)) {
+    const char* ver = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    fail(backend, ": OpenGL 4.5 core is required, but the context offers only ", major, ".", minor,
+         " (GL_VERSION '", ver ? ver : "?", "')");
+  }
+}
+
+void GlContext::finishInit(const std::string& backend) {
+  backend_ = backend;
+  renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+  glEnable(GL_DEBUG_OUTPUT);
+  glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+  glDebugMessageCallback(reinterpret_cast<GLDEBUGPROC>(&GlContext::debugCallback), this);
+  glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+  glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DEBUG_SEVERITY_NOTIFICATION, 0, nullptr, GL_FALSE);
+}
+
+void GlContext::debugCallback(unsigned source, unsigned type, unsigned id, unsigned severity,
+                              int length, const char* message, const void* user) {
+  auto* self = const_cast<GlContext*>(static_cast<const GlContext*>(user));
+  bool isError = type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH;
+  std::string msg(message, length >= 0 ? size_t(length) : std::char_traits<char>::length(message));
+  std::lock_guard<std::mutex> lock(self->mutex_);
+  if (isError) {
+    ++self->errors_;
+    std::fprintf(stderr, "GL error (id %u): %s\n", id, msg.c_str());
+  }
+  if (self->messages_.size() < 1000) self->messages_.push_back(msg);
+}
+
+long GlContext::errorCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return errors_;
+}
+
+std::vector<std::string> GlContext::takeMessages() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::move(messages_);
+}
+
+}  // namespace vgi

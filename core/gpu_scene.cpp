@@ -1,0 +1,145 @@
+#include "core/gpu_scene.h"
+
+#include <glad/gl.h>
+
+#include <cmath>
+
+namespace vgi {
+
+shared::PackedLight packLight(const Light& l) {
+  shared::PackedLight p;
+  float type = l.type == LightType::Point ? float(shared::LIGHT_POINT)
+               : l.type == LightType::Spot ? float(shared::LIGHT_SPOT)
+                                           : float(shared::LIGHT_DIRECTIONAL);
+  p.positionType = glm::vec4(l.position, type);
+  p.directionCosCone = glm::vec4(glm::normalize(l.direction), std::cos(glm::radians(l.coneHalfAngleDeg)));
+  p.intensityFalloff = glm::vec4(l.intensity, l.falloff);
+  return p;
+}
+
+shared::PackedMaterial packMaterial(const Material& m, int layer) {
+  shared::PackedMaterial p;
+  p.albedoLayer = glm::vec4(m.albedo, float(layer));
+  p.ksExponent = glm::vec4(m.ks, m.exponent);
+  p.emission = glm::vec4(m.emission, 0.0f);
+  return p;
+}
+
+static_assert(sizeof(shared::PackedLight) == 48, "std430 layout of PackedLight");
+static_assert(sizeof(shared::PackedMaterial) == 48, "std430 layout of PackedMaterial");
+
+namespace {
+unsigned makeSsbo(const void* data, size_t bytes) {
+  unsigned b = 0;
+  glCreateBuffers(1, &b);
+  // A zero-sized buffer cannot be bound; keep one element of padding.
+  glNamedBufferStorage(b, GLsizeiptr(std::max<size_t>(bytes, 64)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  if (bytes) glNamedBufferSubData(b, 0, GLsizeiptr(bytes), data);
+  return b;
+}
+}  // namespace
+
+GpuScene::GpuScene(const Scene& scene, float time) {
+  FlatScene f = flatten(scene, time);
+  triangles_ = f.triangleCount();
+  bounds_ = scene.bounds(time);
+  std::vector<float> verts;
+  verts.reserve(f.positions.size() * 8);
+  for (size_t i = 0; i < f.positions.size(); ++i) {
+    const glm::vec3 &p = f.positions[i], &n = f.normals[i];
+    const glm::vec2& uv = f.uvs[i];
+    verts.insert(verts.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y});
+  }
+  glCreateVertexArrays(1, &vao_);
+  glCreateBuffers(1, &vbo_);
+  glNamedBufferStorage(vbo_, GLsizeiptr(std::max<size_t>(verts.size(), 8) * sizeof(float)),
+                       verts.empty() ? nullptr : verts.data(), 0);
+  glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 8 * sizeof(float));
+  for (unsigned a = 0; a < 3; ++a) {
+    glEnableVertexArrayAttrib(vao_, a);
+    glVertexArrayAttribFormat(vao_, a, a == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, a * 3 * sizeof(float));
+    glVertexArrayAttribBinding(vao_, a, 0);
+  }
+
+  // Albedo textures: one array, each resampled (bilinear, as Texture::lookup) to the largest size.
+  std::vector<int> layerOf(scene.textures.size(), -1);
+  int tw = 1, th = 1, layers = 0;
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    int t = scene.materials[m].albedoTexture;
+    if (t >= 0 && layerOf[size_t(t)] < 0) {
+      layerOf[size_t(t)] = layers++;
+      tw = std::max(tw, scene.textures[size_t(t)].width);
+      th = std::max(th, scene.textures[size_t(t)].height);
+    }
+  }
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &albedoArray_);
+  glTextureStorage3D(albedoArray_, 1, GL_RGB32F, tw, th, std::max(layers, 1));
+  for (size_t t = 0; t < scene.textures.size(); ++t) {
+    if (layerOf[t] < 0) continue;
+    const Texture& tex = scene.textures[t];
+    std::vector<glm::vec3> px(size_t(tw) * th);
+    for (int y = 0; y < th; ++y)
+      for (int x = 0; x < tw; ++x)
+        px[size_t(y) * tw + x] = (tex.width == tw && tex.height == th)
+                                     ? tex.texels[size_t(y) * tw + x]
+                                     : tex.lookup({(x + 0.5f) / tw, 1.0f - (y + 0.5f) / th});
+    glTextureSubImage3D(albedoArray_, 0, 0, 0, layerOf[t], tw, th, 1, GL_RGB, GL_FLOAT, px.data());
+  }
+  for (unsigned tex : {albedoArray_}) {
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  }
+
+  std::vector<shared::PackedMaterial> mats;
+  for (auto& m : scene.materials)
+    mats.push_back(packMaterial(m, m.albedoTexture >= 0 ? layerOf[size_t(m.albedoTexture)] : -1));
+  materials_ = makeSsbo(mats.data(), mats.size() * sizeof(mats[0]));
+  triMaterial_ = makeSsbo(f.material.data(), f.material.size() * sizeof(int));
+  std::vector<shared::PackedLight> ls;
+  for (auto& l : scene.lights) ls.push_back(packLight(l));
+  lights_ = makeSsbo(ls.data(), ls.size() * sizeof(ls[0]));
+
+  const Environment& env = scene.environment;
+  envColorScale_ = glm::vec4(env.color, env.scale);
+  envHasMap_ = env.mapTexture >= 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &envMap_);
+  if (envHasMap_) {
+    const Texture& t = scene.textures[size_t(env.mapTexture)];
+    glTextureStorage2D(envMap_, 1, GL_RGB32F, t.width, t.height);
+    glTextureSubImage2D(envMap_, 0, 0, 0, t.width, t.height, GL_RGB, GL_FLOAT, t.texels.data());
+  } else {
+    glTextureStorage2D(envMap_, 1, GL_RGB32F, 1, 1);
+  }
+  glTextureParameteri(envMap_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(envMap_, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(envMap_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+GpuScene::~GpuScene() {
+  unsigned bufs[] = {vbo_, materials_, triMaterial_, lights_};
+  glDeleteBuffers(4, bufs);
+  glDeleteVertexArrays(1, &vao_);
+  unsigned texs[] = {albedoArray_, envMap_};
+  glDeleteTextures(2, texs);
+}
+
+void GpuScene::bind(unsigned program) const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_MATERIALS, materials_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRI_MATERIAL, triMaterial_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_LIGHTS, lights_);
+  glBindTextureUnit(TEXUNIT_ALBEDO_ARRAY, albedoArray_);
+  glBindTextureUnit(TEXUNIT_ENV_MAP, envMap_);
+  int loc = glGetUniformLocation(program, "uEnvColorScale");
+  if (loc >= 0) glProgramUniform4fv(program, loc, 1, &envColorScale_.x);
+  loc = glGetUniformLocation(program, "uEnvHasMap");
+  if (loc >= 0) glProgramUniform1i(program, loc, envHasMap_ ? 1 : 0);
+}
+
+void GpuScene::draw() const {
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * triangles_));
+}
+
+}  // namespace vgi

@@ -1,0 +1,37 @@
+// The scene uploaded for the GL modules: one non-indexed vertex buffer
+// (position, normal, uv per corner, world space at one instant), materials and
+// lights as std430 SSBOs (shaders/shared/gpu_scene.glsl), albedo textures as one
+// 2D array (resampled to the largest size), the environment map.
+#pragma once
+#include "core/scene.h"
+#include "shaders/shared/gpu_scene.glsl"
+
+namespace vgi {
+
+shared::PackedLight packLight(const Light& light);
+shared::PackedMaterial packMaterial(const Material& m, int textureLayer);
+
+class GpuScene {
+ public:
+  GpuScene(const Scene& scene, float time);
+  ~GpuScene();
+  GpuScene(const GpuScene&) = delete;
+  GpuScene& operator=(const GpuScene&) = delete;
+
+  // Binds SSBOs, textures and the environment uniforms of `program`.
+  void bind(unsigned program) const;
+  void draw() const;  // all triangles; gl_PrimitiveID = triangle index
+
+  size_t triangleCount() const { return triangles_; }
+  const Bounds& bounds() const { return bounds_; }
+
+ private:
+  unsigned vao_ = 0, vbo_ = 0, materials_ = 0, triMaterial_ = 0, lights_ = 0;
+  unsigned albedoArray_ = 0, envMap_ = 0;
+  size_t triangles_ = 0;
+  Bounds bounds_;
+  glm::vec4 envColorScale_{0.0f};
+  bool envHasMap_ = false;
+};
+
+}  // namespace vgi

@@ -1,0 +1,27 @@
+// Linear HDR RGB images; EXR (float) and tone-mapped sRGB PNG through OpenImageIO.
+#pragma once
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace vgi {
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<glm::vec3> pixels;  // row 0 = top
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), pixels(size_t(w) * h, glm::vec3(0.0f)) {}
+  glm::vec3& at(int x, int y) { return pixels[size_t(y) * width + x]; }
+  const glm::vec3& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
+};
+
+// Writes by extension: .exr (float, linear), .png/.jpg (exposure·x, clamp, sRGB).
+void writeImage(const Image& img, const std::string& path, float exposure = 1.0f);
+// Reads any OIIO format; 8/16-bit files are linearised from sRGB.
+Image readImage(const std::string& path);
+
+float linearToSrgb(float x);
+float luminance(glm::vec3 c);
+
+}  // namespace vgi

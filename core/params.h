@@ -1,0 +1,50 @@
+// Parameters given as key=value strings (`--set key=value`, scene presets),
+// read by modules with a documented default. As in pbrt-v4, a key that no one
+// reads is an error, so a typo never silently falls back to a default.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace vgi {
+
+struct ParamDoc {
+  std::string key, type, defaultValue, doc;
+};
+
+class ParamSet {
+ public:
+  // origin names where the value came from ("--set", "preset 'fast'") for errors.
+  void set(const std::string& key, const std::string& value, const std::string& origin = "--set");
+  // Parses "key=value".
+  void setFromString(const std::string& keyEqualsValue, const std::string& origin = "--set");
+  bool has(const std::string& key) const { return values_.count(key) != 0; }
+
+  int getInt(const std::string& key, int def, const std::string& doc, int lo, int hi);
+  float getFloat(const std::string& key, float def, const std::string& doc, float lo, float hi);
+  bool getBool(const std::string& key, bool def, const std::string& doc);
+  // allowed lists the accepted values (empty: any string).
+  std::string getString(const std::string& key, const std::string& def, const std::string& doc,
+                        const std::vector<std::string>& allowed = {});
+
+  // Throws naming every key that was set but never read.
+  void checkAllUsed(const std::string& context) const;
+  // Every parameter that was read, with its resolved value.
+  nlohmann::json resolved() const { return resolved_; }
+  const std::vector<ParamDoc>& docs() const { return docs_; }
+
+ private:
+  struct Value {
+    std::string text, origin;
+    bool used = false;
+  };
+  const Value* lookup(const std::string& key, const std::string& type, const std::string& def,
+                      const std::string& doc);
+  std::map<std::string, Value> values_;
+  std::vector<ParamDoc> docs_;
+  nlohmann::json resolved_ = nlohmann::json::object();
+};
+
+}  // namespace vgi

@@ -1,0 +1,99 @@
+#include "core/scene.h"
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "shaders/shared/cpp_prelude.h"
+#include "shaders/shared/environment.glsl"
+
+namespace vgi {
+
+glm::vec3 Texture::lookup(glm::vec2 uv) const {
+  if (texels.empty()) return glm::vec3(1.0f);
+  float x = (uv.x - std::floor(uv.x)) * width - 0.5f;
+  float y = (1.0f - (uv.y - std::floor(uv.y))) * height - 0.5f;  // uv origin bottom-left
+  int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  float fx = x - x0, fy = y - y0;
+  auto at = [&](int i, int j) {
+    i = ((i % width) + width) % width;
+    j = ((j % height) + height) % height;
+    return texels[size_t(j) * width + i];
+  };
+  return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
+                  glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+}
+
+glm::mat4 Mesh::objectToWorld(float time) const {
+  if (!dynamic || keyframes.empty()) return transform;
+  const Keyframe* a = &keyframes.front();
+  const Keyframe* b = a;
+  if (time >= keyframes.back().time) {
+    a = b = &keyframes.back();
+  } else {
+    for (size_t i = 0; i + 1 < keyframes.size(); ++i)
+      if (time >= keyframes[i].time && time < keyframes[i + 1].time) {
+        a = &keyframes[i];
+        b = &keyframes[i + 1];
+      }
+  }
+  float t = b->time > a->time ? (time - a->time) / (b->time - a->time) : 0.0f;
+  t = glm::clamp(t, 0.0f, 1.0f);
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::mix(a->translation, b->translation, t));
+  m = m * glm::mat4_cast(glm::slerp(a->rotation, b->rotation, t));
+  m = glm::scale(m, glm::mix(a->scale, b->scale, t));
+  return m * transform;
+}
+
+size_t Scene::triangleCount() const {
+  size_t n = 0;
+  for (auto& m : meshes) n += m.triangles.size();
+  return n;
+}
+
+Bounds Scene::bounds(float time) const {
+  Bounds b;
+  for (auto& m : meshes) {
+    glm::mat4 M = m.objectToWorld(time);
+    for (auto& p : m.positions) b.extend(glm::vec3(M * glm::vec4(p, 1.0f)));
+  }
+  return b;
+}
+
+glm::vec3 Scene::environmentRadiance(glm::vec3 dir) const {
+  if (environment.mapTexture < 0) return environment.color;
+  glm::vec2 uv = shared::latLongUv(dir);
+  return textures[environment.mapTexture].lookup(uv) * environment.scale;
+}
+
+FlatScene flatten(const Scene& scene, float time) {
+  FlatScene f;
+  size_t n = scene.triangleCount();
+  f.positions.reserve(3 * n);
+  f.normals.reserve(3 * n);
+  f.uvs.reserve(3 * n);
+  f.material.reserve(n);
+  f.meshOfTriangle.reserve(n);
+  for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+    const Mesh& m = scene.meshes[mi];
+    glm::mat4 M = m.objectToWorld(time);
+    glm::mat3 N = glm::transpose(glm::inverse(glm::mat3(M)));
+    for (auto& t : m.triangles) {
+      glm::vec3 p[3];
+      for (int k = 0; k < 3; ++k) p[k] = glm::vec3(M * glm::vec4(m.positions[t[k]], 1.0f));
+      glm::vec3 ng = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+      for (int k = 0; k < 3; ++k) {
+        f.positions.push_back(p[k]);
+        glm::vec3 n = m.normals.empty() ? ng : glm::normalize(N * m.normals[t[k]]);
+        if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) n = ng;
+        f.normals.push_back(n);
+        f.uvs.push_back(m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[t[k]]);
+      }
+      f.material.push_back(m.material);
+      f.meshOfTriangle.push_back(int(mi));
+    }
+  }
+  return f;
+}
+
+}  // namespace vgi

@@ -1,0 +1,121 @@
+// The scene: triangle meshes (static or rigidly animated), materials, lights,
+// environment and camera. The GL modules and the Embree reference read the
+// same structures, so both render the same scene with the same definitions.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace vgi {
+
+// Linear RGB float texture (sRGB 8-bit files are linearised on load).
+struct Texture {
+  std::string path;
+  int width = 0, height = 0;
+  std::vector<glm::vec3> texels;  // row 0 = top of the image file
+  glm::vec3 lookup(glm::vec2 uv) const;  // bilinear, wrapping
+};
+
+// Lambert (albedo, optional texture) + normalised Phong lobe (ks, exponent) + emission.
+struct Material {
+  std::string name;
+  glm::vec3 albedo{0.8f};
+  int albedoTexture = -1;  // index into Scene::textures
+  glm::vec3 ks{0.0f};
+  float exponent = 1.0f;
+  glm::vec3 emission{0.0f};
+};
+
+struct Keyframe {
+  float time = 0;
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1, 0, 0, 0};
+  glm::vec3 scale{1.0f};
+};
+
+struct Mesh {
+  std::string name;
+  std::string source;  // file it came from, or "builtin:..."
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // per vertex; empty = use face normals
+  std::vector<glm::vec2> uvs;      // per vertex; may be empty
+  std::vector<glm::uvec3> triangles;
+  int material = 0;
+  glm::mat4 transform{1.0f};  // object to world (static part)
+  bool dynamic = false;
+  std::vector<Keyframe> keyframes;  // dynamic only; applied after `transform`
+  glm::mat4 objectToWorld(float time) const;
+};
+
+enum class LightType { Point, Spot, Directional };
+
+// Delta lights. Point/spot: intensity in W/sr (per RGB channel); directional:
+// irradiance on a surface facing the light. Spot: I(θ) = I0 cos(θ)^falloff for
+// θ ≤ cone half-angle, θ measured from `direction`.
+struct Light {
+  LightType type = LightType::Point;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0, -1, 0};  // spot axis / direction the directional light travels
+  glm::vec3 intensity{1.0f};
+  float coneHalfAngleDeg = 90.0f;
+  float falloff = 1.0f;
+};
+
+// Radiance arriving from directions that leave the scene: constant colour, or
+// a lat-long map (scaled) when mapTexture >= 0.
+struct Environment {
+  glm::vec3 color{0.0f};
+  int mapTexture = -1;
+  float scale = 1.0f;
+  bool isBlack() const { return mapTexture < 0 && color == glm::vec3(0.0f); }
+};
+
+struct Camera {
+  glm::vec3 position{0, 0, 5}, target{0.0f}, up{0, 1, 0};
+  float fovYDeg = 45.0f;
+};
+
+struct Bounds {
+  glm::vec3 lo{1e30f}, hi{-1e30f};
+  void extend(glm::vec3 p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  bool empty() const { return lo.x > hi.x; }
+  float diagonal() const { return empty() ? 0.0f : glm::length(hi - lo); }
+};
+
+// Counted, non-fatal problems found while loading (shown by `vgi info` and in stats).
+struct LoadReport {
+  long degenerateTrianglesDropped = 0;
+  std::vector<std::string> warnings;
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Light> lights;
+  Environment environment;
+  Camera camera;
+  std::map<std::string, std::map<std::string, std::string>> presets;
+  LoadReport report;
+
+  size_t triangleCount() const;
+  Bounds bounds(float time = 0) const;
+  glm::vec3 environmentRadiance(glm::vec3 dir) const;
+};
+
+// A flat, world-space triangle soup at one instant: what renderers consume.
+struct FlatScene {
+  std::vector<glm::vec3> positions;  // 3 per triangle
+  std::vector<glm::vec3> normals;    // 3 per triangle (shading normals)
+  std::vector<glm::vec2> uvs;        // 3 per triangle
+  std::vector<int> material;         // 1 per triangle
+  std::vector<int> meshOfTriangle;   // 1 per triangle
+  size_t triangleCount() const { return material.size(); }
+};
+FlatScene flatten(const Scene& scene, float time = 0);
+
+}  // namespace vgi

@@ -1,0 +1,595 @@
+#include "core/scene_loader.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <OpenImageIO/imageio.h>
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/builtin_scenes.h"
+#include "core/error.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace vgi {
+
+namespace {
+
+bool finite3(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = char(std::tolower(c));
+  return s;
+}
+
+float srgbToLinear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// ---------------------------------------------------------------- JSON helpers
+struct JsonCtx {
+  std::string file;
+  [[noreturn]] void error(const std::string& where, const std::string& what) const {
+    fail(file, ": ", where, ": ", what);
+  }
+  void checkKeys(const json& j, const std::string& where, std::set<std::string> allowed) const {
+    if (!j.is_object()) error(where, "expected an object, got " + j.dump());
+    for (auto& [k, v] : j.items())
+      if (!allowed.count(k)) {
+        std::string list;
+        for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        error(where, "unknown key '" + k + "' (allowed: " + list + ")");
+      }
+  }
+  float number(const json& j, const std::string& where) const {
+    if (!j.is_number()) error(where, "expected a number, got " + j.dump());
+    double v = j.get<double>();
+    if (!std::isfinite(v)) error(where, "expected a finite number, got " + j.dump());
+    return float(v);
+  }
+  glm::vec3 vec3(const json& j, const std::string& where) const {
+    if (!j.is_array() || j.size() != 3) error(where, "expected an array of 3 numbers, got " + j.dump());
+    return {number(j[0], where + "[0]"), number(j[1], where + "[1]"), number(j[2], where + "[2]")};
+  }
+  // A colour: [r,g,b] or one number for grey; never negative.
+  glm::vec3 color(const json& j, const std::string& where) const {
+    glm::vec3 c = j.is_number() ? glm::vec3(number(j, where)) : vec3(j, where);
+    if (c.x < 0 || c.y < 0 || c.z < 0) error(where, "must not be negative, got " + j.dump());
+    return c;
+  }
+  glm::vec3 direction(const json& j, const std::string& where) const {
+    glm::vec3 d = vec3(j, where);
+    if (glm::length(d) < 1e-12f) error(where, "direction must not be zero, got " + j.dump());
+    return glm::normalize(d);
+  }
+  std::string string(const json& j, const std::string& where) const {
+    if (!j.is_string()) error(where, "expected a string, got " + j.dump());
+    return j.get<std::string>();
+  }
+  bool boolean(const json& j, const std::string& where) const {
+    if (!j.is_boolean()) error(where, "expected true or false, got " + j.dump());
+    return j.get<bool>();
+  }
+};
+
+// translate/rotate/scale (applied as T·R·S) into a keyframe-like triple.
+Keyframe readTrs(const JsonCtx& c, const json& j, const std::string& where) {
+  Keyframe k;
+  if (j.contains("translate")) k.translation = c.vec3(j["translate"], where + ".translate");
+  if (j.contains("rotate")) {
+    const json& r = j["rotate"];
+    if (!r.is_array() || r.size() != 4)
+      c.error(where + ".rotate", "expected [angle_deg, axis_x, axis_y, axis_z], got " + r.dump());
+    float deg = c.number(r[0], where + ".rotate[0]");
+    glm::vec3 axis = c.direction(json::array({r[1], r[2], r[3]}), where + ".rotate axis");
+    k.rotation = glm::angleAxis(glm::radians(deg), axis);
+  }
+  if (j.contains("scale")) {
+    const json& s = j["scale"];
+    k.scale = s.is_number() ? glm::vec3(c.number(s, where + ".scale")) : c.vec3(s, where + ".scale");
+    if (k.scale.x == 0 || k.scale.y == 0 || k.scale.z == 0)
+      c.error(where + ".scale", "must not be zero, got " + s.dump());
+  }
+  return k;
+}
+
+glm::mat4 trsMatrix(const Keyframe& k) {
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), k.translation) * glm::mat4_cast(k.rotation);
+  return glm::scale(m, k.scale);
+}
+
+glm::mat4 readTransform(const JsonCtx& c, const json& j, const std::string& where) {
+  c.checkKeys(j, where, {"translate", "rotate", "scale", "matrix"});
+  if (j.contains("matrix")) {
+    if (j.size() != 1) c.error(where, "'matrix' cannot be combined with translate/rotate/scale");
+    const json& m = j["matrix"];
+    if (!m.is_array() || m.size() != 16)
+      c.error(where + ".matrix", "expected 16 numbers (row-major), got " + m.dump());
+    glm::mat4 r;
+    for (int row = 0; row < 4; ++row)
+      for (int col = 0; col < 4; ++col)
+        r[col][row] = c.number(m[row * 4 + col], where + ".matrix[" + std::to_string(row * 4 + col) + "]");
+    if (std::abs(glm::determinant(glm::mat3(r))) < 1e-20f) c.error(where + ".matrix", "is singular");
+    return r;
+  }
+  return trsMatrix(readTrs(c, j, where));
+}
+
+void readMaterialOverride(const JsonCtx& c, const json& j, const std::string& where,
+                          Material& m, Scene& scene, const fs::path& dir) {
+  c.checkKeys(j, where, {"albedo", "texture", "ks", "exponent", "emission"});
+  if (j.contains("albedo")) m.albedo = c.color(j["albedo"], where + ".albedo");
+  if (j.contains("ks")) m.ks = c.color(j["ks"], where + ".ks");
+  if (j.contains("emission")) m.emission = c.color(j["emission"], where + ".emission");
+  if (j.contains("exponent")) {
+    m.exponent = c.number(j["exponent"], where + ".exponent");
+    if (m.exponent < 0 || m.exponent > 1e5f)
+      c.error(where + ".exponent", "must be in [0, 100000], got " + j["exponent"].dump());
+  }
+  if (j.contains("texture")) {
+    std::string p = (dir / c.string(j["texture"], where + ".texture")).string();
+    try {
+      scene.textures.push_back(loadTexture(p));
+      m.albedoTexture = int(scene.textures.size()) - 1;
+    } catch (const Error& e) {
+      scene.report.warnings.push_back(std::string(e.what()) + " (material '" + m.name +
+                                      "' keeps its constant albedo)");
+    }
+  }
+  glm::vec3 sum = m.albedo + m.ks;
+  if (sum.x > 1.0f || sum.y > 1.0f || sum.z > 1.0f)
+    scene.report.warnings.push_back(c.file + ": " + where + ": albedo + ks exceeds 1 (the material reflects more than it receives)");
+}
+
+Light readLight(const JsonCtx& c, const json& j, const std::string& where) {
+  if (!j.is_object() || !j.contains("type")) c.error(where, "a light needs a \"type\" (spot, point, directional)");
+  std::string type = c.string(j["type"], where + ".type");
+  Light l;
+  auto intensity = [&](const char* key) {
+    if (!j.contains(key)) c.error(where, std::string("missing \"") + key + "\"");
+    return c.color(j[key], where + "." + key);
+  };
+  if (type == "point") {
+    c.checkKeys(j, where, {"type", "position", "intensity"});
+    l.type = LightType::Point;
+    if (!j.contains("position")) c.error(where, "missing \"position\"");
+    l.position = c.vec3(j["position"], where + ".position");
+    l.intensity = intensity("intensity");
+  } else if (type == "spot") {
+    c.checkKeys(j, where, {"type", "position", "direction", "intensity", "cone_deg", "falloff"});
+    l.type = LightType::Spot;
+    if (!j.contains("position")) c.error(where, "missing \"position\"");
+    if (!j.contains("direction")) c.error(where, "missing \"direction\"");
+    l.position = c.vec3(j["position"], where + ".position");
+    l.direction = c.direction(j["direction"], where + ".direction");
+    l.intensity = intensity("intensity");
+    if (j.contains("cone_deg")) {
+      l.coneHalfAngleDeg = c.number(j["cone_deg"], where + ".cone_deg");
+      if (l.coneHalfAngleDeg <= 0 || l.coneHalfAngleDeg > 90)
+        c.error(where + ".cone_deg", "half-angle must be in (0, 90], got " + j["cone_deg"].dump());
+    }
+    if (j.contains("falloff")) {
+      l.falloff = c.number(j["falloff"], where + ".falloff");
+      if (l.falloff < 0 || l.falloff > 1000)
+        c.error(where + ".falloff", "must be in [0, 1000], got " + j["falloff"].dump());
+    }
+  } else if (type == "directional") {
+    c.checkKeys(j, where, {"type", "direction", "irradiance"});
+    l.type = LightType::Directional;
+    if (!j.contains("direction")) c.error(where, "missing \"direction\"");
+    l.direction = c.direction(j["direction"], where + ".direction");
+    l.intensity = intensity("irradiance");
+  } else {
+    c.error(where + ".type", "unknown light type '" + type + "' (spot, point, directional)");
+  }
+  return l;
+}
+
+Camera defaultCamera(const Bounds& b) {
+  Camera cam;
+  glm::vec3 c = 0.5f * (b.lo + b.hi);
+  float r = std::max(0.5f * b.diagonal(), 1e-6f);
+  cam.fovYDeg = 45.0f;
+  cam.target = c;
+  cam.position = c + glm::vec3(0.0f, 0.25f * r, r / std::tan(glm::radians(22.5f)) * 1.05f);
+  return cam;
+}
+
+void finishScene(Scene& scene, const std::string& origin, bool haveLights, bool haveCamera) {
+  if (scene.triangleCount() == 0) fail(origin, ": the scene has no triangles");
+  Bounds b = scene.bounds();
+  if (!haveCamera) scene.camera = defaultCamera(b);
+  if (!haveLights && scene.lights.empty()) {
+    bool emissive = false;
+    for (auto& m : scene.materials) emissive |= m.emission != glm::vec3(0.0f);
+    if (!emissive && scene.environment.isBlack()) {
+      Light l;
+      l.type = LightType::Point;
+      l.position = scene.camera.position + glm::vec3(0, 0.3f * b.diagonal(), 0);
+      l.intensity = glm::vec3(0.25f * b.diagonal() * b.diagonal());
+      scene.lights.push_back(l);
+      scene.report.warnings.push_back(origin + ": no lights, added a point light above the camera");
+    }
+  }
+  glm::vec3 dir = scene.camera.target - scene.camera.position;
+  if (glm::length(dir) < 1e-12f) fail(origin, ": camera position equals its target");
+  if (glm::length(glm::cross(dir, scene.camera.up)) < 1e-12f * glm::length(dir))
+    fail(origin, ": camera 'up' is parallel to the viewing direction");
+}
+
+Scene loadSceneJson(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail("cannot open scene file '", path, "'");
+  json root;
+  try {
+    root = json::parse(in);
+  } catch (const json::parse_error& e) {
+    fail(path, ": malformed JSON: ", e.what());
+  }
+  JsonCtx c{path};
+  c.checkKeys(root, "top level", {"meshes", "materials", "lights", "environment", "camera", "presets"});
+  fs::path dir = fs::path(path).parent_path();
+  Scene scene;
+  scene.name = fs::path(path).stem().string();
+  std::vector<Light> builtinLights;
+  Camera builtinCamera;
+  bool haveBuiltinCamera = false;
+
+  if (!root.contains("meshes") || !root["meshes"].is_array() || root["meshes"].empty())
+    c.error("meshes", "expected a non-empty array of meshes");
+  const json& materialsJson = root.contains("materials") ? root["materials"] : json::object();
+  if (!materialsJson.is_object()) c.error("materials", "expected an object of name → material");
+
+  for (size_t i = 0; i < root["meshes"].size(); ++i) {
+    const json& mj = root["meshes"][i];
+    std::string where = "meshes[" + std::to_string(i) + "]";
+    c.checkKeys(mj, where, {"path", "transform", "material", "dynamic", "keyframes"});
+    if (!mj.contains("path")) c.error(where, "missing \"path\"");
+    std::string p = c.string(mj["path"], where + ".path");
+    size_t first = scene.meshes.size();
+    if (p.rfind("builtin:", 0) == 0) {
+      appendBuiltin(p.substr(8), scene, builtinLights, builtinCamera);
+      haveBuiltinCamera = true;
+    } else {
+      appendModelFile((dir / p).string(), scene);
+    }
+    glm::mat4 T(1.0f);
+    if (mj.contains("transform")) T = readTransform(c, mj["transform"], where + ".transform");
+    int forcedMaterial = -1;
+    if (mj.contains("material")) {
+      std::string name = c.string(mj["material"], where + ".material");
+      for (size_t k = 0; k < scene.materials.size(); ++k)
+        if (scene.materials[k].name == name) forcedMaterial = int(k);
+      if (forcedMaterial < 0) {
+        if (!materialsJson.contains(name))
+          c.error(where + ".material", "no material named '" + name + "' (define it under \"materials\")");
+        Material m;
+        m.name = name;
+        scene.materials.push_back(m);
+        forcedMaterial = int(scene.materials.size()) - 1;
+      }
+    }
+    bool dynamic = mj.contains("dynamic") && c.boolean(mj["dynamic"], where + ".dynamic");
+    std::vector<Keyframe> keys;
+    if (mj.contains("keyframes")) {
+      const json& kj = mj["keyframes"];
+      if (!kj.is_array()) c.error(where + ".keyframes", "expected an array");
+      if (!dynamic) c.error(where + ".keyframes", "keyframes need \"dynamic\": true");
+      for (size_t k = 0; k < kj.size(); ++k) {
+        std::string kw = where + ".keyframes[" + std::to_string(k) + "]";
+        c.checkKeys(kj[k], kw, {"time", "translate", "rotate", "scale"});
+        if (!kj[k].contains("time")) c.error(kw, "missing \"time\"");
+        Keyframe key = readTrs(c, kj[k], kw);
+        key.time = c.number(kj[k]["time"], kw + ".time");
+        if (!keys.empty() && key.time <= keys.back().time)
+          c.error(kw + ".time", "keyframe times must increase");
+        keys.push_back(key);
+      }
+    }
+    for (size_t m = first; m < scene.meshes.size(); ++m) {
+      scene.meshes[m].transform = T * scene.meshes[m].transform;
+      scene.meshes[m].dynamic = dynamic;
+      scene.meshes[m].keyframes = keys;
+      if (forcedMaterial >= 0) scene.meshes[m].material = forcedMaterial;
+    }
+  }
+
+  for (auto& [name, mj] : materialsJson.items()) {
+    Material* target = nullptr;
+    for (auto& m : scene.materials)
+      if (m.name == name) target = &m;
+    if (!target) {
+      Material m;
+      m.name = name;
+      scene.materials.push_back(m);
+      target = &scene.materials.back();
+    }
+    readMaterialOverride(c, mj, "materials." + name, *target, scene, dir);
+  }
+
+  bool haveLights = false;
+  if (root.contains("lights")) {
+    const json& lj = root["lights"];
+    if (!lj.is_array()) c.error("lights", "expected an array");
+    for (size_t i = 0; i < lj.size(); ++i)
+      scene.lights.push_back(readLight(c, lj[i], "lights[" + std::to_string(i) + "]"));
+    haveLights = true;
+  } else {
+    scene.lights = builtinLights;
+    haveLights = !builtinLights.empty();
+  }
+
+  if (root.contains("environment")) {
+    const json& ej = root["environment"];
+    c.checkKeys(ej, "environment", {"color", "map", "scale"});
+    if (ej.contains("color")) scene.environment.color = c.color(ej["color"], "environment.color");
+    if (ej.contains("scale")) {
+      scene.environment.scale = c.number(ej["scale"], "environment.scale");
+      if (scene.environment.scale < 0) c.error("environment.scale", "must not be negative");
+    }
+    if (ej.contains("map")) {
+      std::string p = (dir / c.string(ej["map"], "environment.map")).string();
+      try {
+        scene.textures.push_back(loadTexture(p));
+        scene.environment.mapTexture = int(scene.textures.size()) - 1;
+      } catch (const Error& e) {
+        scene.report.warnings.push_back(std::string(e.what()) + " (environment uses its constant colour)");
+      }
+    }
+  }
+
+  bool haveCamera = haveBuiltinCamera;
+  scene.camera = builtinCamera;
+  if (root.contains("camera")) {
+    const json& cj = root["camera"];
+    c.checkKeys(cj, "camera", {"position", "target", "up", "fov_deg"});
+    Camera cam;
+    if (!cj.contains("position") || !cj.contains("target"))
+      c.error("camera", "needs \"position\" and \"target\"");
+    cam.position = c.vec3(cj["position"], "camera.position");
+    cam.target = c.vec3(cj["target"], "camera.target");
+    if (cj.contains("up")) cam.up = c.direction(cj["up"], "camera.up");
+    if (cj.contains("fov_deg")) {
+      cam.fovYDeg = c.number(cj["fov_deg"], "camera.fov_deg");
+      if (cam.fovYDeg <= 0 || cam.fovYDeg >= 180)
+        c.error("camera.fov_deg", "must be in (0, 180), got " + cj["fov_deg"].dump());
+    }
+    scene.camera = cam;
+    haveCamera = true;
+  }
+
+  if (root.contains("presets")) {
+    const json& pj = root["presets"];
+    if (!pj.is_object()) c.error("presets", "expected an object of name → {key: value}");
+    for (auto& [name, kv] : pj.items()) {
+      if (!kv.is_object()) c.error("presets." + name, "expected an object of key → value");
+      for (auto& [k, v] : kv.items()) {
+        if (v.is_string()) scene.presets[name][k] = v.get<std::string>();
+        else if (v.is_number() || v.is_boolean()) scene.presets[name][k] = v.dump();
+        else c.error("presets." + name + "." + k, "expected a string, number or boolean, got " + v.dump());
+      }
+    }
+  }
+  finishScene(scene, path, haveLights, haveCamera);
+  return scene;
+}
+
+// ---------------------------------------------------------------- assimp
+struct AssimpReader {
+  const aiScene* ai;
+  std::string path;
+  fs::path dir;
+  Scene& scene;
+  int materialBase;
+  std::map<std::string, int> textureCache;
+  size_t appended = 0;
+
+  int texture(const std::string& rel, const std::string& materialName) {
+    if (!rel.empty() && rel[0] == '*') {
+      scene.report.warnings.push_back(path + ": material '" + materialName +
+                                      "': embedded textures are not supported, using its constant albedo");
+      return -1;
+    }
+    std::string p = (dir / rel).string();
+    auto it = textureCache.find(p);
+    if (it != textureCache.end()) return it->second;
+    int idx = -1;
+    try {
+      scene.textures.push_back(loadTexture(p));
+      idx = int(scene.textures.size()) - 1;
+    } catch (const Error& e) {
+      scene.report.warnings.push_back(std::string(e.what()) + " (material '" + materialName +
+                                      "' uses its constant albedo)");
+    }
+    textureCache[p] = idx;
+    return idx;
+  }
+
+  void materials() {
+    for (unsigned i = 0; i < ai->mNumMaterials; ++i) {
+      const aiMaterial* am = ai->mMaterials[i];
+      Material m;
+      aiString name;
+      if (am->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) m.name = name.C_Str();
+      if (m.name.empty()) m.name = fs::path(path).stem().string() + "_" + std::to_string(i);
+      aiColor3D c;
+      if (am->Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS || am->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS)
+        m.albedo = {c.r, c.g, c.b};
+      if (am->Get(AI_MATKEY_COLOR_SPECULAR, c) == AI_SUCCESS) m.ks = {c.r, c.g, c.b};
+      if (am->Get(AI_MATKEY_COLOR_EMISSIVE, c) == AI_SUCCESS) m.emission = {c.r, c.g, c.b};
+      float shininess = 0;
+      if (am->Get(AI_MATKEY_SHININESS, shininess) == AI_SUCCESS && std::isfinite(shininess))
+        m.exponent = std::max(shininess, 0.0f);
+      if (!finite3(m.albedo) || !finite3(m.ks) || !finite3(m.emission))
+        fail(path, ": material '", m.name, "' has non-finite colours");
+      m.albedo = glm::clamp(m.albedo, 0.0f, 1.0f);
+      m.ks = glm::clamp(m.ks, 0.0f, 1.0f);
+      m.emission = glm::max(m.emission, 0.0f);
+      aiString tex;
+      if (am->GetTexture(aiTextureType_BASE_COLOR, 0, &tex) == AI_SUCCESS ||
+          am->GetTexture(aiTextureType_DIFFUSE, 0, &tex) == AI_SUCCESS)
+        m.albedoTexture = texture(tex.C_Str(), m.name);
+      // Textures modulate; a black Kd next to a map_Kd would hide the map.
+      if (m.albedoTexture >= 0 && m.albedo == glm::vec3(0.0f)) m.albedo = glm::vec3(1.0f);
+      scene.materials.push_back(m);
+    }
+  }
+
+  void node(const aiNode* n, const glm::mat4& parent) {
+    glm::mat4 local = glm::transpose(glm::make_mat4(&n->mTransformation.a1));
+    glm::mat4 M = parent * local;
+    for (unsigned k = 0; k < n->mNumMeshes; ++k) mesh(ai->mMeshes[n->mMeshes[k]], M);
+    for (unsigned k = 0; k < n->mNumChildren; ++k) node(n->mChildren[k], M);
+  }
+
+  void mesh(const aiMesh* am, const glm::mat4& M) {
+    if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) return;  // points/lines sorted out
+    Mesh m;
+    m.name = am->mName.length ? am->mName.C_Str() : fs::path(path).stem().string();
+    m.source = path;
+    m.material = materialBase + int(am->mMaterialIndex);
+    m.transform = M;
+    m.positions.resize(am->mNumVertices);
+    for (unsigned v = 0; v < am->mNumVertices; ++v)
+      m.positions[v] = {am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z};
+    if (am->mNormals) {
+      m.normals.resize(am->mNumVertices);
+      for (unsigned v = 0; v < am->mNumVertices; ++v)
+        m.normals[v] = {am->mNormals[v].x, am->mNormals[v].y, am->mNormals[v].z};
+    }
+    if (am->mTextureCoords[0]) {
+      m.uvs.resize(am->mNumVertices);
+      for (unsigned v = 0; v < am->mNumVertices; ++v)
+        m.uvs[v] = {am->mTextureCoords[0][v].x, am->mTextureCoords[0][v].y};
+    }
+    for (unsigned f = 0; f < am->mNumFaces; ++f) {
+      const aiFace& face = am->mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      m.triangles.push_back({face.mIndices[0], face.mIndices[1], face.mIndices[2]});
+    }
+    validateMesh(m, scene.report);
+    if (!m.triangles.empty()) {
+      scene.meshes.push_back(std::move(m));
+      ++appended;
+    }
+  }
+};
+
+}  // namespace
+
+void validateMesh(Mesh& m, LoadReport& report) {
+  for (size_t v = 0; v < m.positions.size(); ++v)
+    if (!finite3(m.positions[v]))
+      fail(m.source, ": mesh '", m.name, "': vertex ", v, " has a non-finite coordinate (",
+           m.positions[v].x, ", ", m.positions[v].y, ", ", m.positions[v].z, ")");
+  if (!m.normals.empty() && m.normals.size() != m.positions.size())
+    fail(m.source, ": mesh '", m.name, "': ", m.normals.size(), " normals for ", m.positions.size(), " vertices");
+  if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
+    fail(m.source, ": mesh '", m.name, "': ", m.uvs.size(), " uvs for ", m.positions.size(), " vertices");
+  for (auto& n : m.normals)
+    if (!finite3(n) || glm::length(n) < 1e-20f) n = glm::vec3(0.0f);  // flatten() falls back to the face normal
+  for (auto& uv : m.uvs)
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
+  std::vector<glm::uvec3> kept;
+  kept.reserve(m.triangles.size());
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    const glm::uvec3& tri = m.triangles[t];
+    for (int k = 0; k < 3; ++k)
+      if (tri[k] >= m.positions.size())
+        fail(m.source, ": mesh '", m.name, "': triangle ", t, " uses vertex index ", tri[k],
+             " but the mesh has ", m.positions.size(), " vertices");
+    glm::vec3 a = m.positions[tri[0]], b = m.positions[tri[1]], c = m.positions[tri[2]];
+    glm::vec3 cr = glm::cross(b - a, c - a);
+    float scale = std::max({glm::length(b - a), glm::length(c - a), glm::length(c - b)});
+    // Zero area relative to the triangle's own size: cross product below float resolution.
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] ||
+        !(glm::length(cr) > 1e-7f * scale * scale)) {
+      ++report.degenerateTrianglesDropped;
+      continue;
+    }
+    kept.push_back(tri);
+  }
+  m.triangles.swap(kept);
+}
+
+Texture loadTexture(const std::string& path) {
+  using namespace OIIO;
+  if (!fs::exists(path)) fail("texture '", path, "' does not exist");
+  auto in = ImageInput::open(path);
+  if (!in) fail("cannot read texture '", path, "': ", OIIO::geterror());
+  const ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    fail("texture '", path, "' has no pixels");
+  if (size_t(spec.width) * spec.height > (size_t(1) << 28))
+    fail("texture '", path, "' is too large (", spec.width, "x", spec.height, ")");
+  std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px.data()))
+    fail("cannot decode texture '", path, "': ", in->geterror());
+  bool srgb = spec.format.basetype == TypeDesc::UINT8 || spec.format.basetype == TypeDesc::UINT16;
+  Texture t;
+  t.path = path;
+  t.width = spec.width;
+  t.height = spec.height;
+  t.texels.resize(size_t(t.width) * t.height);
+  int nc = spec.nchannels;
+  for (size_t i = 0; i < t.texels.size(); ++i) {
+    glm::vec3 c;
+    for (int k = 0; k < 3; ++k) {
+      float v = px[i * nc + std::min(k, nc >= 3 ? k : 0)];
+      if (!std::isfinite(v)) v = 0;
+      c[k] = srgb ? srgbToLinear(v) : v;
+    }
+    t.texels[i] = c;
+  }
+  return t;
+}
+
+size_t appendModelFile(const std::string& path, Scene& scene) {
+  if (!fs::exists(path)) fail("model file '", path, "' does not exist");
+  if (fs::is_directory(path)) fail("model file '", path, "' is a directory");
+  std::string ext = lower(fs::path(path).extension().string());
+  if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".ply")
+    fail("model file '", path, "': unsupported format '", ext, "' (obj, gltf, glb, ply)");
+  Assimp::Importer importer;
+  importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, 60.0f);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const aiScene* ai = importer.ReadFile(
+      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
+                aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+  if (!ai) fail("cannot load model '", path, "': ", importer.GetErrorString());
+  if (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) fail("model '", path, "' is incomplete (no meshes?)");
+  AssimpReader r{ai, path, fs::path(path).parent_path(), scene, int(scene.materials.size()), {}, 0};
+  r.materials();
+  if (ai->mRootNode) r.node(ai->mRootNode, glm::mat4(1.0f));
+  if (r.appended == 0) fail("model '", path, "' has no (non-degenerate) triangles");
+  return r.appended;
+}
+
+Scene loadScene(const std::string& spec) {
+  if (spec.rfind("builtin:", 0) == 0) {
+    Scene s;
+    s.name = spec;
+    std::vector<Light> lights;
+    appendBuiltin(spec.substr(8), s, lights, s.camera);
+    s.lights = lights;
+    finishScene(s, spec, true, true);
+    return s;
+  }
+  if (!fs::exists(spec)) fail("scene '", spec, "' does not exist");
+  if (lower(fs::path(spec).extension().string()) == ".json") return loadSceneJson(spec);
+  Scene s;
+  s.name = fs::path(spec).stem().string();
+  appendModelFile(spec, s);
+  finishScene(s, spec, false, false);
+  return s;
+}
+
+}  // namespace vgi

@@ -1,0 +1,44 @@
+// Scene loading: "builtin:NAME", a scene JSON file, or a bare model file
+// (OBJ/MTL, glTF 2.0 .gltf/.glb, PLY) read through assimp; textures through
+// OpenImageIO. Bad input raises vgi::Error naming the file and the value;
+// recoverable problems (degenerate triangles, missing textures) are counted in
+// Scene::report.
+//
+// Scene JSON (every key is checked; unknown keys are errors):
+// {
+//   "meshes": [ { "path": "model.obj" | "builtin:cornell",   // relative to the JSON file
+//                 "transform": {"translate":[x,y,z], "rotate":[deg,ax,ay,az], "scale": s|[x,y,z]}
+//                              | {"matrix": [16 numbers, row-major]},
+//                 "material": "name",          // optional: one material for the whole file
+//                 "dynamic": false,
+//                 "keyframes": [ {"time": t, "translate":…, "rotate":…, "scale":…} ] } ],
+//   "materials": { "name": {"albedo":[r,g,b], "texture":"file", "ks":[r,g,b],
+//                           "exponent": n, "emission":[r,g,b]} },  // overrides or new
+//   "lights": [ {"type":"spot", "position":[…], "direction":[…], "intensity": [r,g,b] | x,
+//                "cone_deg": half-angle, "falloff": n}
+//             | {"type":"point", "position":[…], "intensity":…}
+//             | {"type":"directional", "direction":[…], "irradiance":…} ],
+//   "environment": {"color":[r,g,b]} | {"map":"latlong.exr", "scale": s},
+//   "camera": {"position":[…], "target":[…], "up":[…], "fov_deg": f},
+//   "presets": { "name": { "key": "value", … } }
+// }
+#pragma once
+#include <string>
+
+#include "core/scene.h"
+
+namespace vgi {
+
+Scene loadScene(const std::string& spec);
+
+// Reads one model file through assimp and appends its meshes/materials.
+// Returns the number of meshes appended.
+size_t appendModelFile(const std::string& path, Scene& scene);
+
+// Loads an image as linear RGB (8/16-bit files are treated as sRGB).
+Texture loadTexture(const std::string& path);
+
+// Checks finiteness, index ranges and drops degenerate triangles (counted).
+void validateMesh(Mesh& mesh, LoadReport& report);
+
+}  // namespace vgi

@@ -1,0 +1,188 @@
+#include "core/shader_library.h"
+
+#include <glad/gl.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace vgi {
+
+std::string defaultShaderDir() {
+  if (const char* env = std::getenv("VGI_SHADER_DIR")) return env;
+  return VGI_SHADER_DIR_DEFAULT;
+}
+
+ShaderLibrary::ShaderLibrary(std::string root) : root_(std::move(root)) {
+  if (!fs::is_directory(root_))
+    fail("shader folder '", root_, "' does not exist (set VGI_SHADER_DIR to the project's shaders/ folder)");
+}
+
+ShaderLibrary::~ShaderLibrary() {
+  for (auto& [k, p] : cache_) glDeleteProgram(p);
+}
+
+namespace {
+struct Expander {
+  std::string root;
+  std::vector<std::string> files;
+  std::set<std::string> included;
+  std::ostringstream out;
+
+  std::string resolve(const std::string& name, const std::string& from) {
+    fs::path rel = fs::path(from).parent_path() / name;
+    if (fs::exists(rel)) return fs::weakly_canonical(rel).string();
+    fs::path abs = fs::path(root) / name;
+    if (fs::exists(abs)) return fs::weakly_canonical(abs).string();
+    return "";
+  }
+
+  void expand(const std::string& path, const std::string& includedFrom) {
+    std::ifstream in(path);
+    if (!in) fail("shader '", path, "' not found", includedFrom.empty() ? "" : " (included from " + includedFrom + ")");
+    included.insert(path);
+    int index = int(files.size());
+    files.push_back(fs::relative(path, root).string());
+    out << "#line 1 " << index << "\n";
+    static const std::regex includeRe(R"(^\s*#\s*include\s+\"([^\"]+)\"\s*$)");
+    std::string line;
+    int lineNo = 0, cppDepth = 0;
+    while (std::getline(in, line)) {
+      ++lineNo;
+      std::string t = line.substr(line.find_first_not_of(" \t") == std::string::npos ? line.size() : line.find_first_not_of(" \t"));
+      if (cppDepth > 0) {  // inside #ifdef __cplusplus: C++ only, keep line count
+        if (t.rfind("#if", 0) == 0) ++cppDepth;
+        else if (t.rfind("#endif", 0) == 0) --cppDepth;
+        out << "\n";
+        continue;
+      }
+      if (t.rfind("#ifdef __cplusplus", 0) == 0) {
+        cppDepth = 1;
+        out << "\n";
+        continue;
+      }
+      std::smatch m;
+      if (std::regex_match(line, m, includeRe)) {
+        std::string target = resolve(m[1], path);
+        if (target.empty())
+          fail(files[index], ":", lineNo, ": cannot find include \"", m[1].str(), "\"");
+        if (!included.count(target)) expand(target, files[index] + ":" + std::to_string(lineNo));
+        out << "#line " << lineNo + 1 << " " << index << "\n";
+        continue;
+      }
+      if (t.rfind("#version", 0) == 0) {
+        out << "\n";  // the library writes the one #version line
+        continue;
+      }
+      out << line << "\n";
+    }
+  }
+};
+
+GLenum stageOf(const std::string& file) {
+  if (file.find(".vert") != std::string::npos) return GL_VERTEX_SHADER;
+  if (file.find(".frag") != std::string::npos) return GL_FRAGMENT_SHADER;
+  if (file.find(".geom") != std::string::npos) return GL_GEOMETRY_SHADER;
+  if (file.find(".comp") != std::string::npos) return GL_COMPUTE_SHADER;
+  fail("shader '", file, "': cannot tell the stage from the name (.vert/.frag/.geom/.comp)");
+}
+}  // namespace
+
+ShaderLibrary::Source ShaderLibrary::preprocess(const std::string& file, const ShaderDefines& defines) const {
+  Expander e;
+  e.root = fs::weakly_canonical(root_).string();
+  e.out << "#version 450 core\n#define SHARED_BEGIN\n#define SHARED_END\n#define SHARED_FN\n";
+  for (auto& [k, v] : defines) e.out << "#define " << k << " " << v << "\n";
+  e.expand(fs::weakly_canonical(fs::path(root_) / file).string(), "");
+  return {e.out.str(), e.files};
+}
+
+std::string ShaderLibrary::mapLog(const std::string& log, const std::vector<std::string>& files) {
+  // Mesa: "0:12(5): error: …"; NVIDIA: "0(12) : error C…".
+  static const std::regex mesaRe(R"(^(\d+):(\d+)\((\d+)\))");
+  static const std::regex nvRe(R"(^(\d+)\((\d+)\))");
+  std::istringstream in(log);
+  std::ostringstream out;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    auto name = [&](const std::string& idx) {
+      size_t i = std::stoul(idx);
+      return i < files.size() ? files[i] : "source " + idx;
+    };
+    if (std::regex_search(line, m, mesaRe))
+      line = name(m[1]) + ":" + m[2].str() + ":" + m[3].str() + m.suffix().str();
+    else if (std::regex_search(line, m, nvRe))
+      line = name(m[1]) + ":" + m[2].str() + m.suffix().str();
+    out << line << "\n";
+  }
+  return out.str();
+}
+
+unsigned ShaderLibrary::program(const std::vector<std::string>& files, const ShaderDefines& defines) {
+  std::string key;
+  for (auto& f : files) key += f + ";";
+  for (auto& [k, v] : defines) key += k + "=" + v + ";";
+  auto it = cache_.find(key);
+  if (it != cache_.end()) return it->second;
+
+  GLuint prog = glCreateProgram();
+  std::vector<GLuint> shaders;
+  auto cleanup = [&] {
+    for (GLuint s : shaders) glDeleteShader(s);
+    glDeleteProgram(prog);
+  };
+  for (auto& f : files) {
+    GLenum stage;
+    Source src;
+    try {
+      stage = stageOf(f);
+      src = preprocess(f, defines);
+    } catch (...) {
+      cleanup();
+      throw;
+    }
+    GLuint s = glCreateShader(stage);
+    shaders.push_back(s);
+    const char* text = src.text.c_str();
+    glShaderSource(s, 1, &text, nullptr);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      GLint len = 0;
+      glGetShaderiv(s, GL_INFO_LOG_LENGTH, &len);
+      std::string log(size_t(std::max(len, 1)), '\0');
+      glGetShaderInfoLog(s, len, nullptr, log.data());
+      cleanup();
+      fail("compiling shader '", f, "' failed:\n", mapLog(log, src.files));
+    }
+    glAttachShader(prog, s);
+  }
+  glLinkProgram(prog);
+  GLint ok = 0;
+  glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint len = 0;
+    glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &len);
+    std::string log(size_t(std::max(len, 1)), '\0');
+    glGetProgramInfoLog(prog, len, nullptr, log.data());
+    cleanup();
+    fail("linking program (", key, ") failed:\n", log);
+  }
+  for (GLuint s : shaders) {
+    glDetachShader(prog, s);
+    glDeleteShader(s);
+  }
+  cache_[key] = prog;
+  return prog;
+}
+
+}  // namespace vgi

@@ -1,0 +1,59 @@
+// The interface every rendering method implements, and the explicit registry.
+// A method reads its parameters from a ParamSet when it is created (unknown
+// keys are errors), then renders frames of a scene into an HDR image.
+#pragma once
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+#include "core/params.h"
+#include "core/profiler.h"
+#include "core/scene.h"
+
+namespace vgi {
+
+class GlContext;
+class ShaderLibrary;
+
+struct RenderRequest {
+  const Scene* scene = nullptr;
+  int width = 256, height = 256;
+  int spp = 1;
+  uint32_t seed = 0;
+  int threads = 0;  // CPU threads; 0 = all cores
+  float time = 0;   // animation time
+  GlContext* gl = nullptr;          // set for methods with needsGl()
+  ShaderLibrary* shaders = nullptr; // idem
+  bool progress = true;             // draw a progress bar on a terminal
+};
+
+struct RenderResult {
+  Image image;
+  int sppCompleted = 0;   // < requested when interrupted (Ctrl-C)
+  bool interrupted = false;
+  nlohmann::json extra = nlohmann::json::object();  // method-specific stats
+};
+
+class Method {
+ public:
+  virtual ~Method() = default;
+  virtual RenderResult render(const RenderRequest& request, Profiler& profiler) = 0;
+};
+
+struct MethodInfo {
+  std::string name;
+  std::string description;
+  bool needsGl;
+  std::function<std::unique_ptr<Method>(ParamSet& params, const Scene& scene)> create;
+};
+
+const std::vector<MethodInfo>& methodRegistry();
+const MethodInfo& findMethod(const std::string& name);  // throws listing the known names
+std::string defaultMethodName();
+
+}  // namespace vgi

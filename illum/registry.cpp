@@ -1,0 +1,31 @@
+// The explicit table of rendering methods (no static self-registration: a
+// static library would drop unreferenced registrars).
+#include "core/error.h"
+#include "illum/direct.h"
+#include "illum/method.h"
+#include "illum/reference.h"
+
+namespace vgi {
+
+const std::vector<MethodInfo>& methodRegistry() {
+  static const std::vector<MethodInfo> table = {
+      {"direct", "GL deferred direct lighting with shadow maps (delta lights, emission)", true,
+       [](ParamSet& p, const Scene& s) { return createDirectMethod(p, s); }},
+      {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
+       [](ParamSet& p, const Scene& s) { return createReferenceMethod(p, s); }},
+  };
+  return table;
+}
+
+const MethodInfo& findMethod(const std::string& name) {
+  std::string known;
+  for (auto& m : methodRegistry()) {
+    if (m.name == name) return m;
+    known += (known.empty() ? "" : ", ") + m.name;
+  }
+  fail("--method: unknown method '", name, "' (known: ", known, ")");
+}
+
+std::string defaultMethodName() { return "direct"; }
+
+}  // namespace vgi

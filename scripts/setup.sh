@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs every build and run dependency from Debian packages. Idempotent:
+# packages already present are skipped, so a second run costs seconds.
+set -euo pipefail
+PKGS=(
+  build-essential cmake ninja-build pkg-config python3 python3-glad
+  libembree-dev libopenimageio-dev openimageio-tools libassimp-dev libopenmesh-dev
+  libeigen3-dev libglfw3-dev libglm-dev libosmesa6-dev libegl-dev libgl-dev
+  libegl-mesa0 libgl1-mesa-dri mesa-utils-bin
+  libimgui-dev libcli11-dev nlohmann-json3-dev libgtest-dev libtbb-dev
+)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PKGS[@]} packages present"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,46 @@
+// The scene as the GL modules see it: std430 structs shared with C++, binding
+// points, and (GLSL only) the buffer and texture declarations.
+#ifdef __cplusplus
+#pragma once
+#include "cpp_prelude.h"
+#include "lights.glsl"
+#endif
+
+#define BINDING_MATERIALS 0      // SSBO PackedMaterial[]
+#define BINDING_TRI_MATERIAL 1   // SSBO int[] material index per triangle
+#define BINDING_LIGHTS 2         // SSBO PackedLight[]
+#define TEXUNIT_ALBEDO_ARRAY 8   // sampler2DArray of albedo textures (one size)
+#define TEXUNIT_ENV_MAP 9        // sampler2D lat-long environment
+
+SHARED_BEGIN
+struct PackedMaterial {
+  vec4 albedoLayer;     // rgb albedo, w = texture layer or −1
+  vec4 ksExponent;      // rgb ks, w = Phong exponent
+  vec4 emission;        // rgb emission
+};
+SHARED_END
+
+#ifndef __cplusplus
+#include "lights.glsl"
+layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { PackedMaterial materials[]; };
+layout(std430, binding = BINDING_TRI_MATERIAL) readonly buffer TriMaterialBuffer { int triMaterial[]; };
+layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBuffer { PackedLight lights[]; };
+layout(binding = TEXUNIT_ALBEDO_ARRAY) uniform sampler2DArray albedoTextures;
+layout(binding = TEXUNIT_ENV_MAP) uniform sampler2D envMap;
+uniform vec4 uEnvColorScale;  // rgb constant colour, w = map scale
+uniform int uEnvHasMap;
+
+vec3 gpuEnvironmentRadiance(vec3 dir) {
+  if (uEnvHasMap == 0) return vec3(uEnvColorScale.x, uEnvColorScale.y, uEnvColorScale.z);
+  vec2 uv = latLongUv(dir);
+  return texture(envMap, vec2(uv.x, 1.0f - uv.y)).xyz * uEnvColorScale.w;
+}
+
+BrdfParams gpuMaterialBrdf(int index, vec3 texturedAlbedo) {
+  BrdfParams b;
+  b.albedo = texturedAlbedo;
+  b.ks = vec3(materials[index].ksExponent.x, materials[index].ksExponent.y, materials[index].ksExponent.z);
+  b.exponent = materials[index].ksExponent.w;
+  return b;
+}
+#endif

@@ -1,0 +1,57 @@
+// Sampling kernels shared by the GL modules and the CPU reference.
+// Orthonormal basis: Duff et al., "Building an Orthonormal Basis, Revisited",
+// JCGT 6(1), 2017 — branch on the sign of n.z so the basis stays accurate for
+// normals near ±z (no cancellation in 1/(s + n.z)).
+#ifdef __cplusplus
+#pragma once
+#include "cpp_prelude.h"
+#include "constants.glsl"
+#endif
+SHARED_BEGIN
+
+struct Basis {
+  vec3 t;
+  vec3 b;
+  vec3 n;
+};
+
+SHARED_FN Basis makeBasis(vec3 n) {
+  float s = n.z >= 0.0f ? 1.0f : -1.0f;
+  float a = -1.0f / (s + n.z);
+  float c = n.x * n.y * a;
+  Basis f;
+  f.t = vec3(1.0f + s * n.x * n.x * a, s * c, -s * n.x);
+  f.b = vec3(c, s + n.y * n.y * a, -n.y);
+  f.n = n;
+  return f;
+}
+
+SHARED_FN vec3 basisToWorld(Basis f, vec3 v) { return f.t * v.x + f.b * v.y + f.n * v.z; }
+
+// Cosine-distributed direction around +z from u in [0,1)²; pdf = cos θ / π.
+// Malley's method; z is clamped so u.x → 1 (the horizon) never gives NaN.
+SHARED_FN vec3 cosineSampleHemisphere(vec2 u) {
+  float r = sqrt(u.x);
+  float phi = 2.0f * PI * u.y;
+  return vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0f, 1.0f - u.x)));
+}
+
+// Direction in the cone of half-angle acos(cosMax) around +z, density ∝ cos^e.
+SHARED_FN vec3 samplePowerCosine(vec2 u, float e) {
+  float cosT = pow(max(u.x, 1e-30f), 1.0f / (e + 1.0f));
+  float sinT = sqrt(max(0.0f, 1.0f - cosT * cosT));
+  float phi = 2.0f * PI * u.y;
+  return vec3(sinT * cos(phi), sinT * sin(phi), cosT);
+}
+
+// PCG hash (Jarzynski & Olano, "Hash Functions for GPU Rendering", JCGT 2020).
+SHARED_FN uint pcgHash(uint v) {
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+// Uniform float in [0, 1) from the top 24 bits (exactly representable).
+SHARED_FN float uintToUnitFloat(uint x) { return float(x >> 8u) * (1.0f / 16777216.0f); }
+
+SHARED_END
