@@ -62,7 +62,10 @@ void GlContext::finishInit(const std::string& backend) {
 void GlContext::debugCallback(unsigned source, unsigned type, unsigned id, unsigned severity,
                               int length, const char* message, const void* user) {
   auto* self = const_cast<GlContext*>(static_cast<const GlContext*>(user));
-  bool isError = type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH;
+  // Shader compile errors arrive here too; ShaderLibrary reports those with file
+  // and line, so they do not count as API errors.
+  bool isError = source != GL_DEBUG_SOURCE_SHADER_COMPILER &&
+                 (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH);
   std::string msg(message, length >= 0 ? size_t(length) : std::char_traits<char>::length(message));
   std::lock_guard<std::mutex> lock(self->mutex_);
   if (isError) {

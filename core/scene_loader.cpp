@@ -302,17 +302,23 @@ Scene loadSceneJson(const std::string& path) {
     }
   }
 
+  // An entry overrides every loaded material of that name (files may share
+  // names), or defines a new material.
   for (auto& [name, mj] : materialsJson.items()) {
-    Material* target = nullptr;
-    for (auto& m : scene.materials)
-      if (m.name == name) target = &m;
-    if (!target) {
+    bool found = false;
+    for (size_t k = 0; k < scene.materials.size(); ++k)
+      if (scene.materials[k].name == name) {
+        found = true;
+        Material m = scene.materials[k];
+        readMaterialOverride(c, mj, "materials." + name, m, scene, dir);
+        scene.materials[k] = m;
+      }
+    if (!found) {
       Material m;
       m.name = name;
+      readMaterialOverride(c, mj, "materials." + name, m, scene, dir);
       scene.materials.push_back(m);
-      target = &scene.materials.back();
     }
-    readMaterialOverride(c, mj, "materials." + name, *target, scene, dir);
   }
 
   bool haveLights = false;
@@ -561,9 +567,21 @@ size_t appendModelFile(const std::string& path, Scene& scene) {
   Assimp::Importer importer;
   importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, 60.0f);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const aiScene* ai = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
-                aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+  // Read with triangulation only and check the raw vertices first: later steps
+  // (vertex joining, normal generation) silently drop triangles with NaN corners.
+  const aiScene* ai = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_ValidateDataStructure);
+  if (!ai) fail("cannot load model '", path, "': ", importer.GetErrorString());
+  for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
+    const aiMesh* am = ai->mMeshes[m];
+    for (unsigned v = 0; v < am->mNumVertices; ++v) {
+      glm::vec3 p(am->mVertices[v].x, am->mVertices[v].y, am->mVertices[v].z);
+      if (!finite3(p))
+        fail(path, ": mesh '", am->mName.C_Str(), "': vertex ", v, " has a non-finite coordinate (", p.x,
+             ", ", p.y, ", ", p.z, ")");
+    }
+  }
+  ai = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
+                                    aiProcess_SortByPType | aiProcess_ValidateDataStructure);
   if (!ai) fail("cannot load model '", path, "': ", importer.GetErrorString());
   if (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) fail("model '", path, "' is incomplete (no meshes?)");
   AssimpReader r{ai, path, fs::path(path).parent_path(), scene, int(scene.materials.size()), {}, 0};

@@ -12,7 +12,8 @@
 //                 "material": "name",          // optional: one material for the whole file
 //                 "dynamic": false,
 //                 "keyframes": [ {"time": t, "translate":…, "rotate":…, "scale":…} ] } ],
-//   "materials": { "name": {"albedo":[r,g,b], "texture":"file", "ks":[r,g,b],
+//   "materials": { "name": {"albedo":[r,g,b], "texture":"file", "ks":[r,g,b],   // overrides every
+//                           material of that name, or defines a new one
 //                           "exponent": n, "emission":[r,g,b]} },  // overrides or new
 //   "lights": [ {"type":"spot", "position":[…], "direction":[…], "intensity": [r,g,b] | x,
 //                "cone_deg": half-angle, "falloff": n}

@@ -30,6 +30,13 @@ ShaderLibrary::~ShaderLibrary() {
 }
 
 namespace {
+// Mesa ignores the source-string number of `#line` in its messages, so the file
+// index also goes into the line number: line = index · kLinesPerFile + line.
+constexpr long kLinesPerFile = 100000;
+std::string lineDirective(int index, int line) {
+  return std::to_string(index * kLinesPerFile + line) + " " + std::to_string(index);
+}
+
 struct Expander {
   std::string root;
   std::vector<std::string> files;
@@ -50,7 +57,7 @@ struct Expander {
     included.insert(path);
     int index = int(files.size());
     files.push_back(fs::relative(path, root).string());
-    out << "#line 1 " << index << "\n";
+    out << "#line " << lineDirective(index, 1) << "\n";
     static const std::regex includeRe(R"(^\s*#\s*include\s+\"([^\"]+)\"\s*$)");
     std::string line;
     int lineNo = 0, cppDepth = 0;
@@ -74,7 +81,7 @@ struct Expander {
         if (target.empty())
           fail(files[index], ":", lineNo, ": cannot find include \"", m[1].str(), "\"");
         if (!included.count(target)) expand(target, files[index] + ":" + std::to_string(lineNo));
-        out << "#line " << lineNo + 1 << " " << index << "\n";
+        out << "#line " << lineDirective(index, lineNo + 1) << "\n";
         continue;
       }
       if (t.rfind("#version", 0) == 0) {
@@ -105,22 +112,24 @@ ShaderLibrary::Source ShaderLibrary::preprocess(const std::string& file, const S
 }
 
 std::string ShaderLibrary::mapLog(const std::string& log, const std::vector<std::string>& files) {
-  // Mesa: "0:12(5): error: …"; NVIDIA: "0(12) : error C…".
+  // Mesa: "0:12(5): error: …"; NVIDIA: "0(12) : error C…". The line carries the file index.
   static const std::regex mesaRe(R"(^(\d+):(\d+)\((\d+)\))");
   static const std::regex nvRe(R"(^(\d+)\((\d+)\))");
   std::istringstream in(log);
   std::ostringstream out;
   std::string line;
+  auto where = [&](const std::string& encoded) {
+    long v = std::stol(encoded);
+    size_t i = size_t(v / kLinesPerFile);
+    std::string name = i < files.size() ? files[i] : "source " + std::to_string(i);
+    return name + ":" + std::to_string(v % kLinesPerFile);
+  };
   while (std::getline(in, line)) {
     std::smatch m;
-    auto name = [&](const std::string& idx) {
-      size_t i = std::stoul(idx);
-      return i < files.size() ? files[i] : "source " + idx;
-    };
     if (std::regex_search(line, m, mesaRe))
-      line = name(m[1]) + ":" + m[2].str() + ":" + m[3].str() + m.suffix().str();
+      line = where(m[2]) + ":" + m[3].str() + m.suffix().str();
     else if (std::regex_search(line, m, nvRe))
-      line = name(m[1]) + ":" + m[2].str() + m.suffix().str();
+      line = where(m[2]) + m.suffix().str();
     out << line << "\n";
   }
   return out.str();

@@ -33,7 +33,7 @@ class ShaderLibrary {
   };
   Source preprocess(const std::string& file, const ShaderDefines& defines) const;
 
-  // Rewrites "N:L(C)" / "N(L)" prefixes of a driver log into "file:L".
+  // Rewrites the "N:L(C)" / "N(L)" prefixes of a driver log into "file:line".
   static std::string mapLog(const std::string& log, const std::vector<std::string>& files);
 
  private:

@@ -278,7 +278,8 @@ RenderResult ReferenceRenderer::render(const RenderRequest& req, Profiler& profi
   int done = 0;
   for (int pass = 0; done < req.spp && !interruptRequested(); ++pass) {
     // Passes grow 1, 1, 2, 4, … 16 samples: early feedback, little overhead later.
-    int n = std::min({req.spp - done, pass == 0 ? 1 : std::min(16, 1 << (pass - 1))});
+    // (Capped before shifting: 1 << (pass − 1) is undefined from pass 33 on.)
+    int n = std::min(req.spp - done, pass == 0 ? 1 : (pass <= 5 ? 1 << (pass - 1) : 16));
     std::atomic<int> next{0};
     auto work = [&] {
       for (int t; (t = next.fetch_add(1)) < tilesX * tilesY;) {

@@ -2,12 +2,13 @@
 # Installs every build and run dependency from Debian packages. Idempotent:
 # packages already present are skipped, so a second run costs seconds.
 set -euo pipefail
+# Toolchain; libraries; Mesa's llvmpipe for EGL (surfaceless) and OSMesa, so the
+# GL code runs on a machine without a GPU.
 PKGS=(
-  build-essential cmake ninja-build pkg-config python3 python3-glad
-  libembree-dev libopenimageio-dev openimageio-tools libassimp-dev libopenmesh-dev
-  libeigen3-dev libglfw3-dev libglm-dev libosmesa6-dev libegl-dev libgl-dev
-  libegl-mesa0 libgl1-mesa-dri mesa-utils-bin
-  libimgui-dev libcli11-dev nlohmann-json3-dev libgtest-dev libtbb-dev
+  build-essential cmake ninja-build pkg-config git python3 python3-glad
+  libembree-dev libopenimageio-dev libassimp-dev libopenmesh-dev libeigen3-dev
+  libglfw3-dev libglm-dev libimgui-dev libcli11-dev nlohmann-json3-dev libgtest-dev
+  libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
 )
 missing=()
 for p in "${PKGS[@]}"; do

@@ -1,0 +1,95 @@
+// The `vgi` command as a user runs it: exit codes, messages, outputs.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "test_util.h"
+
+namespace vgi {
+
+namespace {
+struct CliRun {
+  int code;
+  std::string output;
+};
+CliRun vgi(const std::string& args) {
+  std::string cmd = std::string(VGI_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+std::string tmp(const std::string& name) { return testing::TempDir() + "/" + name; }
+}  // namespace
+
+TEST(Cli, RenderWritesExrPngAndStats) {
+  CliRun r = vgi("render --scene builtin:cornell --method reference --set integrator=direct --size 32x24 --spp 2 "
+              "--quiet -o " + tmp("cli.exr") + " --stats " + tmp("cli_stats.json"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(tmp("cli.png")));
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("cli.json")));
+  EXPECT_EQ(s["width"], 32);
+  EXPECT_EQ(s["height"], 24);
+  EXPECT_EQ(s["params"]["integrator"], "direct");
+  EXPECT_TRUE(std::filesystem::exists(tmp("cli_stats.json")));
+}
+
+TEST(Cli, BadArgumentsFailWithClearMessages) {
+  CliRun a = vgi("render --set nosuch=1 --size 8x8 -o " + tmp("x.exr"));
+  EXPECT_EQ(a.code, 2);
+  EXPECT_NE(a.output.find("nosuch=1"), std::string::npos) << a.output;
+  CliRun b = vgi("render --size 0x10 -o " + tmp("x.exr"));
+  EXPECT_EQ(b.code, 2);
+  EXPECT_NE(b.output.find("--size '0x10'"), std::string::npos) << b.output;
+  CliRun c = vgi("render --size 8x8 -o /no/such/dir/x.exr");
+  EXPECT_EQ(c.code, 2);
+  EXPECT_NE(c.output.find("/no/such/dir"), std::string::npos) << c.output;
+  CliRun d = vgi("render --bogus");
+  EXPECT_NE(d.code, 0);
+  CliRun e = vgi("render --scene " + test::dataPath("bad/nan_vertex.obj") + " -o " + tmp("x.exr"));
+  EXPECT_EQ(e.code, 2);
+  EXPECT_NE(e.output.find("nan_vertex.obj"), std::string::npos) << e.output;
+  CliRun f = vgi("render --method reference --set integrator=teleport -o " + tmp("x.exr"));
+  EXPECT_EQ(f.code, 2);
+  EXPECT_NE(f.output.find("teleport"), std::string::npos) << f.output;
+}
+
+TEST(Cli, DiffRefusesDifferentSizes) {
+  ASSERT_EQ(vgi("render --method reference --set integrator=ao --size 8x8 --spp 1 --quiet -o " + tmp("a.exr")).code, 0);
+  ASSERT_EQ(vgi("render --method reference --set integrator=ao --size 8x9 --spp 1 --quiet -o " + tmp("b.exr")).code, 0);
+  CliRun same = vgi("diff --json " + tmp("a.exr") + " " + tmp("a.exr"));
+  ASSERT_EQ(same.code, 0) << same.output;
+  EXPECT_EQ(nlohmann::json::parse(same.output)["rmse"], 0.0);
+  CliRun diff = vgi("diff " + tmp("a.exr") + " " + tmp("b.exr"));
+  EXPECT_EQ(diff.code, 2);
+  EXPECT_NE(diff.output.find("different sizes"), std::string::npos) << diff.output;
+}
+
+TEST(Cli, InfoAndHelpModule) {
+  CliRun i = vgi("info --scene builtin:cornell --json");
+  ASSERT_EQ(i.code, 0) << i.output;
+  EXPECT_EQ(nlohmann::json::parse(i.output)["triangles"], 30);
+  CliRun h = vgi("render --help-module reference");
+  ASSERT_EQ(h.code, 0);
+  EXPECT_NE(h.output.find("integrator"), std::string::npos);
+  CliRun hd = vgi("render --help-module direct");
+  EXPECT_NE(hd.output.find("shadow_res"), std::string::npos);
+}
+
+// Ctrl-C during a long render still writes what was accumulated.
+TEST(Cli, InterruptWritesPartialImage) {
+  CliRun r = vgi("render --method reference --set integrator=path --size 64x64 --spp 100000 --quiet -o " +
+              tmp("int.exr") + " & pid=$!; sleep 2; kill -INT $pid; wait $pid");
+  ASSERT_EQ(r.code, 0) << r.output;
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("int.json")));
+  EXPECT_TRUE(s["interrupted"].get<bool>());
+  EXPECT_GT(s["spp_completed"].get<int>(), 0);
+  EXPECT_LT(s["spp_completed"].get<int>(), 100000);
+}
+
+}  // namespace vgi

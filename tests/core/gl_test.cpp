@@ -1,0 +1,152 @@
+// Headless GL: both backends give a 4.5 core context, KHR_debug counts errors,
+// the shader loader maps compile errors to files and lines, and the shared
+// kernels compute on the GPU what they compute on the CPU.
+#include <glad/gl.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/gl_context.h"
+#include "core/profiler.h"
+#include "core/shader_library.h"
+#include "shaders/shared/brdf.glsl"
+#include "shaders/shared/lights.glsl"
+#include "shaders/shared/sampling.glsl"
+#include "test_util.h"
+
+namespace vgi {
+
+TEST(GlContext, EglAndOsmesaGiveGl45Core) {
+  for (GlBackend b : {GlBackend::Egl, GlBackend::Osmesa}) {
+    auto ctx = GlContext::create(b);
+    EXPECT_FALSE(ctx->renderer().empty());
+    GLint major = 0, minor = 0, mask = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
+    EXPECT_GE(major * 10 + minor, 45) << ctx->backendName();
+    EXPECT_TRUE(mask & GL_CONTEXT_CORE_PROFILE_BIT);
+    EXPECT_EQ(ctx->errorCount(), 0);
+  }
+  test::expectError([] { parseGlBackend("vulkan"); }, {"--gl", "vulkan"});
+}
+
+TEST(GlContext, DebugCallbackCountsErrors) {
+  auto ctx = GlContext::create();
+  glBindBuffer(GL_ARRAY_BUFFER, 987654u);  // not a buffer name: GL_INVALID_OPERATION
+  EXPECT_GE(ctx->errorCount(), 1);
+}
+
+TEST(ShaderLibrary, CompileErrorsNameTheIncludedFileAndLine) {
+  auto ctx = GlContext::create();
+  namespace fs = std::filesystem;
+  fs::path dir = fs::path(testing::TempDir()) / "shaders_line_test";
+  fs::create_directories(dir / "sub");
+  std::ofstream(dir / "main.comp.glsl") << "layout(local_size_x = 1) in;\n#include \"sub/helper.glsl\"\nvoid main() { helper(); }\n";
+  std::ofstream(dir / "sub/helper.glsl") << "// helper\n\nvoid helper() { undefined_symbol = 1; }\n";
+  ShaderLibrary lib(dir.string());
+  test::expectError([&] { lib.program({"main.comp.glsl"}); }, {"sub/helper.glsl:3", "undefined_symbol"});
+  std::ofstream(dir / "sub/helper.glsl") << "void helper() {}\n";
+  std::ofstream(dir / "missing.comp.glsl") << "#include \"nope.glsl\"\n";
+  test::expectError([&] { lib.program({"missing.comp.glsl"}); }, {"missing.comp.glsl:1", "nope.glsl"});
+  EXPECT_NE(lib.program({"main.comp.glsl"}, {{"FOO", "1"}}), 0u);
+  EXPECT_EQ(lib.program({"main.comp.glsl"}, {{"FOO", "1"}}), lib.program({"main.comp.glsl"}, {{"FOO", "1"}}));
+  EXPECT_EQ(ctx->errorCount(), 0);
+}
+
+TEST(Profiler, GpuPassesGetTimestampTimings) {
+  auto ctx = GlContext::create();
+  Profiler prof(true);
+  for (int i = 0; i < 40; ++i) {  // more passes than the initial query pool
+    auto s = prof.scope(i % 2 ? "odd" : "even");
+    glFinish();
+  }
+  prof.resolve(true);
+  auto t = prof.timingsMs();
+  ASSERT_TRUE(t.contains("odd") && t.contains("even"));
+  EXPECT_GE(t["odd"].get<double>(), 0.0);
+  EXPECT_EQ(prof.callCounts()["even"], 20);
+  EXPECT_EQ(ctx->errorCount(), 0);
+}
+
+// One compute shader runs the shared kernels on inputs the CPU also evaluates.
+TEST(SharedKernels, GpuMatchesCpu) {
+  auto ctx = GlContext::create();
+  namespace fs = std::filesystem;
+  fs::path dir = fs::path(testing::TempDir()) / "shaders_kernel_test";
+  fs::create_directories(dir);
+  fs::path shared = fs::path(defaultShaderDir()) / "shared";
+  std::ofstream(dir / "k.comp.glsl") << "#include \"" << (shared / "constants.glsl").string() << "\"\n"
+      << "#include \"" << (shared / "sampling.glsl").string() << "\"\n"
+      << "#include \"" << (shared / "brdf.glsl").string() << "\"\n"
+      << "#include \"" << (shared / "lights.glsl").string() << "\"\n"
+      << R"(layout(local_size_x = 64) in;
+layout(std430, binding = 0) buffer Out { uint hashes[]; };
+layout(std430, binding = 1) buffer OutF { vec4 values[]; };
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  hashes[i] = pcgHash(i * 7919u);
+  vec2 u = vec2(uintToUnitFloat(pcgHash(2u * i)), uintToUnitFloat(pcgHash(2u * i + 1u)));
+  vec3 n = normalize(vec3(u.x - 0.5f, u.y - 0.5f, float(i % 3u) - 1.0f + 0.01f));
+  vec3 d = basisToWorld(makeBasis(n), cosineSampleHemisphere(u));
+  BrdfParams m;
+  m.albedo = vec3(0.5f);
+  m.ks = vec3(0.25f);
+  m.exponent = 12.0f;
+  vec3 f = evalBrdf(m, n, n, d);
+  PackedLight L;
+  L.positionType = vec4(0.0f, 2.0f, 0.0f, float(LIGHT_SPOT));
+  L.directionCosCone = vec4(0.0f, -1.0f, 0.0f, 0.5f);
+  L.intensityFalloff = vec4(1.0f, 2.0f, 3.0f, 2.0f);
+  LightSample s = sampleDeltaLight(L, d);
+  values[3u * i] = vec4(d, f.x);
+  values[3u * i + 1u] = vec4(s.wi, s.dist);
+  values[3u * i + 2u] = vec4(s.radiance, 0.0f);
+})";
+  ShaderLibrary lib(dir.string());
+  GLuint prog = lib.program({"k.comp.glsl"});
+  const unsigned N = 4096;
+  GLuint bufs[2];
+  glCreateBuffers(2, bufs);
+  glNamedBufferStorage(bufs[0], N * 4, nullptr, 0);
+  glNamedBufferStorage(bufs[1], N * 3 * 16, nullptr, 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
+  glUseProgram(prog);
+  glDispatchCompute(N / 64, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<uint32_t> hashes(N);
+  std::vector<glm::vec4> values(3 * N);
+  glGetNamedBufferSubData(bufs[0], 0, N * 4, hashes.data());
+  glGetNamedBufferSubData(bufs[1], 0, N * 3 * 16, values.data());
+  glDeleteBuffers(2, bufs);
+  using namespace vgi::shared;
+  double maxErr = 0;
+  for (unsigned i = 0; i < N; ++i) {
+    ASSERT_EQ(hashes[i], pcgHash(i * 7919u)) << "integer kernel must match bit for bit, i=" << i;
+    glm::vec2 u(uintToUnitFloat(pcgHash(2u * i)), uintToUnitFloat(pcgHash(2u * i + 1u)));
+    glm::vec3 n = glm::normalize(glm::vec3(u.x - 0.5f, u.y - 0.5f, float(i % 3u) - 1.0f + 0.01f));
+    glm::vec3 d = basisToWorld(makeBasis(n), cosineSampleHemisphere(u));
+    BrdfParams m;
+    m.albedo = glm::vec3(0.5f);
+    m.ks = glm::vec3(0.25f);
+    m.exponent = 12.0f;
+    float f = evalBrdf(m, n, n, d).x;
+    PackedLight L;
+    L.positionType = glm::vec4(0, 2, 0, float(LIGHT_SPOT));
+    L.directionCosCone = glm::vec4(0, -1, 0, 0.5f);
+    L.intensityFalloff = glm::vec4(1, 2, 3, 2);
+    LightSample s = sampleDeltaLight(L, d);
+    glm::vec4 cpu[3] = {glm::vec4(d, f), glm::vec4(s.wi, s.dist), glm::vec4(s.radiance, 0)};
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 4; ++c) {
+        double ref = cpu[k][c], gpu = values[3 * i + k][c];
+        maxErr = std::max(maxErr, std::abs(gpu - ref) / std::max(1.0, std::abs(ref)));
+      }
+  }
+  // Float kernels: GLSL's transcendental functions may differ in the last bits.
+  EXPECT_LT(maxErr, 1e-4);
+  EXPECT_EQ(ctx->errorCount(), 0);
+}
+
+}  // namespace vgi

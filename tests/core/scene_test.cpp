@@ -1,0 +1,108 @@
+#include <fstream>
+
+#include "core/scene_loader.h"
+#include "test_util.h"
+
+namespace vgi {
+
+TEST(Scene, BuiltinCornellMatchesThePublishedBox) {
+  Scene s = loadScene("builtin:cornell");
+  EXPECT_EQ(s.triangleCount(), 30u);  // 5 walls + 2 blocks of 5 quads, light quad omitted
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, LightType::Spot);
+  EXPECT_FLOAT_EQ(s.lights[0].coneHalfAngleDeg, 90.0f);
+  EXPECT_FLOAT_EQ(s.lights[0].falloff, 1.0f);
+  EXPECT_NEAR(s.camera.fovYDeg, 39.3077f, 1e-3f);
+  Bounds b = s.bounds();
+  EXPECT_NEAR(b.hi.x, 0.556f, 1e-6f);
+  EXPECT_NEAR(b.hi.y, 0.5488f, 1e-6f);
+  EXPECT_NEAR(b.hi.z, 0.5592f, 1e-6f);
+  EXPECT_EQ(s.report.degenerateTrianglesDropped, 0);
+  EXPECT_TRUE(s.report.warnings.empty());
+  // The light hangs inside the box, below the ceiling.
+  EXPECT_LT(s.lights[0].position.y, b.hi.y);
+}
+
+TEST(Scene, SharedCornellObjLoads) {
+  std::string p = test::sharedScene("cornell-box/CornellBox-Original.obj");
+  if (p.empty()) GTEST_SKIP() << "../shared/scenes not present";
+  Scene s = loadScene(p);
+  EXPECT_EQ(s.triangleCount(), 36u);
+  bool emissive = false;
+  for (auto& m : s.materials) emissive |= m.emission.x > 0;
+  EXPECT_TRUE(emissive);  // Ke 17 12 4 of the light quad
+}
+
+TEST(Scene, SharedPlyAndTexturedObjLoad) {
+  std::string bunny = test::sharedScene("stanford-bunny/bun_zipper.ply");
+  std::string sib = test::sharedScene("sibenik/sibenik.obj");
+  if (bunny.empty() || sib.empty()) GTEST_SKIP() << "../shared/scenes not present";
+  Scene b = loadScene(bunny);
+  EXPECT_EQ(b.triangleCount() + size_t(b.report.degenerateTrianglesDropped), 69451u);
+  EXPECT_FALSE(b.lights.empty());  // a default light was added, with a warning
+  Scene s = loadScene(sib);
+  EXPECT_GT(s.triangleCount(), 70000u);
+  int textured = 0;
+  for (auto& m : s.materials) textured += m.albedoTexture >= 0;
+  EXPECT_GT(textured, 0);
+}
+
+TEST(Scene, GltfLoadsWithNodeTransformAndBaseColour) {
+  Scene s = loadScene(test::dataPath("triangle.gltf"));
+  ASSERT_EQ(s.triangleCount(), 1u);
+  EXPECT_NEAR(s.bounds().lo.z, 2.0f, 1e-6f);  // node translation applied
+  EXPECT_NEAR(s.materials[size_t(s.meshes[0].material)].albedo.x, 0.8f, 1e-6f);
+}
+
+TEST(Scene, JsonSceneWithDynamicMeshAndPresets) {
+  std::string path = testing::TempDir() + "/dyn.json";
+  std::ofstream(path) << R"({
+    "meshes": [ {"path": "builtin:cornell"},
+                {"path": ")" << test::dataPath("triangle.gltf") << R"(", "material": "gold", "dynamic": true,
+                 "keyframes": [ {"time": 0, "translate": [0, 0, 0]},
+                                {"time": 1, "translate": [1, 0, 0], "rotate": [90, 0, 1, 0]} ] } ],
+    "materials": { "gold": {"albedo": [0.5, 0.4, 0.1], "ks": [0.3, 0.3, 0.3], "exponent": 50},
+                   "red": {"albedo": 0.2} },
+    "environment": {"color": [0.1, 0.2, 0.3]},
+    "presets": { "fast": {"rays": 4, "env": "off"} } })";
+  Scene s = loadScene(path);
+  EXPECT_EQ(s.lights.size(), 1u);  // the built-in's spot light is kept
+  const Mesh& tri = s.meshes.back();
+  EXPECT_TRUE(tri.dynamic);
+  EXPECT_EQ(s.materials[size_t(tri.material)].name, "gold");
+  EXPECT_FLOAT_EQ(s.materials[size_t(tri.material)].exponent, 50.0f);
+  glm::vec3 p0 = glm::vec3(tri.objectToWorld(0.0f) * glm::vec4(tri.positions[0], 1));
+  glm::vec3 p1 = glm::vec3(tri.objectToWorld(1.0f) * glm::vec4(tri.positions[0], 1));
+  glm::vec3 pHalf = glm::vec3(tri.objectToWorld(0.5f) * glm::vec4(tri.positions[0], 1));
+  EXPECT_NEAR(p0.z, 2.0f, 1e-5f);
+  EXPECT_NEAR(p1.x, 1.0f + 2.0f, 1e-5f);  // rotated 90° about y: (0,0,2) → (2,0,0), then +1 x
+  EXPECT_GT(pHalf.x, 0.5f);
+  EXPECT_EQ(s.presets["fast"]["rays"], "4");
+  EXPECT_EQ(s.presets["fast"]["env"], "off");
+  // "red" overrides the built-in's red wall.
+  for (auto& m : s.materials)
+    if (m.name == "red") EXPECT_FLOAT_EQ(m.albedo.y, 0.2f);
+  EXPECT_NEAR(s.environmentRadiance({0, 1, 0}).z, 0.3f, 1e-6f);
+}
+
+TEST(Scene, FlattenGivesFiniteNormals) {
+  Scene s = loadScene("builtin:cornell");
+  FlatScene f = flatten(s);
+  ASSERT_EQ(f.triangleCount(), 30u);
+  for (auto& n : f.normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+}
+
+TEST(Scene, ProjectSceneFilesLoadWhenTheirDataIsPresent) {
+  for (const char* name : {"cornell-original.json", "sibenik.json", "bunny.json", "dragon.json", "cornell-bunny.json"}) {
+    std::string p = std::string(VGI_TEST_DATA) + "/../../scenes/" + name;
+    std::ifstream in(p);
+    ASSERT_TRUE(in.good()) << p;
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    if (text.find("../shared/scenes") != std::string::npos && test::sharedScene("").empty()) continue;
+    Scene s = loadScene(p);
+    EXPECT_GT(s.triangleCount(), 0u) << name;
+    EXPECT_FALSE(s.lights.empty()) << name;
+  }
+}
+
+}  // namespace vgi

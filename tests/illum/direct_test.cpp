@@ -1,0 +1,63 @@
+// The GL `direct` module against its exact counterpart, reference
+// integrator=direct: the difference is the shadow-map error.
+#include <fstream>
+
+#include "core/image_metrics.h"
+#include "illum/render_job.h"
+#include "test_util.h"
+
+namespace vgi {
+
+namespace {
+RenderOutput render(const std::string& scene, const std::string& method, std::vector<std::string> set,
+                    int size, int spp) {
+  RenderOptions o;
+  o.scene = scene;
+  o.method = method;
+  o.set = std::move(set);
+  o.width = o.height = size;
+  o.spp = spp;
+  o.progress = false;
+  return runRender(o);
+}
+}  // namespace
+
+TEST(DirectModule, MatchesTheEmbreeDirectReferenceOnTheCornellBox) {
+  RenderOutput gl = render("builtin:cornell", "direct", {}, 96, 16);
+  RenderOutput ref = render("builtin:cornell", "reference", {"integrator=direct"}, 96, 16);
+  EXPECT_EQ(gl.stats["gl_errors"], 0);
+  ImageDiff d = compareImages(gl.result.image, ref.result.image);
+  EXPECT_LT(d.relMse, 0.01);
+  EXPECT_GT(d.ssim, 0.95);
+  for (const char* key : {"method", "scene", "width", "height", "spp", "gl_renderer", "timings_ms", "total_ms", "params"})
+    EXPECT_TRUE(gl.stats.contains(key)) << key;
+  EXPECT_TRUE(gl.stats["timings_ms"].contains("shade"));
+}
+
+// An open scene exercises the point-light cube maps from outside a box and the
+// directional light's orthographic map.
+TEST(DirectModule, PointAndDirectionalShadowsMatchTheReference) {
+  std::string path = testing::TempDir() + "/open.json";
+  std::ofstream(path) << R"({
+    "meshes": [ {"path": ")" << test::dataPath("open_scene.obj") << R"("} ],
+    "lights": [ {"type": "point", "position": [1.5, 2.5, 1.0], "intensity": [3, 3, 3]},
+                {"type": "directional", "direction": [-0.4, -1, -0.3], "irradiance": [0.6, 0.5, 0.4]},
+                {"type": "spot", "position": [-1, 2, 1], "direction": [0.3, -1, -0.3], "intensity": 4,
+                 "cone_deg": 35, "falloff": 2} ],
+    "camera": {"position": [3, 3, 5], "target": [0, 0.3, 0], "fov_deg": 40} })";
+  RenderOutput gl = render(path, "direct", {}, 96, 16);
+  RenderOutput ref = render(path, "reference", {"integrator=direct"}, 96, 16);
+  ImageDiff d = compareImages(gl.result.image, ref.result.image);
+  EXPECT_LT(d.relMse, 0.01);
+  EXPECT_EQ(gl.stats["extra"]["shadow_maps"]["cube"], 2);
+  EXPECT_EQ(gl.stats["extra"]["shadow_maps"]["directional"], 1);
+}
+
+TEST(DirectModule, BadParametersAreErrors) {
+  test::expectError([] { render("builtin:cornell", "direct", {"shadow_res=4"}, 8, 1); }, {"shadow_res", "4"});
+  test::expectError([] { render("builtin:cornell", "direct", {"shadowres=512"}, 8, 1); }, {"shadowres=512"});
+  test::expectError([] { render("builtin:cornell", "nosuch", {}, 8, 1); }, {"nosuch", "direct", "reference"});
+  test::expectError([] { render("builtin:cornell", "direct", {}, 8, 0); }, {"--spp", "0"});
+}
+
+}  // namespace vgi

@@ -1,0 +1,207 @@
+// The Embree reference against analytic answers.
+#include <cmath>
+
+#include "core/progress.h"
+#include "core/scene_loader.h"
+#include "illum/method.h"
+#include "illum/reference.h"
+#include "test_util.h"
+
+namespace vgi {
+
+namespace {
+RenderResult renderRef(const Scene& s, std::initializer_list<std::string> set, int w, int h, int spp,
+                       uint32_t seed = 1, int threads = 0) {
+  ParamSet p;
+  for (auto& kv : set) p.setFromString(kv);
+  auto m = createReferenceMethod(p, s);
+  p.checkAllUsed("reference");
+  RenderRequest r;
+  r.scene = &s;
+  r.width = w;
+  r.height = h;
+  r.spp = spp;
+  r.seed = seed;
+  r.threads = threads;
+  r.progress = false;
+  Profiler prof(false);
+  return m->render(r, prof);
+}
+
+double meanOf(const Image& img, int channel) {
+  double s = 0;
+  for (auto& p : img.pixels) s += p[channel];
+  return s / double(img.pixels.size());
+}
+}  // namespace
+
+// Closed box, albedo ρ and emission Le everywhere: L = Le / (1 − ρ).
+TEST(Reference, WhiteFurnace) {
+  Scene s;
+  int m = test::addMaterial(s, glm::vec3(0.5f, 0.8f, 0.2f), glm::vec3(1.0f));
+  test::addBox(s, glm::vec3(-1), glm::vec3(1), m);
+  s.camera.position = {0.2f, 0.1f, 0.3f};
+  s.camera.target = {0.5f, -0.2f, 0.9f};
+  s.camera.fovYDeg = 90;
+  RenderResult r = renderRef(s, {"integrator=path", "maxdepth=10000"}, 24, 24, 64);
+  EXPECT_NEAR(meanOf(r.image, 0), 1.0 / (1 - 0.5), 0.02 * 2.0);
+  EXPECT_NEAR(meanOf(r.image, 1), 1.0 / (1 - 0.8), 0.03 * 5.0);
+  EXPECT_NEAR(meanOf(r.image, 2), 1.0 / (1 - 0.2), 0.02 * 1.25);
+}
+
+TEST(Reference, UnoccludedPlaneHasAmbientOcclusionOne) {
+  Scene s;
+  test::addFloor(s, 100.0f, 0.0f, test::addMaterial(s, glm::vec3(0.5f)));
+  s.camera.position = {0, 1, 0};
+  s.camera.target = {0, 0, 0};
+  s.camera.up = {0, 0, 1};
+  s.camera.fovYDeg = 60;
+  RenderResult r = renderRef(s, {"integrator=ao", "radius=5"}, 16, 16, 16);
+  for (auto& p : r.image.pixels) ASSERT_EQ(p.x, 1.0f);
+  // A box over the plane occludes: AO under and beside it drops below 1.
+  test::addBox(s, glm::vec3(-0.5f, 0.02f, -0.5f), glm::vec3(0.5f, 0.3f, 0.5f), 0);
+  s.camera.position = {0, 2, 0};
+  RenderResult r2 = renderRef(s, {"integrator=ao", "radius=5"}, 16, 16, 16);
+  EXPECT_LT(meanOf(r2.image, 0), 0.99);
+}
+
+// Point and spot lights over a Lambert plane: L = ρ/π · I(θ) cos θ / d².
+TEST(Reference, DeltaLightsOnLambertPlaneMatchTheFormula) {
+  for (LightType type : {LightType::Point, LightType::Spot}) {
+    Scene s;
+    const float rho = 0.6f, h = 0.5f;
+    test::addFloor(s, 10.0f, 0.0f, test::addMaterial(s, glm::vec3(rho)));
+    Light l;
+    l.type = type;
+    l.position = {0.3f, h, -0.2f};
+    l.direction = {0, -1, 0};
+    l.intensity = glm::vec3(2.0f);
+    l.coneHalfAngleDeg = 60;
+    l.falloff = 3;
+    s.lights = {l};
+    s.camera.position = {0, 3, 0};
+    s.camera.target = {0, 0, 0};
+    s.camera.up = {0, 0, 1};
+    s.camera.fovYDeg = 50;
+    const int W = 32;
+    RenderResult r = renderRef(s, {"integrator=direct"}, W, W, 64);
+    // Compare with the formula box-filtered over each pixel (8×8 sub-samples);
+    // pixels crossing the spot's cone edge are skipped.
+    const glm::vec3 fwd(0, -1, 0), right = glm::normalize(glm::cross(fwd, s.camera.up)), up = glm::cross(right, fwd);
+    const float t = std::tan(glm::radians(25.0f));
+    const float edge = std::cos(glm::radians(60.0f));
+    auto radiance = [&](float sx, float sy, bool& nearEdge) {
+      glm::vec3 d = glm::normalize(fwd + (2.0f * sx / W - 1) * t * right + (1 - 2.0f * sy / W) * t * up);
+      glm::vec3 p = s.camera.position + d * (3.0f / -d.y);
+      glm::vec3 toL = l.position - p;
+      float d2 = glm::dot(toL, toL), cosSurf = toL.y / std::sqrt(d2), cosLight = cosSurf;
+      float I = 2.0f;
+      if (type == LightType::Spot) {
+        nearEdge |= std::abs(cosLight - edge) < 0.05f;
+        I = cosLight < edge ? 0.0f : 2.0f * std::pow(cosLight, 3.0f);
+      }
+      return rho / 3.14159265f * I * cosSurf / d2;
+    };
+    int compared = 0;
+    double sumImage = 0, sumExpected = 0;
+    for (int y = 0; y < W; ++y)
+      for (int x = 0; x < W; ++x) {
+        bool nearEdge = false;
+        double expected = 0;
+        for (int j = 0; j < 8; ++j)
+          for (int i = 0; i < 8; ++i) expected += radiance(x + (i + 0.5f) / 8, y + (j + 0.5f) / 8, nearEdge) / 64.0;
+        if (nearEdge) continue;
+        // Per pixel: random jitter leaves Monte Carlo noise on the pixel integral.
+        EXPECT_NEAR(r.image.at(x, y).x, expected, 0.06 * expected + 1e-6) << x << "," << y;
+        sumImage += r.image.at(x, y).x;
+        sumExpected += expected;
+        ++compared;
+      }
+    EXPECT_GT(compared, W * W / 2);
+    EXPECT_NEAR(sumImage / sumExpected, 1.0, 2e-3);  // no bias
+  }
+}
+
+TEST(Reference, VarianceFallsAsOneOverSpp) {
+  Scene s = loadScene("builtin:cornell");
+  auto msd = [&](int spp) {
+    Image a = renderRef(s, {"integrator=ao", "radius=0.2"}, 32, 32, spp, 11).image;
+    Image b = renderRef(s, {"integrator=ao", "radius=0.2"}, 32, 32, spp, 12).image;
+    double sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) sum += std::pow(double(a.pixels[i].x - b.pixels[i].x), 2);
+    return sum / double(a.pixels.size());
+  };
+  double ratio = msd(4) / msd(64);
+  EXPECT_GT(ratio, 16.0 * 0.7);
+  EXPECT_LT(ratio, 16.0 * 1.4);
+}
+
+TEST(Reference, DeterministicForSeedWhateverTheThreadCount) {
+  Scene s = loadScene("builtin:cornell");
+  Image a = renderRef(s, {"integrator=path"}, 24, 20, 4, 5, 1).image;
+  Image b = renderRef(s, {"integrator=path"}, 24, 20, 4, 5, 2).image;
+  Image c = renderRef(s, {"integrator=path"}, 24, 20, 4, 6, 2).image;
+  EXPECT_EQ(a.pixels, b.pixels);
+  EXPECT_NE(a.pixels, c.pixels);
+}
+
+// With an unbounded radius and a black environment, one near-field bounce is
+// the path integrator truncated after two bounces (no emitters here).
+TEST(Reference, NearFieldWithInfiniteRadiusEqualsTwoBouncePath) {
+  Scene s = loadScene("builtin:cornell");
+  Image nf = renderRef(s, {"integrator=nearfield", "radius=1000"}, 24, 24, 256, 3).image;
+  Image pt = renderRef(s, {"integrator=path", "maxdepth=2", "rr_depth=10"}, 24, 24, 256, 4).image;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(meanOf(nf, c), meanOf(pt, c), 0.015 * meanOf(pt, c));
+  // A vanishing radius leaves direct light only.
+  Image tiny = renderRef(s, {"integrator=nearfield", "radius=1e-9"}, 24, 24, 4, 3).image;
+  Image direct = renderRef(s, {"integrator=direct"}, 24, 24, 4, 3).image;
+  for (size_t i = 0; i < tiny.pixels.size(); ++i) EXPECT_NEAR(tiny.pixels[i].x, direct.pixels[i].x, 1e-6f);
+}
+
+TEST(Reference, ParametersOfOtherIntegratorsAreRejected) {
+  Scene s = loadScene("builtin:cornell");
+  ParamSet p;
+  p.setFromString("integrator=ao");
+  p.setFromString("maxdepth=3");
+  test::expectError([&] { createReferenceMethod(p, s); }, {"maxdepth", "integrator=ao"});
+  ParamSet q;
+  q.setFromString("integrator=path");
+  q.setFromString("radius=-1");
+  test::expectError([&] { createReferenceMethod(q, s); }, {"radius"});
+}
+
+TEST(Reference, InterruptKeepsWhatWasAccumulated) {
+  Scene s = loadScene("builtin:cornell");
+  requestInterrupt();
+  RenderResult r = renderRef(s, {"integrator=direct"}, 16, 16, 1000);
+  resetInterrupt();
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_LT(r.sppCompleted, 1000);
+}
+
+}  // namespace vgi
+
+namespace vgi {
+// Hundreds of progressive passes (the pass size grows, then stays at 16):
+// every pixel must end with exactly the requested sample count.
+TEST(Reference, ManyPassesAccumulateExactly) {
+  Scene s = loadScene("builtin:cornell");
+  ParamSet p;
+  p.setFromString("integrator=ao");
+  auto m = createReferenceMethod(p, s);
+  RenderRequest r;
+  r.scene = &s;
+  r.width = 3;
+  r.height = 2;
+  r.spp = 1000;
+  r.progress = false;
+  Profiler prof(false);
+  RenderResult res = m->render(r, prof);
+  EXPECT_EQ(res.sppCompleted, 1000);
+  EXPECT_FALSE(res.interrupted);
+  for (auto& px : res.image.pixels) {
+    EXPECT_GE(px.x, 0.0f);
+    EXPECT_LE(px.x, 1.0f);
+  }
+}
+}  // namespace vgi

@@ -1,0 +1,69 @@
+// Helpers shared by the tests: data paths and small analytic scenes.
+#pragma once
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/scene.h"
+
+namespace vgi::test {
+
+inline std::string dataPath(const std::string& rel) { return std::string(VGI_TEST_DATA) + "/" + rel; }
+
+// A scene file from ../shared/scenes, or "" when that data is absent (tests then skip).
+inline std::string sharedScene(const std::string& rel) {
+  std::string p = std::string(VGI_SHARED_SCENES) + "/" + rel;
+  return std::filesystem::exists(p) ? p : "";
+}
+
+// Expects `fn` to throw vgi::Error whose message contains every needle.
+template <typename Fn>
+void expectError(Fn fn, std::initializer_list<std::string> needles) {
+  try {
+    fn();
+    ADD_FAILURE() << "expected vgi::Error";
+  } catch (const Error& e) {
+    std::string msg = e.what();
+    for (auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' not in: " << msg;
+  }
+}
+
+inline int addMaterial(Scene& s, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
+  Material m;
+  m.name = "m" + std::to_string(s.materials.size());
+  m.albedo = albedo;
+  m.emission = emission;
+  s.materials.push_back(m);
+  return int(s.materials.size()) - 1;
+}
+
+// Axis-aligned quad in the plane y = `y`, spanning [-h, h] in x and z.
+inline void addFloor(Scene& s, float h, float y, int material) {
+  Mesh m;
+  m.name = "floor";
+  m.source = "test";
+  m.positions = {{-h, y, -h}, {h, y, -h}, {h, y, h}, {-h, y, h}};
+  m.triangles = {{0, 2, 1}, {0, 3, 2}};
+  m.material = material;
+  s.meshes.push_back(m);
+}
+
+// Closed axis-aligned box [-h, h]³ (two-sided surfaces: winding does not matter).
+inline void addBox(Scene& s, glm::vec3 lo, glm::vec3 hi, int material) {
+  Mesh m;
+  m.name = "box";
+  m.source = "test";
+  for (int i = 0; i < 8; ++i)
+    m.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
+  const unsigned q[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+  for (auto& f : q) {
+    m.triangles.push_back({f[0], f[1], f[2]});
+    m.triangles.push_back({f[0], f[2], f[3]});
+  }
+  m.material = material;
+  s.meshes.push_back(m);
+}
+
+}  // namespace vgi::test
