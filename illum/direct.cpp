@@ -13,7 +13,7 @@
 // |---------------|-------|---------|----------------------------------------------------|
 // | shadow_res    | int   | 1024    | shadow map size (cube face / directional map)      |
 // | shadow_bias   | float | 1.0     | depth bias in shadow-map texels (slope-scaled)     |
-// | normal_offset | float | 1.0     | lookup offset along the normal, in texels          |
+// | normal_offset | float | 0.25    | lookup offset along the normal, in texels          |
 #include "illum/direct.h"
 
 #include <glad/gl.h>
@@ -48,7 +48,7 @@ class DirectMethod : public Method {
   DirectMethod(ParamSet& p, const Scene& scene) {
     shadowRes_ = p.getInt("shadow_res", 1024, "shadow map size (cube face / directional map)", 16, 8192);
     shadowBias_ = p.getFloat("shadow_bias", 1.0f, "depth bias in shadow-map texels (slope-scaled)", 0.0f, 100.0f);
-    normalOffset_ = p.getFloat("normal_offset", 1.0f, "lookup offset along the normal, in texels", 0.0f, 100.0f);
+    normalOffset_ = p.getFloat("normal_offset", 0.25f, "lookup offset along the normal, in texels", 0.0f, 100.0f);
     int directional = 0;
     for (auto& l : scene.lights) directional += l.type == LightType::Directional;
     if (directional > kMaxDirectional)
