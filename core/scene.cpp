@@ -9,15 +9,16 @@
 
 namespace vgi {
 
-glm::vec3 Texture::lookup(glm::vec2 uv) const {
+glm::vec3 Texture::lookup(glm::vec2 uv, bool wrapV) const {
   if (texels.empty()) return glm::vec3(1.0f);
+  float v = wrapV ? uv.y - std::floor(uv.y) : glm::clamp(uv.y, 0.0f, 1.0f);
   float x = (uv.x - std::floor(uv.x)) * width - 0.5f;
-  float y = (1.0f - (uv.y - std::floor(uv.y))) * height - 0.5f;  // uv origin bottom-left
+  float y = (1.0f - v) * height - 0.5f;  // uv origin bottom-left
   int x0 = int(std::floor(x)), y0 = int(std::floor(y));
   float fx = x - x0, fy = y - y0;
   auto at = [&](int i, int j) {
     i = ((i % width) + width) % width;
-    j = ((j % height) + height) % height;
+    j = wrapV ? ((j % height) + height) % height : glm::clamp(j, 0, height - 1);
     return texels[size_t(j) * width + i];
   };
   return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
@@ -63,7 +64,7 @@ Bounds Scene::bounds(float time) const {
 glm::vec3 Scene::environmentRadiance(glm::vec3 dir) const {
   if (environment.mapTexture < 0) return environment.color;
   glm::vec2 uv = shared::latLongUv(dir);
-  return textures[environment.mapTexture].lookup(uv) * environment.scale;
+  return textures[environment.mapTexture].lookup(uv, false) * environment.scale;
 }
 
 FlatScene flatten(const Scene& scene, float time) {

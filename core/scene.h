@@ -16,7 +16,9 @@ struct Texture {
   std::string path;
   int width = 0, height = 0;
   std::vector<glm::vec3> texels;  // row 0 = top of the image file
-  glm::vec3 lookup(glm::vec2 uv) const;  // bilinear, wrapping
+  // Bilinear; u always wraps, v wraps (albedo textures) or clamps (lat-long maps,
+  // whose top and bottom rows are the poles, not neighbours).
+  glm::vec3 lookup(glm::vec2 uv, bool wrapV = true) const;
 };
 
 // Lambert (albedo, optional texture) + normalised Phong lobe (ks, exponent) + emission.

@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include "core/image_metrics.h"
+#include "core/scene_loader.h"
 #include "illum/render_job.h"
 #include "test_util.h"
 
@@ -60,4 +61,28 @@ TEST(DirectModule, BadParametersAreErrors) {
   test::expectError([] { render("builtin:cornell", "direct", {}, 8, 0); }, {"--spp", "0"});
 }
 
+}  // namespace vgi
+
+namespace vgi {
+// A lat-long environment whose texels encode their own (u, v): the reference
+// (CPU lookup) and the GL module (texture lookup) must agree on orientation, and
+// straight up must read the top row.
+TEST(DirectModule, EnvironmentMapOrientationMatchesTheReference) {
+  Image env(64, 32);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) env.at(x, y) = glm::vec3((x + 0.5f) / 64, 1.0f - (y + 0.5f) / 32, 0.25f);
+  std::string dir = testing::TempDir();
+  writeImage(env, dir + "/env_uv.exr");
+  std::ofstream(dir + "/env_scene.json") << R"({
+    "meshes": [ {"path": ")" << test::dataPath("triangle.gltf") << R"("} ],
+    "lights": [ {"type": "point", "position": [0, 0, 5], "intensity": 1} ],
+    "environment": {"map": "env_uv.exr", "scale": 2},
+    "camera": {"position": [0, 0, 0], "target": [0.3, 0.4, -1], "fov_deg": 120} })";
+  Scene s = loadScene(dir + "/env_scene.json");
+  EXPECT_NEAR(s.environmentRadiance({0, 1, 0}).y, 2.0f * (1.0f - 0.5f / 32), 1e-4f);  // zenith: top row
+  EXPECT_NEAR(s.environmentRadiance({0, 0, -1}).x, 2.0f * 0.5f, 0.02f);             // −z: u = ½
+  RenderOutput gl = render(dir + "/env_scene.json", "direct", {}, 48, 4);
+  RenderOutput ref = render(dir + "/env_scene.json", "reference", {"integrator=direct"}, 48, 16);
+  EXPECT_LT(compareImages(gl.result.image, ref.result.image).relMse, 0.01);
+}
 }  // namespace vgi
