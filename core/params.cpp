@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <type_traits>
 
 #include "core/error.h"
 
@@ -31,35 +32,34 @@ const ParamSet::Value* ParamSet::lookup(const std::string& key, const std::strin
   return &it->second;
 }
 
+namespace {
+// Parses a whole string as a number of type T (strtol/strtod) and checks [lo, hi].
+template <typename T>
+T parseNumber(const std::string& key, const std::string& origin, const std::string& text, T lo, T hi) {
+  char* end = nullptr;
+  errno = 0;
+  const bool integral = std::is_integral_v<T>;
+  double x = integral ? double(std::strtol(text.c_str(), &end, 10)) : std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
+    fail("parameter '", key, "' (", origin, "): '", text, "' is not ",
+         integral ? "an integer" : "a finite number");
+  if (x < double(lo) || x > double(hi))
+    fail("parameter '", key, "' (", origin, "): ", x, " is out of range [", lo, ", ", hi, "]");
+  return T(x);
+}
+}  // namespace
+
 int ParamSet::getInt(const std::string& key, int def, const std::string& doc, int lo, int hi) {
-  int v = def;
-  if (auto* p = lookup(key, "int", std::to_string(def), doc)) {
-    char* end = nullptr;
-    errno = 0;
-    long x = std::strtol(p->text.c_str(), &end, 10);
-    if (p->text.empty() || *end != '\0' || errno == ERANGE)
-      fail("parameter '", key, "' (", p->origin, "): '", p->text, "' is not an integer");
-    if (x < lo || x > hi)
-      fail("parameter '", key, "' (", p->origin, "): ", x, " is out of range [", lo, ", ", hi, "]");
-    v = int(x);
-  }
+  const Value* p = lookup(key, "int", std::to_string(def), doc);
+  int v = p ? parseNumber(key, p->origin, p->text, lo, hi) : def;
   resolved_[key] = v;
   return v;
 }
 
 float ParamSet::getFloat(const std::string& key, float def, const std::string& doc, float lo,
                          float hi) {
-  float v = def;
-  if (auto* p = lookup(key, "float", std::to_string(def), doc)) {
-    char* end = nullptr;
-    errno = 0;
-    double x = std::strtod(p->text.c_str(), &end);
-    if (p->text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
-      fail("parameter '", key, "' (", p->origin, "): '", p->text, "' is not a finite number");
-    if (x < lo || x > hi)
-      fail("parameter '", key, "' (", p->origin, "): ", x, " is out of range [", lo, ", ", hi, "]");
-    v = float(x);
-  }
+  const Value* p = lookup(key, "float", std::to_string(def), doc);
+  float v = p ? parseNumber(key, p->origin, p->text, lo, hi) : def;
   resolved_[key] = v;
   return v;
 }

@@ -47,22 +47,30 @@ EmbreeTracer::~EmbreeTracer() {
   if (device_) rtcReleaseDevice(device_);
 }
 
+namespace {
+RTCRay makeRay(glm::vec3 o, glm::vec3 d, float tnear, float tfar) {
+  RTCRay r;
+  r.org_x = o.x;
+  r.org_y = o.y;
+  r.org_z = o.z;
+  r.dir_x = d.x;
+  r.dir_y = d.y;
+  r.dir_z = d.z;
+  r.tnear = tnear;
+  r.tfar = tfar;
+  r.time = 0;
+  r.mask = ~0u;
+  r.id = 0;
+  r.flags = 0;
+  return r;
+}
+}  // namespace
+
 TriangleHit EmbreeTracer::firstHit(glm::vec3 o, glm::vec3 d, float tnear, float tfar) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh;
-  rh.ray.org_x = o.x;
-  rh.ray.org_y = o.y;
-  rh.ray.org_z = o.z;
-  rh.ray.dir_x = d.x;
-  rh.ray.dir_y = d.y;
-  rh.ray.dir_z = d.z;
-  rh.ray.tnear = tnear;
-  rh.ray.tfar = tfar;
-  rh.ray.time = 0;
-  rh.ray.mask = ~0u;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
+  rh.ray = makeRay(o, d, tnear, tfar);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &ctx, &rh);
@@ -79,19 +87,7 @@ TriangleHit EmbreeTracer::firstHit(glm::vec3 o, glm::vec3 d, float tnear, float 
 bool EmbreeTracer::occluded(glm::vec3 o, glm::vec3 d, float tnear, float tfar) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  RTCRay r;
-  r.org_x = o.x;
-  r.org_y = o.y;
-  r.org_z = o.z;
-  r.dir_x = d.x;
-  r.dir_y = d.y;
-  r.dir_z = d.z;
-  r.tnear = tnear;
-  r.tfar = tfar;
-  r.time = 0;
-  r.mask = ~0u;
-  r.id = 0;
-  r.flags = 0;
+  RTCRay r = makeRay(o, d, tnear, tfar);
   rtcOccluded1(scene_, &ctx, &r);
   return r.tfar < 0;  // Embree sets tfar = -inf on a hit
 }
