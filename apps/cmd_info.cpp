@@ -13,6 +13,11 @@ const char* lightTypeName(LightType t) {
   return t == LightType::Point ? "point" : t == LightType::Spot ? "spot" : "directional";
 }
 nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
+std::string str(glm::vec3 v) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.4g, %.4g, %.4g)", v.x, v.y, v.z);
+  return buf;
+}
 }  // namespace
 
 void addInfoCommand(CLI::App& app) {
@@ -56,15 +61,18 @@ void addInfoCommand(CLI::App& app) {
     std::printf("triangles  %zu (%ld degenerate dropped)\n", s.triangleCount(), s.report.degenerateTrianglesDropped);
     std::printf("meshes     %zu (%zu dynamic)\n", s.meshes.size(), dyn);
     std::printf("materials  %zu\n", s.materials.size());
-    for (auto& m : j["materials"])
-      std::printf("  %-20s albedo %s ks %s exp %g emission %s %s\n", m["name"].get<std::string>().c_str(),
-                  m["albedo"].dump().c_str(), m["ks"].dump().c_str(), m["exponent"].get<double>(),
-                  m["emission"].dump().c_str(), m["texture"].get<std::string>().c_str());
+    for (auto& m : s.materials)
+      std::printf("  %-20s albedo %s ks %s exponent %g emission %s %s\n", m.name.c_str(), str(m.albedo).c_str(),
+                  str(m.ks).c_str(), m.exponent, str(m.emission).c_str(),
+                  m.albedoTexture >= 0 ? s.textures[size_t(m.albedoTexture)].path.c_str() : "");
     std::printf("lights     %zu\n", s.lights.size());
-    for (auto& l : j["lights"]) std::printf("  %s\n", l.dump().c_str());
-    std::printf("bounds     %s .. %s (diagonal %g)\n", j["bounds"]["min"].dump().c_str(),
-                j["bounds"]["max"].dump().c_str(), b.diagonal());
-    std::printf("camera     %s\n", j["camera"].dump().c_str());
+    for (auto& l : s.lights)
+      std::printf("  %-11s position %s direction %s intensity %s cone %g deg falloff %g\n", lightTypeName(l.type),
+                  str(l.position).c_str(), str(l.direction).c_str(), str(l.intensity).c_str(), l.coneHalfAngleDeg,
+                  l.falloff);
+    std::printf("bounds     %s .. %s (diagonal %g)\n", str(b.lo).c_str(), str(b.hi).c_str(), b.diagonal());
+    std::printf("camera     position %s target %s up %s fov %g deg\n", str(s.camera.position).c_str(),
+                str(s.camera.target).c_str(), str(s.camera.up).c_str(), s.camera.fovYDeg);
     for (auto& w : s.report.warnings) std::printf("warning    %s\n", w.c_str());
   });
 }

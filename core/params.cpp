@@ -96,6 +96,13 @@ std::string ParamSet::getString(const std::string& key, const std::string& def,
   return v;
 }
 
+void ParamSet::declare(const std::string& key, const std::string& type, const std::string& def,
+                       const std::string& doc) {
+  for (auto& d : docs_)
+    if (d.key == key) return;
+  docs_.push_back({key, type, def, doc});
+}
+
 void ParamSet::checkAllUsed(const std::string& context) const {
   std::string unused;
   for (auto& [k, v] : values_)

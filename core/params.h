@@ -29,6 +29,11 @@ class ParamSet {
   std::string getString(const std::string& key, const std::string& def, const std::string& doc,
                         const std::vector<std::string>& allowed = {});
 
+  // Documents a parameter that this configuration does not read (e.g. one that
+  // belongs to another integrator), so --help-module lists it; it stays out of resolved().
+  void declare(const std::string& key, const std::string& type, const std::string& def,
+               const std::string& doc);
+
   // Throws naming every key that was set but never read.
   void checkAllUsed(const std::string& context) const;
   // Every parameter that was read, with its resolved value.

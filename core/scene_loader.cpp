@@ -34,6 +34,19 @@ float srgbToLinear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
+// albedo + ks > 1 reflects more light than arrives (and breaks the furnace
+// test); scale ks down so each channel sums to at most 1, and say so.
+void conserveEnergy(Material& m, const std::string& where, LoadReport& report) {
+  glm::vec3 sum = m.albedo + m.ks;
+  float worst = std::max({sum.x, sum.y, sum.z});
+  if (worst <= 1.0f) return;
+  glm::vec3 room = glm::max(glm::vec3(1.0f) - m.albedo, glm::vec3(0.0f));
+  m.albedo = glm::min(m.albedo, glm::vec3(1.0f));
+  m.ks = glm::min(m.ks, room);
+  report.warnings.push_back(where + ": material '" + m.name + "': albedo + ks = " + std::to_string(worst) +
+                            " > 1; ks reduced to conserve energy");
+}
+
 // ---------------------------------------------------------------- JSON helpers
 struct JsonCtx {
   std::string file;
@@ -144,9 +157,7 @@ void readMaterialOverride(const JsonCtx& c, const json& j, const std::string& wh
                                       "' keeps its constant albedo)");
     }
   }
-  glm::vec3 sum = m.albedo + m.ks;
-  if (sum.x > 1.0f || sum.y > 1.0f || sum.z > 1.0f)
-    scene.report.warnings.push_back(c.file + ": " + where + ": albedo + ks exceeds 1 (the material reflects more than it receives)");
+  conserveEnergy(m, c.file + ": " + where, scene.report);
 }
 
 Light readLight(const JsonCtx& c, const json& j, const std::string& where) {
@@ -425,7 +436,13 @@ struct AssimpReader {
       Material m;
       aiString name;
       if (am->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) m.name = name.C_Str();
-      if (m.name.empty()) m.name = fs::path(path).stem().string() + "_" + std::to_string(i);
+      // Formats without materials (PLY, bare OBJ) get assimp's default material,
+      // which is white diffuse *and* white specular; use our default instead.
+      if (m.name.empty() || m.name == AI_DEFAULT_MATERIAL_NAME) {
+        m.name = fs::path(path).stem().string() + "_default";
+        scene.materials.push_back(m);
+        continue;
+      }
       aiColor3D c;
       if (am->Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS || am->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS)
         m.albedo = {c.r, c.g, c.b};
@@ -445,6 +462,7 @@ struct AssimpReader {
         m.albedoTexture = texture(tex.C_Str(), m.name);
       // Textures modulate; a black Kd next to a map_Kd would hide the map.
       if (m.albedoTexture >= 0 && m.albedo == glm::vec3(0.0f)) m.albedo = glm::vec3(1.0f);
+      conserveEnergy(m, path, scene.report);
       scene.materials.push_back(m);
     }
   }

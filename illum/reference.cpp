@@ -97,23 +97,28 @@ class ReferenceRenderer : public Method {
                                         : Integrator::Ao;
     const bool usesDepth = integrator_ == Integrator::Path;
     const bool usesRadius = integrator_ == Integrator::NearField || integrator_ == Integrator::Ao;
-    if (usesDepth || params.has("maxdepth"))
-      maxDepth_ = params.getInt("maxdepth", 8, "path: maximum number of bounces", 1, 10000);
-    if (usesDepth || params.has("rr_depth"))
-      rrDepth_ = params.getInt("rr_depth", 3, "path: bounces before Russian roulette", 0, 10000);
-    if (integrator_ == Integrator::Direct) maxDepth_ = 1;
+    const bool usesEnv = integrator_ == Integrator::NearField;
+    // Every parameter is documented; only the integrator's own are read (and so
+    // appear in the stats); giving another integrator's parameter is an error.
+    auto check = [&](bool uses, const char* key) {
+      if (!uses && params.has(key))
+        fail("parameter '", key, "' does not apply to integrator=", name);
+      return uses;
+    };
+    const char* depthDoc = "path: maximum number of bounces";
+    const char* rrDoc = "path: bounces before Russian roulette";
+    const char* radiusDoc = "nearfield/ao: ray length in world units (default 0.1 x scene diagonal)";
+    const char* envDoc = "nearfield: rays that leave the radius read the environment";
+    if (check(usesDepth, "maxdepth")) maxDepth_ = params.getInt("maxdepth", 8, depthDoc, 1, 10000);
+    else params.declare("maxdepth", "int", "8", depthDoc);
+    if (check(usesDepth, "rr_depth")) rrDepth_ = params.getInt("rr_depth", 3, rrDoc, 0, 10000);
+    else params.declare("rr_depth", "int", "3", rrDoc);
     float diag = scene.bounds().diagonal();
-    if (usesRadius || params.has("radius"))
-      radius_ = params.getFloat("radius", 0.1f * diag, "nearfield/ao: ray length in world units",
-                                1e-30f, 1e30f);
-    if (integrator_ == Integrator::NearField || params.has("env"))
-      env_ = params.getBool("env", true, "nearfield: rays that leave the radius read the environment");
-    if ((params.has("maxdepth") || params.has("rr_depth")) && !usesDepth)
-      fail("parameter 'maxdepth'/'rr_depth' applies to integrator=path only (got integrator=", name, ")");
-    if (params.has("radius") && !usesRadius)
-      fail("parameter 'radius' applies to integrator=nearfield|ao only (got integrator=", name, ")");
-    if (params.has("env") && integrator_ != Integrator::NearField)
-      fail("parameter 'env' applies to integrator=nearfield only (got integrator=", name, ")");
+    if (check(usesRadius, "radius")) radius_ = params.getFloat("radius", 0.1f * diag, radiusDoc, 1e-30f, 1e30f);
+    else params.declare("radius", "float", std::to_string(0.1f * diag), radiusDoc);
+    if (check(usesEnv, "env")) env_ = params.getBool("env", true, envDoc);
+    else params.declare("env", "bool", "true", envDoc);
+    if (integrator_ == Integrator::Direct) maxDepth_ = 1;
   }
 
   RenderResult render(const RenderRequest& req, Profiler& profiler) override;

@@ -76,3 +76,21 @@ TEST(BadInput, MeshValidationNamesTheProblem) {
 }
 
 }  // namespace vgi
+
+namespace vgi {
+TEST(BadInput, MaterialsThatCreateEnergyAreClampedWithAWarning) {
+  Scene s = loadScene(test::dataPath("bad/too_bright.obj"));
+  const Material& m = s.materials[size_t(s.meshes[0].material)];
+  EXPECT_NEAR(m.albedo.x + m.ks.x, 1.0f, 1e-6f);
+  EXPECT_NEAR(m.ks.z, 0.5f, 1e-6f);  // 0.2 + 0.5 fits: unchanged
+  EXPECT_NEAR(m.exponent, 30.0f, 1e-6f);
+  bool warned = false;
+  for (auto& w : s.report.warnings) warned |= w.find("shiny") != std::string::npos;
+  EXPECT_TRUE(warned);
+  // A PLY has no materials: it gets the framework's default, not assimp's white+specular one.
+  Scene p = loadScene(test::dataPath("no_material.ply"));
+  const Material& d = p.materials[size_t(p.meshes[0].material)];
+  EXPECT_EQ(d.albedo, glm::vec3(0.8f));
+  EXPECT_EQ(d.ks, glm::vec3(0.0f));
+}
+}  // namespace vgi

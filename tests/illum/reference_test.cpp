@@ -164,6 +164,10 @@ TEST(Reference, ParametersOfOtherIntegratorsAreRejected) {
   p.setFromString("integrator=ao");
   p.setFromString("maxdepth=3");
   test::expectError([&] { createReferenceMethod(p, s); }, {"maxdepth", "integrator=ao"});
+  ParamSet docs;
+  createReferenceMethod(docs, s);
+  EXPECT_EQ(docs.docs().size(), 5u);  // all parameters documented
+  EXPECT_FALSE(docs.resolved().contains("radius"));  // only the path integrator's resolved
   ParamSet q;
   q.setFromString("integrator=path");
   q.setFromString("radius=-1");
