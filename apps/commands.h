@@ -6,4 +6,5 @@ namespace vgi::app {
 void addRenderCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
+void addVoxelizeCommand(CLI::App& app);
 }  // namespace vgi::app

@@ -93,3 +93,23 @@ TEST(Cli, InterruptWritesPartialImage) {
 }
 
 }  // namespace vgi
+
+namespace vgi {
+TEST(Cli, VoxelizeWritesStatsAndPicture) {
+  auto r = vgi("voxelize --scene builtin:cornell --voxels 64x64x128 --voxelizer exact --stats " + tmp("vox.json") +
+               " --dump " + tmp("vox.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("vox.json")));
+  for (const char* k : {"voxelizer", "resolution", "voxels_set", "recall", "precision", "points", "atlas_resolution", "timings_ms"})
+    EXPECT_TRUE(s.contains(k)) << k;
+  EXPECT_EQ(s["resolution"][2], 128);
+  EXPECT_GT(s["voxels_set"].get<long>(), 0);
+  EXPECT_TRUE(std::filesystem::exists(tmp("vox.png")));
+  auto bad = vgi("voxelize --voxels 64x64x100");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.output.find("64x64x100"), std::string::npos) << bad.output;
+  auto unknown = vgi("voxelize --voxelizer octree");
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_NE(unknown.output.find("octree"), std::string::npos);
+}
+}  // namespace vgi

@@ -1,0 +1,134 @@
+#include "voxelize/voxel_grid.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "core/error.h"
+#include "core/image.h"
+
+namespace vgi {
+
+shared::GridParams GridBox::params() const {
+  shared::GridParams p;
+  p.origin = glm::vec4(origin, 0.0f);
+  p.axisX = glm::vec4(axes[0], float(resolution.x) / extent.x);
+  p.axisY = glm::vec4(axes[1], float(resolution.y) / extent.y);
+  p.axisZ = glm::vec4(axes[2], float(resolution.z) / extent.z);
+  p.resolution = glm::uvec4(resolution, resolution.z / 128u);
+  return p;
+}
+
+glm::uvec3 parseResolution(const std::string& text, const std::string& option) {
+  long v[3] = {-1, -1, -1};
+  auto parse = [](const std::string& s) {
+    char* end = nullptr;
+    long x = std::strtol(s.c_str(), &end, 10);
+    return (s.empty() || *end) ? -1L : x;
+  };
+  size_t a = text.find('x');
+  if (a == std::string::npos) {
+    v[0] = v[1] = v[2] = parse(text);
+  } else {
+    size_t b = text.find('x', a + 1);
+    if (b != std::string::npos) {
+      v[0] = parse(text.substr(0, a));
+      v[1] = parse(text.substr(a + 1, b - a - 1));
+      v[2] = parse(text.substr(b + 1));
+    }
+  }
+  if (v[0] < 1 || v[1] < 1 || v[2] < 1)
+    fail(option, " '", text, "': expected N or WxHxD (e.g. 256 or 256x128x512)");
+  if (v[0] > 8192 || v[1] > 8192)
+    fail(option, " '", text, "': W and H must be at most 8192");
+  if (v[2] % 128 != 0 || v[2] > 1024)
+    fail(option, " '", text, "': the depth D = ", v[2], " must be 128, 256, 512 or 1024 (128-bit slabs)");
+  return glm::uvec3(unsigned(v[0]), unsigned(v[1]), unsigned(v[2]));
+}
+
+GridBox fitGridBox(const Scene& scene, glm::uvec3 resolution, float time) {
+  Bounds b = scene.bounds(time);
+  if (b.empty()) fail("cannot fit a voxel grid: the scene is empty");
+  GridBox g;
+  g.resolution = resolution;
+  glm::vec3 ext = b.hi - b.lo;
+  float largest = std::max({ext.x, ext.y, ext.z, 1e-30f});
+  glm::vec3 lo = b.lo;
+  for (int i = 0; i < 3; ++i)
+    if (ext[i] < 1e-4f * largest) {
+      // Planar scene: a thin slab with the plane through the centre of its
+      // middle cell (not on a cell boundary, which would set two layers).
+      float w = 1e-4f * largest;
+      float mid = lo[i] + 0.5f * ext[i];
+      lo[i] = mid - w * (std::floor(float(resolution[i]) / 2.0f) + 0.5f) / float(resolution[i]);
+      ext[i] = w;
+    }
+  g.origin = lo;
+  g.extent = ext;
+  return g;
+}
+
+void checkGridMemory(glm::uvec3 r, int grids) {
+  const double bytes = double(r.x) * r.y * r.z / 8.0 * grids;
+  const double phys = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+  if (bytes > 0.5 * phys)
+    fail("a ", r.x, "x", r.y, "x", r.z, " binary grid needs ", bytes / (1 << 20), " MiB; this machine has ",
+         phys / (1 << 20), " MiB of memory (at most half of it is used for grids)");
+}
+
+BinaryGrid::BinaryGrid(const GridBox& box) : box_(box) {
+  VGI_CHECK(box.resolution.z % 128u == 0 && box.resolution.x > 0 && box.resolution.y > 0);
+  checkGridMemory(box.resolution);
+  words_.assign(size_t(box.resolution.x) * box.resolution.y * (box.resolution.z / 32u), 0u);
+}
+
+void BinaryGrid::set(uint32_t x, uint32_t y, uint32_t z) {
+  words_[wordIndex(x, y, shared::depthWord(z))] |= shared::depthBit(z);
+}
+
+void BinaryGrid::setAtomic(uint32_t x, uint32_t y, uint32_t z) {
+  __atomic_fetch_or(&words_[wordIndex(x, y, shared::depthWord(z))], shared::depthBit(z), __ATOMIC_RELAXED);
+}
+
+bool BinaryGrid::test(uint32_t x, uint32_t y, uint32_t z) const {
+  return (words_[wordIndex(x, y, shared::depthWord(z))] & shared::depthBit(z)) != 0u;
+}
+
+uint64_t BinaryGrid::count() const {
+  uint64_t n = 0;
+  for (uint32_t w : words_) n += uint64_t(__builtin_popcount(w));
+  return n;
+}
+
+uint32_t BinaryGrid::columnCount(uint32_t x, uint32_t y) const {
+  uint32_t n = 0;
+  for (uint32_t w = 0; w < wordsPerColumn(); ++w) n += uint32_t(__builtin_popcount(words_[wordIndex(x, y, w)]));
+  return n;
+}
+
+void writeGridPicture(const BinaryGrid& grid, const std::string& path) {
+  const glm::uvec3 r = grid.box().resolution;
+  uint32_t maxCount = 1;
+  for (uint32_t y = 0; y < r.y; ++y)
+    for (uint32_t x = 0; x < r.x; ++x) maxCount = std::max(maxCount, grid.columnCount(x, y));
+  Image img(int(2 * r.x + 2), int(r.y));
+  for (uint32_t y = 0; y < r.y; ++y)
+    for (uint32_t x = 0; x < r.x; ++x) {
+      const int row = int(r.y - 1 - y);  // +y up in the picture
+      float c = float(grid.columnCount(x, y)) / float(maxCount);
+      img.at(int(x), row) = glm::vec3(c);
+      for (uint32_t w = 0; w < grid.wordsPerColumn(); ++w) {
+        uint32_t bits = grid.words()[grid.wordIndex(x, y, w)];
+        if (!bits) continue;
+        float d = float(w * 32u + uint32_t(__builtin_ctz(bits)) + 1u) / float(r.z);  // first set cell
+        img.at(int(r.x + 2 + x), row) = glm::vec3(1.0f - d, 0.3f + 0.4f * d, d);
+        break;
+      }
+    }
+  for (uint32_t y = 0; y < r.y; ++y) img.at(int(r.x), int(y)) = img.at(int(r.x) + 1, int(y)) = glm::vec3(1, 1, 0);
+  writeImage(img, path);
+}
+
+}  // namespace vgi

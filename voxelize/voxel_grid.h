@@ -1,0 +1,68 @@
+// The voxel grid box and the binary grid (bitmask columns) on the CPU, laid out
+// exactly like the GL texture (GL_TEXTURE_2D_ARRAY, RGBA32UI, one layer per
+// 128-deep slab) so GPU read-backs compare bit for bit. Conventions:
+// shaders/shared/voxel_grid.glsl.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+#include "shaders/shared/voxel_grid.glsl"
+
+namespace vgi {
+
+struct GridBox {
+  glm::vec3 origin{0.0f};
+  glm::mat3 axes{1.0f};  // columns: unit x, y, z axes
+  glm::vec3 extent{1.0f};
+  glm::uvec3 resolution{128, 128, 128};
+
+  shared::GridParams params() const;
+  glm::vec3 voxelSize() const { return extent / glm::vec3(resolution); }
+  uint64_t cellCount() const { return uint64_t(resolution.x) * resolution.y * resolution.z; }
+};
+
+// "N" (N×N×N) or "WxHxD"; D must be a multiple of 128 (128 … 1024), W and H in
+// 1 … 8192. Throws naming the option and value.
+glm::uvec3 parseResolution(const std::string& text, const std::string& option = "--voxels");
+
+// The tight axis-aligned box around the scene at `time`. Flat extents (a planar
+// scene) are widened to a sliver so every axis has a positive size.
+GridBox fitGridBox(const Scene& scene, glm::uvec3 resolution, float time = 0);
+
+// Throws if a grid of this resolution would not fit in memory (names the size).
+void checkGridMemory(glm::uvec3 resolution, int grids = 1);
+
+class BinaryGrid {
+ public:
+  explicit BinaryGrid(const GridBox& box);
+  const GridBox& box() const { return box_; }
+  uint32_t wordsPerColumn() const { return box_.resolution.z / 32u; }
+
+  // Word w (0 … D/32−1) of column (x, y): slab w/4, component w%4.
+  size_t wordIndex(uint32_t x, uint32_t y, uint32_t w) const {
+    const size_t slab = w >> 2u, comp = w & 3u;
+    return ((slab * box_.resolution.y + y) * box_.resolution.x + x) * 4u + comp;
+  }
+  void set(uint32_t x, uint32_t y, uint32_t z);
+  void setAtomic(uint32_t x, uint32_t y, uint32_t z);  // for concurrent writers
+  bool test(uint32_t x, uint32_t y, uint32_t z) const;
+  uint64_t count() const;
+  uint32_t columnCount(uint32_t x, uint32_t y) const;  // set cells in a column
+
+  std::vector<uint32_t>& words() { return words_; }
+  const std::vector<uint32_t>& words() const { return words_; }
+
+ private:
+  GridBox box_;
+  std::vector<uint32_t> words_;
+};
+
+// Writes a picture of the grid: left, the number of set cells per column
+// (looking along the depth axis); right, the depth of the first set cell.
+void writeGridPicture(const BinaryGrid& grid, const std::string& path);
+
+}  // namespace vgi

@@ -1,0 +1,28 @@
+#include "voxelize/voxelizer.h"
+
+#include "core/error.h"
+#include "voxelize/exact_voxelizer.h"
+
+namespace vgi {
+
+const std::vector<VoxelizerInfo>& voxelizerRegistry() {
+  static const std::vector<VoxelizerInfo> table = {
+      {"exact", "CPU triangle-box overlap (separating axes): the reference", false,
+       [](const VoxelizeRequest& r, Profiler& p, nlohmann::json&) {
+         auto s = p.scope("voxelize_exact");
+         return voxelizeExact(*r.scene, r.box, r.time, r.threads);
+       }},
+  };
+  return table;
+}
+
+const VoxelizerInfo& findVoxelizer(const std::string& name) {
+  std::string known;
+  for (auto& v : voxelizerRegistry()) {
+    if (v.name == name) return v;
+    known += (known.empty() ? "" : ", ") + v.name;
+  }
+  fail("--voxelizer: unknown voxelizer '", name, "' (known: ", known, ")");
+}
+
+}  // namespace vgi
