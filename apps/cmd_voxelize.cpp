@@ -9,6 +9,7 @@
 #include "core/gl_context.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
+#include "voxelize/atlas.h"
 #include "voxelize/exact_voxelizer.h"
 #include "voxelize/grid_metrics.h"
 #include "voxelize/voxelizer.h"
@@ -22,9 +23,10 @@ nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
 void addVoxelizeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("voxelize", "Voxelize a scene into a binary grid and compare it with the exact voxelizer");
   struct Options {
-    std::string scene = "builtin:cornell", voxels = "128", voxelizer = "exact", stats, dump, gl = "auto";
-    float time = 0;
-    int threads = 0;
+    std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto";
+    float time = 0, texelsPerVoxel = 2.0f;
+    int threads = 0, atlasResolution = 0;
+    bool noCache = false;
   };
   auto o = std::make_shared<Options>();
   cmd->add_option("--scene", o->scene, "builtin:cornell, a scene .json, or a model file")->capture_default_str();
@@ -35,6 +37,11 @@ void addVoxelizeCommand(CLI::App& app) {
   cmd->add_option("--time", o->time, "animation time")->capture_default_str();
   cmd->add_option("--threads", o->threads, "CPU threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--gl", o->gl, "GL backend: auto|egl|osmesa")->capture_default_str();
+  cmd->add_option("--texels-per-voxel", o->texelsPerVoxel, "atlas: texel = smallest voxel edge / this")
+      ->capture_default_str();
+  cmd->add_option("--atlas-resolution", o->atlasResolution, "atlas: manual resolution per mesh (0 = automatic)")
+      ->capture_default_str();
+  cmd->add_flag("--no-cache", o->noCache, "atlas: do not read or write the atlas cache");
   cmd->add_option("--stats", o->stats, "write the stats JSON here");
   cmd->add_option("--dump", o->dump, "write a picture of the grid (.png/.exr)");
   cmd->callback([o] {
@@ -48,6 +55,13 @@ void addVoxelizeCommand(CLI::App& app) {
     req.box = fitGridBox(scene, res, o->time);
     req.time = o->time;
     req.threads = o->threads;
+    if (!(o->texelsPerVoxel >= 0.25f && o->texelsPerVoxel <= 64.0f))
+      fail("--texels-per-voxel ", o->texelsPerVoxel, ": must be in [0.25, 64]");
+    if (o->atlasResolution < 0 || o->atlasResolution > 16384)
+      fail("--atlas-resolution ", o->atlasResolution, ": must be in [0, 16384]");
+    req.texelsPerVoxel = o->texelsPerVoxel;
+    req.atlasResolution = o->atlasResolution;
+    req.atlasCacheDir = o->noCache ? "" : defaultAtlasCacheDir();
     std::unique_ptr<GlContext> gl;
     std::unique_ptr<ShaderLibrary> shaders;
     if (info.needsGl) {

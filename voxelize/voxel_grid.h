@@ -44,8 +44,7 @@ class BinaryGrid {
 
   // Word w (0 … D/32−1) of column (x, y): slab w/4, component w%4.
   size_t wordIndex(uint32_t x, uint32_t y, uint32_t w) const {
-    const size_t slab = w >> 2u, comp = w & 3u;
-    return ((slab * box_.resolution.y + y) * box_.resolution.x + x) * 4u + comp;
+    return shared::columnWordIndex(x, y, w, glm::uvec4(box_.resolution, box_.resolution.z / 128u));
   }
   void set(uint32_t x, uint32_t y, uint32_t z);
   void setAtomic(uint32_t x, uint32_t y, uint32_t z);  // for concurrent writers

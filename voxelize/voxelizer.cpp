@@ -1,12 +1,15 @@
 #include "voxelize/voxelizer.h"
 
 #include "core/error.h"
+#include "voxelize/atlas_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"
 
 namespace vgi {
 
 const std::vector<VoxelizerInfo>& voxelizerRegistry() {
   static const std::vector<VoxelizerInfo> table = {
+      {"atlas", "GL atlas voxelization (VGI section 3): atlas rendering + one point per texel", true,
+       [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeAtlasGl(r, p, s); }},
       {"exact", "CPU triangle-box overlap (separating axes): the reference", false,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json&) {
          auto s = p.scope("voxelize_exact");

@@ -21,6 +21,11 @@ struct VoxelizeRequest {
   int threads = 0;
   GlContext* gl = nullptr;           // for GL voxelizers
   ShaderLibrary* shaders = nullptr;  // idem
+  // Atlas voxelizer: texel = smallest voxel edge / texelsPerVoxel, unless a
+  // manual atlasResolution (per mesh, square) is given.
+  float texelsPerVoxel = 2.0f;
+  int atlasResolution = 0;
+  std::string atlasCacheDir;
 };
 
 struct VoxelizerInfo {

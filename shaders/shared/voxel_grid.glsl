@@ -48,4 +48,31 @@ SHARED_FN uint bitRange(uint first, uint last) {
   return (0xffffffffu >> (31u - last)) & (0xffffffffu << first);
 }
 
+// Index of word w of column (x, y) in the flat word array: slab-major, then
+// rows, columns, and the four components — the layout of a GL_TEXTURE_2D_ARRAY
+// RGBA32UI with one layer per slab, and of the SSBO the GL voxelizers fill.
+SHARED_FN uint columnWordIndex(uint x, uint y, uint w, uvec4 resolution) {
+  return (((w >> 2u) * resolution.y + y) * resolution.x + x) * 4u + (w & 3u);
+}
+
+// One atlas point: the word to OR and the bit, or word = 0xffffffff outside the grid.
+struct PointBit {
+  uint word;
+  uint bit;
+};
+
+SHARED_FN PointBit pointBit(GridParams g, vec3 worldPosition) {
+  PointBit r;
+  vec3 q = worldToGrid(g, worldPosition);
+  if (!insideGrid(g, q)) {
+    r.word = 0xffffffffu;
+    r.bit = 0u;
+    return r;
+  }
+  uvec3 c = gridCell(g, q);
+  r.word = columnWordIndex(c.x, c.y, depthWord(c.z), g.resolution);
+  r.bit = depthBit(c.z);
+  return r;
+}
+
 SHARED_END

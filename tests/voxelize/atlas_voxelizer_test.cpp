@@ -1,0 +1,139 @@
+// The GL atlas voxelizer (llvmpipe in CI): its insertion equals the CPU build of
+// the same kernel bit for bit, and its grid is measured against the exact one.
+#include <fstream>
+
+#include "core/gl_context.h"
+#include "core/scene_loader.h"
+#include "core/shader_library.h"
+#include "test_util.h"
+#include "voxelize/atlas_voxelizer.h"
+#include "voxelize/exact_voxelizer.h"
+#include "voxelize/grid_metrics.h"
+
+namespace vgi {
+
+namespace {
+struct GlFixture {
+  std::unique_ptr<GlContext> gl = GlContext::create();
+  ShaderLibrary shaders;
+  VoxelizeRequest request(const Scene& s, glm::uvec3 res, float time = 0) {
+    VoxelizeRequest r;
+    r.scene = &s;
+    r.box = fitGridBox(s, res, time);
+    r.time = time;
+    r.gl = gl.get();
+    r.shaders = &shaders;
+    return r;
+  }
+};
+}  // namespace
+
+TEST(AtlasVoxelizer, GpuInsertionEqualsCpuBitForBit) {
+  GlFixture f;
+  Scene s = loadScene("builtin:cornell");
+  VoxelizeRequest r = f.request(s, {64, 48, 256});
+  Profiler prof(true);
+  nlohmann::json stats;
+  std::vector<std::vector<glm::vec4>> points;
+  BinaryGrid gpu = voxelizeAtlasGl(r, prof, stats, &points);
+  BinaryGrid cpu(r.box);
+  long valid = 0;
+  for (auto& atlas : points) {
+    insertAtlasPoints(atlas, cpu);
+    for (auto& p : atlas) valid += p.w != 0.0f;
+  }
+  EXPECT_EQ(gpu.words(), cpu.words());
+  EXPECT_EQ(stats["points"].get<long>(), valid);
+  EXPECT_EQ(f.gl->errorCount(), 0);
+}
+
+TEST(AtlasVoxelizer, CornellBoxAgainstTheExactVoxelizer) {
+  GlFixture f;
+  Scene s = loadScene("builtin:cornell");
+  VoxelizeRequest r = f.request(s, {64, 64, 128});
+  Profiler prof(true);
+  nlohmann::json stats;
+  BinaryGrid atlas = voxelizeAtlasGl(r, prof, stats);
+  GridComparison c = compareGrids(atlas, voxelizeExact(s, r.box));
+  // Points lie on the surface: nothing outside the exact set. Grazed cells
+  // (corner cuts) are what single points miss; see docs/BENCHMARKS.md.
+  EXPECT_GE(c.precision(), 0.9999);
+  EXPECT_GE(c.recall(), 0.97);
+  EXPECT_EQ(stats["triangles_without_texels"], 0);
+}
+
+TEST(AtlasVoxelizer, SliversStillProduceTexelsAndVoxels) {
+  GlFixture f;
+  Scene s;
+  int m = test::addMaterial(s, glm::vec3(0.5f));
+  Mesh mesh;
+  mesh.source = "test";
+  mesh.material = m;
+  // Two long needles (width 1e-4 of their length) and a normal triangle.
+  mesh.positions = {{0, 0, 0}, {1, 0.3f, 0.2f}, {1, 0.3001f, 0.2f}, {0, 1, 1}, {0.9f, 0.1f, 0.95f},
+                    {0.9f, 0.1f, 0.9501f}, {0.2f, 0.8f, 0.1f}, {0.5f, 0.9f, 0.3f}, {0.3f, 0.6f, 0.5f}};
+  mesh.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};
+  s.meshes.push_back(mesh);
+  VoxelizeRequest r = f.request(s, {64, 64, 128});
+  Profiler prof(true);
+  nlohmann::json stats;
+  BinaryGrid atlas = voxelizeAtlasGl(r, prof, stats);
+  EXPECT_EQ(stats["triangles_without_texels"], 0);
+  GridComparison c = compareGrids(atlas, voxelizeExact(s, r.box));
+  EXPECT_GE(c.precision(), 0.9999);
+  // A needle is a segment: its edges are rasterized as lines in the atlas, so
+  // consecutive points are at most √2 texels apart along it. Every cell the
+  // needle crosses with a longer chord must hold a point. (Cells it only grazes
+  // are in the exact set but may be missed: recall is measured, not assumed.)
+  const float texel = stats["texel_world"].get<float>();
+  const shared::GridParams g = r.box.params();
+  int checked = 0;
+  for (auto [a, b] : {std::pair{glm::vec3(0, 0, 0), glm::vec3(1, 0.30005f, 0.2f)},
+                      std::pair{glm::vec3(0, 1, 1), glm::vec3(0.9f, 0.1f, 0.95005f)}}) {
+    glm::vec3 qa = shared::worldToGrid(g, a), qb = shared::worldToGrid(g, b);
+    const float len = glm::length(b - a);
+    for (uint32_t z = 0; z < 128; ++z)
+      for (uint32_t y = 0; y < 64; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+          float t0 = 0, t1 = 1;  // clip the segment to the cell (slabs)
+          for (int k = 0; k < 3; ++k) {
+            float lo = float(k == 0 ? x : k == 1 ? y : z), d = qb[k] - qa[k];
+            if (std::abs(d) < 1e-12f) {
+              if (qa[k] < lo || qa[k] > lo + 1) t0 = 2;
+              continue;
+            }
+            float u0 = (lo - qa[k]) / d, u1 = (lo + 1 - qa[k]) / d;
+            t0 = std::max(t0, std::min(u0, u1));
+            t1 = std::min(t1, std::max(u0, u1));
+          }
+          if (t1 - t0 > 0 && (t1 - t0) * len > 1.5f * std::sqrt(2.0f) * texel) {
+            ++checked;
+            EXPECT_TRUE(atlas.test(x, y, z)) << "needle crosses " << x << "," << y << "," << z << " with chord "
+                                             << (t1 - t0) * len / texel << " texels";
+          }
+        }
+  }
+  EXPECT_GT(checked, 60);
+}
+
+TEST(AtlasVoxelizer, MovedDynamicObjectLeavesNoStaleVoxels) {
+  GlFixture f;
+  std::string path = testing::TempDir() + "/dyn_vox.json";
+  std::ofstream(path) << R"({ "meshes": [ {"path": "builtin:cornell"},
+      {"path": ")" << test::dataPath("triangle.gltf") << R"(", "transform": {"scale": 0.2, "translate": [0.1, 0.1, -0.3]},
+       "dynamic": true, "keyframes": [ {"time": 0, "translate": [0, 0, 0]}, {"time": 1, "translate": [0.3, 0.2, 0]} ] } ] })";
+  Scene s = loadScene(path);
+  GridBox box = fitGridBox(s, {64, 64, 128}, 0.0f);
+  for (float t : {0.0f, 1.0f}) {
+    VoxelizeRequest r = f.request(s, {64, 64, 128}, t);
+    r.box = box;
+    Profiler prof(true);
+    nlohmann::json stats;
+    BinaryGrid atlas = voxelizeAtlasGl(r, prof, stats);
+    GridComparison c = compareGrids(atlas, voxelizeExact(s, box, t));
+    EXPECT_GE(c.precision(), 0.9999) << "stale voxels at time " << t;
+    EXPECT_GE(c.recall(), 0.95) << t;
+  }
+}
+
+}  // namespace vgi
