@@ -89,6 +89,12 @@ BinaryGrid voxelizeAtlasGl(const VoxelizeRequest& req, Profiler& prof, nlohmann:
     aj["triangles"] = mesh.triangles.size();
     const int R = atlas.resolution;
     largest = std::max(largest, R);
+    // Position (RGBA32F) + triangle id (R32I) per texel; refuse before the GL allocation fails.
+    const double atlasBytes = double(R) * R * 20.0;
+    if (atlasBytes > double(1u << 31))
+      fail("atlas voxelizer: mesh '", mesh.name, "' needs a ", R, "x", R, " atlas (", atlasBytes / (1 << 20),
+           " MiB of render targets, limit 2048 MiB); lower --texels-per-voxel (", req.texelsPerVoxel,
+           ") or the grid resolution, or set --atlas-resolution");
 
     std::vector<float> verts;
     verts.reserve(mesh.triangles.size() * 18);

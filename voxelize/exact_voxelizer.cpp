@@ -67,7 +67,7 @@ int clip(const Vtx* in, int n, Vtx* out, int axis, double v, double sign) {
 
 }  // namespace
 
-BinaryGrid voxelizeExact(const Scene& scene, const GridBox& box, float time, int threads) {
+BinaryGrid voxelizeExact(const Scene& scene, const GridBox& box, float time, int threads, double shrink) {
   BinaryGrid grid(box);
   FlatScene flat = flatten(scene, time);
   const glm::dvec3 res(box.resolution);
@@ -77,7 +77,7 @@ BinaryGrid voxelizeExact(const Scene& scene, const GridBox& box, float time, int
     glm::dvec3 d = glm::dvec3(p) - glm::dvec3(box.origin);
     return glm::dvec3(glm::dot(d, axes[0]), glm::dot(d, axes[1]), glm::dot(d, axes[2])) * scale;
   };
-  const glm::dvec3 half(0.5);
+  const glm::dvec3 half(0.5 - shrink);
   const double eps = 1e-9;
   // Cells whose closed box [i, i+1] can touch the interval [lo, hi].
   auto cellRange = [](double lo, double hi, unsigned n, int& first, int& last) {

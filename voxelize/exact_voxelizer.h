@@ -9,6 +9,9 @@ namespace vgi {
 bool triangleBoxOverlap(glm::dvec3 center, glm::dvec3 half, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c);
 
 // Every cell whose closed box overlaps a triangle of the scene at `time`.
-BinaryGrid voxelizeExact(const Scene& scene, const GridBox& box, float time = 0, int threads = 0);
+// shrink > 0 (in cells) tests boxes shrunk by that much on every side: cells the
+// surface only grazes drop out ("interior" exact set, for point-based recall).
+BinaryGrid voxelizeExact(const Scene& scene, const GridBox& box, float time = 0, int threads = 0,
+                         double shrink = 0.0);
 
 }  // namespace vgi

@@ -16,6 +16,15 @@ struct GridComparison {
   nlohmann::json toJson() const;
 };
 
+// The "interior" exact set: cells whose box, shrunk by this much (in cells) on
+// every side, still overlaps the surface. Where the surface is locally planar,
+// such a cell holds a disk of radius ¼ cell of it, and a texel lattice of
+// spacing s covers every disk of radius s/√2: with texel ≤ √2/4 cell (2.83
+// texels per voxel, times the atlas stretch), points find every interior cell.
+// The closed-box set also holds cells the surface merely grazes, which no
+// point sampling finds reliably (docs/BENCHMARKS.md).
+constexpr double kInteriorShrink = 0.25;
+
 // Throws unless both grids have the same resolution.
 GridComparison compareGrids(const BinaryGrid& test, const BinaryGrid& exact);
 

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"
+#include "voxelize/slicemap_voxelizer.h"
 
 namespace vgi {
 
@@ -10,6 +11,8 @@ const std::vector<VoxelizerInfo>& voxelizerRegistry() {
   static const std::vector<VoxelizerInfo> table = {
       {"atlas", "GL atlas voxelization (VGI section 3): atlas rendering + one point per texel", true,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeAtlasGl(r, p, s); }},
+      {"slicemap", "GL single-pass slicemap (Eisemann & Decoret 2006): one raster pass along depth", true,
+       [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeSlicemapGl(r, p, s); }},
       {"exact", "CPU triangle-box overlap (separating axes): the reference", false,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json&) {
          auto s = p.scope("voxelize_exact");

@@ -9,10 +9,11 @@
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"
 #include "voxelize/grid_metrics.h"
+#include "voxelize/slicemap_voxelizer.h"
 
 namespace vgi {
 
-namespace {
+namespace test {
 struct GlFixture {
   std::unique_ptr<GlContext> gl = GlContext::create();
   ShaderLibrary shaders;
@@ -26,7 +27,8 @@ struct GlFixture {
     return r;
   }
 };
-}  // namespace
+}  // namespace test
+using test::GlFixture;
 
 TEST(AtlasVoxelizer, GpuInsertionEqualsCpuBitForBit) {
   GlFixture f;
@@ -136,4 +138,36 @@ TEST(AtlasVoxelizer, MovedDynamicObjectLeavesNoStaleVoxels) {
   }
 }
 
+}  // namespace vgi
+
+namespace vgi {
+// Slicemap: exact where triangles face the depth axis, holes where they are
+// seen edge-on — the comparison the VGI paper draws (§3.3, Fig. 4).
+TEST(SlicemapVoxelizer, FacingTrianglesAreFoundEdgeOnOnesAreNot) {
+  GlFixture f;
+  Scene s;
+  int m = test::addMaterial(s, glm::vec3(0.5f));
+  Mesh mesh;
+  mesh.source = "test";
+  mesh.material = m;
+  // A quad facing +z (normal along the depth axis) and one lying in a plane that contains z.
+  mesh.positions = {{0.05f, 0.05f, 0.3f}, {0.95f, 0.05f, 0.3f}, {0.95f, 0.95f, 0.3f}, {0.05f, 0.95f, 0.3f},
+                    {0.5f, 0.05f, 0.05f}, {0.5f, 0.95f, 0.05f}, {0.5f, 0.95f, 0.95f}, {0.5f, 0.05f, 0.95f},
+                    {0, 0, 0}, {1, 1, 1}, {1, 1.0001f, 1}};  // a needle stretching the box to [0,1]³
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}, {8, 9, 10}};
+  s.meshes.push_back(mesh);
+  VoxelizeRequest r = f.request(s, {64, 64, 128});
+  Profiler prof(true);
+  nlohmann::json stats;
+  BinaryGrid slice = voxelizeSlicemapGl(r, prof, stats);
+  Scene facing = s, edgeOn = s;
+  facing.meshes[0].triangles = {{0, 1, 2}, {0, 2, 3}};
+  edgeOn.meshes[0].triangles = {{4, 5, 6}, {4, 6, 7}};
+  GridComparison cf = compareGrids(slice, voxelizeExact(facing, r.box, 0, 0, kInteriorShrink));
+  GridComparison ce = compareGrids(slice, voxelizeExact(edgeOn, r.box, 0, 0, kInteriorShrink));
+  EXPECT_GE(cf.recall(), 0.999);  // one fragment per column: the facing quad is complete
+  EXPECT_LT(ce.recall(), 0.1);    // the edge-on quad is one pixel wide at most: mostly holes
+  EXPECT_GE(compareGrids(slice, voxelizeExact(s, r.box)).precision(), 0.999);
+  EXPECT_EQ(f.gl->errorCount(), 0);
+}
 }  // namespace vgi
