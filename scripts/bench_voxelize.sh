@@ -26,7 +26,7 @@ echo "| scene | grid | voxelizer | recall | recall (interior) | precision | poin
 echo "|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
   for n in 128 256; do
-    for v in exact slicemap; do
+    for v in exact slicemap conservative; do
       $vgi voxelize --scene "$s" --voxels $n --voxelizer $v --stats "$out/s.json" > /dev/null && row "$out/s.json"
     done
     for tpv in 1 2 4 8; do

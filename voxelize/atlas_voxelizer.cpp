@@ -21,6 +21,7 @@
 #include "core/gl_context.h"
 #include "core/shader_library.h"
 #include "voxelize/atlas.h"
+#include "voxelize/gpu_grid.h"
 
 namespace vgi {
 
@@ -45,21 +46,12 @@ BinaryGrid voxelizeAtlasGl(const VoxelizeRequest& req, Profiler& prof, nlohmann:
   unsigned renderProg = req.shaders->program({"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"});
   unsigned insertProg = req.shaders->program({"voxelize/atlas_insert.comp.glsl"});
 
-  const size_t wordBytes = grid.words().size() * sizeof(uint32_t);
-  unsigned wordsBuf = 0, counterBuf = 0;
-  glCreateBuffers(1, &wordsBuf);
-  glNamedBufferStorage(wordsBuf, GLsizeiptr(wordBytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  GpuGridBuffer target(req.box);
+  unsigned counterBuf = 0;
   const uint32_t zero = 0;
-  glClearNamedBufferData(wordsBuf, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glCreateBuffers(1, &counterBuf);
   glNamedBufferStorage(counterBuf, 4, &zero, GL_DYNAMIC_STORAGE_BIT);
-
-  const shared::GridParams g = req.box.params();
-  glProgramUniform4fv(insertProg, glGetUniformLocation(insertProg, "uOrigin"), 1, &g.origin.x);
-  glProgramUniform4fv(insertProg, glGetUniformLocation(insertProg, "uAxisX"), 1, &g.axisX.x);
-  glProgramUniform4fv(insertProg, glGetUniformLocation(insertProg, "uAxisY"), 1, &g.axisY.x);
-  glProgramUniform4fv(insertProg, glGetUniformLocation(insertProg, "uAxisZ"), 1, &g.axisZ.x);
-  glProgramUniform4uiv(insertProg, glGetUniformLocation(insertProg, "uResolution"), 1, &g.resolution.x);
+  setGridUniforms(insertProg, req.box);
 
   nlohmann::json atlases = nlohmann::json::array();
   int largest = 0;
@@ -156,7 +148,7 @@ BinaryGrid voxelizeAtlasGl(const VoxelizeRequest& req, Profiler& prof, nlohmann:
       glUseProgram(insertProg);
       glProgramUniform2i(insertProg, glGetUniformLocation(insertProg, "uAtlasSize"), R, R);
       glBindTextureUnit(0, tex[0]);
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, wordsBuf);
+      target.bind(0);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counterBuf);
       glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -188,11 +180,10 @@ BinaryGrid voxelizeAtlasGl(const VoxelizeRequest& req, Profiler& prof, nlohmann:
   uint32_t points = 0;
   {
     auto s = prof.scope("readback");
-    glGetNamedBufferSubData(wordsBuf, 0, GLsizeiptr(wordBytes), grid.words().data());
+    target.read(grid);
     glGetNamedBufferSubData(counterBuf, 0, 4, &points);
   }
-  unsigned bufsToDelete[2] = {wordsBuf, counterBuf};
-  glDeleteBuffers(2, bufsToDelete);
+  glDeleteBuffers(1, &counterBuf);
   stats["points"] = points;
   stats["atlas_resolution"] = largest;
   stats["atlases"] = atlases;

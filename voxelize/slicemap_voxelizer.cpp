@@ -13,6 +13,7 @@
 #include "core/gl_context.h"
 #include "core/gpu_scene.h"
 #include "core/shader_library.h"
+#include "voxelize/gpu_grid.h"
 
 namespace vgi {
 
@@ -30,19 +31,9 @@ BinaryGrid voxelizeSlicemapGl(const VoxelizeRequest& req, Profiler& prof, nlohma
     auto s = prof.scope("upload");
     gpu = std::make_unique<GpuScene>(*req.scene, req.time);
   }
-  const shared::GridParams g = req.box.params();
-  glProgramUniform4fv(prog, glGetUniformLocation(prog, "uOrigin"), 1, &g.origin.x);
-  glProgramUniform4fv(prog, glGetUniformLocation(prog, "uAxisX"), 1, &g.axisX.x);
-  glProgramUniform4fv(prog, glGetUniformLocation(prog, "uAxisY"), 1, &g.axisY.x);
-  glProgramUniform4fv(prog, glGetUniformLocation(prog, "uAxisZ"), 1, &g.axisZ.x);
-  glProgramUniform4uiv(prog, glGetUniformLocation(prog, "uResolution"), 1, &g.resolution.x);
-
-  const size_t bytes = grid.words().size() * sizeof(uint32_t);
-  unsigned words = 0, fbo = 0;
-  glCreateBuffers(1, &words);
-  glNamedBufferStorage(words, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  const uint32_t zero = 0;
-  glClearNamedBufferData(words, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  setGridUniforms(prog, req.box);
+  GpuGridBuffer target(req.box);
+  unsigned fbo = 0;
   glCreateFramebuffers(1, &fbo);  // no attachments: fragments only write the SSBO
   glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(res.x));
   glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, GLint(res.y));
@@ -53,16 +44,14 @@ BinaryGrid voxelizeSlicemapGl(const VoxelizeRequest& req, Profiler& prof, nlohma
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glUseProgram(prog);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, words);
+    target.bind(0);
     gpu->draw();
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
   {
     auto s = prof.scope("readback");
-    glGetNamedBufferSubData(words, 0, GLsizeiptr(bytes), grid.words().data());
+    target.read(grid);
   }
-  glDeleteBuffers(1, &words);
   glDeleteFramebuffers(1, &fbo);
   stats["passes"] = 1;
   return grid;

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "voxelize/atlas_voxelizer.h"
+#include "voxelize/conservative_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"
 #include "voxelize/slicemap_voxelizer.h"
 
@@ -13,6 +14,8 @@ const std::vector<VoxelizerInfo>& voxelizerRegistry() {
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeAtlasGl(r, p, s); }},
       {"slicemap", "GL single-pass slicemap (Eisemann & Decoret 2006): one raster pass along depth", true,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeSlicemapGl(r, p, s); }},
+      {"conservative", "GL three-axis conservative rasterization (dominant axis, expanded triangles)", true,
+       [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeConservativeGl(r, p, s); }},
       {"exact", "CPU triangle-box overlap (separating axes): the reference", false,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json&) {
          auto s = p.scope("voxelize_exact");

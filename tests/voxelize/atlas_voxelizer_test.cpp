@@ -10,6 +10,9 @@
 #include "voxelize/exact_voxelizer.h"
 #include "voxelize/grid_metrics.h"
 #include "voxelize/slicemap_voxelizer.h"
+#include "voxelize/conservative_voxelizer.h"
+
+#include <random>
 
 namespace vgi {
 
@@ -168,6 +171,46 @@ TEST(SlicemapVoxelizer, FacingTrianglesAreFoundEdgeOnOnesAreNot) {
   EXPECT_GE(cf.recall(), 0.999);  // one fragment per column: the facing quad is complete
   EXPECT_LT(ce.recall(), 0.1);    // the edge-on quad is one pixel wide at most: mostly holes
   EXPECT_GE(compareGrids(slice, voxelizeExact(s, r.box)).precision(), 0.999);
+  EXPECT_EQ(f.gl->errorCount(), 0);
+}
+}  // namespace vgi
+
+namespace vgi {
+// The conservative GPU voxelizer confirms each candidate cell with the float
+// triangle–box test: it must agree with the exact CPU voxelizer up to float
+// rounding on contacts — on hard inputs (huge, tiny, sliver, boundary-aligned
+// triangles) and on a non-cubic grid.
+TEST(ConservativeVoxelizer, MatchesTheExactVoxelizer) {
+  GlFixture f;
+  Scene cornell = loadScene("builtin:cornell");
+  Scene hard;
+  int m = test::addMaterial(hard, glm::vec3(0.5f));
+  Mesh mesh;
+  mesh.source = "test";
+  mesh.material = m;
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (int i = 0; i < 200; ++i) {  // random triangles of every size
+    glm::vec3 c(u(rng), u(rng), u(rng));
+    float s = std::pow(10.0f, -3.0f + 3.0f * u(rng));
+    uint32_t b = uint32_t(mesh.positions.size());
+    for (int k = 0; k < 3; ++k) mesh.positions.push_back(c + s * (glm::vec3(u(rng), u(rng), u(rng)) - 0.5f));
+    mesh.triangles.push_back({b, b + 1, b + 2});
+  }
+  uint32_t b = uint32_t(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), {{0, 0, 0}, {1, 1, 1}, {1, 1.0001f, 1}});  // a needle
+  mesh.triangles.push_back({b, b + 1, b + 2});
+  hard.meshes.push_back(mesh);
+  for (const Scene* s : {&cornell, &hard})
+    for (glm::uvec3 res : {glm::uvec3(64, 64, 128), glm::uvec3(40, 72, 256)}) {
+      VoxelizeRequest r = f.request(*s, res);
+      Profiler prof(true);
+      nlohmann::json stats;
+      BinaryGrid g = voxelizeConservativeGl(r, prof, stats);
+      GridComparison c = compareGrids(g, voxelizeExact(*s, r.box));
+      EXPECT_GE(c.recall(), 0.9995) << res.x << "x" << res.y << "x" << res.z;
+      EXPECT_GE(c.precision(), 0.9995) << res.x << "x" << res.y << "x" << res.z;
+    }
   EXPECT_EQ(f.gl->errorCount(), 0);
 }
 }  // namespace vgi

@@ -1,0 +1,36 @@
+#include "voxelize/gpu_grid.h"
+
+#include <glad/gl.h>
+
+#include "core/error.h"
+
+namespace vgi {
+
+void setGridUniforms(unsigned program, const GridBox& box) {
+  const shared::GridParams g = box.params();
+  glProgramUniform4fv(program, glGetUniformLocation(program, "uOrigin"), 1, &g.origin.x);
+  glProgramUniform4fv(program, glGetUniformLocation(program, "uAxisX"), 1, &g.axisX.x);
+  glProgramUniform4fv(program, glGetUniformLocation(program, "uAxisY"), 1, &g.axisY.x);
+  glProgramUniform4fv(program, glGetUniformLocation(program, "uAxisZ"), 1, &g.axisZ.x);
+  glProgramUniform4uiv(program, glGetUniformLocation(program, "uResolution"), 1, &g.resolution.x);
+}
+
+GpuGridBuffer::GpuGridBuffer(const GridBox& box)
+    : bytes_(size_t(box.resolution.x) * box.resolution.y * (box.resolution.z / 32u) * sizeof(uint32_t)) {
+  glCreateBuffers(1, &buffer_);
+  glNamedBufferStorage(buffer_, GLsizeiptr(bytes_), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  const uint32_t zero = 0;
+  glClearNamedBufferData(buffer_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
+GpuGridBuffer::~GpuGridBuffer() { glDeleteBuffers(1, &buffer_); }
+
+void GpuGridBuffer::bind(unsigned binding) const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_); }
+
+void GpuGridBuffer::read(BinaryGrid& grid) const {
+  VGI_CHECK(grid.words().size() * sizeof(uint32_t) == bytes_);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(buffer_, 0, GLsizeiptr(bytes_), grid.words().data());
+}
+
+}  // namespace vgi
