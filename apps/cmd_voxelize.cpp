@@ -24,7 +24,7 @@ void addVoxelizeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("voxelize", "Voxelize a scene into a binary grid and compare it with the exact voxelizer");
   struct Options {
     std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto";
-    float time = 0, texelsPerVoxel = 2.0f;
+    float time = 0, texelsPerVoxel = kAutoTexelsPerVoxel;
     int threads = 0, atlasResolution = 0;
     bool noCache = false;
   };

@@ -29,7 +29,7 @@ for s in "${scenes[@]}"; do
     for v in exact slicemap conservative; do
       $vgi voxelize --scene "$s" --voxels $n --voxelizer $v --stats "$out/s.json" > /dev/null && row "$out/s.json"
     done
-    for tpv in 1 2 4 8; do
+    for tpv in 1 2 2.8284271 4 8; do
       # build (or fetch) the atlas once, then time a run that reads it from the cache;
       # a run that does not fit (atlas too large) prints its error and the table goes on
       if $vgi voxelize --scene "$s" --voxels $n --voxelizer atlas --texels-per-voxel $tpv --stats "$out/s.json" > /dev/null; then

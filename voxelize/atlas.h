@@ -33,9 +33,10 @@ struct MeshAtlas {
   nlohmann::json toJson() const;
 };
 
-// The automatic rule: texel = smallest voxel edge / texelsPerVoxel. Points are
-// then at most texel·√2/2 from any surface point of a chart, so every voxel
-// whose intersection with the surface contains a disk of that radius gets one.
+// texel = smallest voxel edge / texelsPerVoxel. Points are then at most
+// texel·√2/2 from any surface point inside a chart (at unit stretch), so every
+// voxel whose intersection with the surface contains a disk of that radius gets
+// one; the default density and its derivation: grid_metrics.h, voxelizer.h.
 float autoTexelWorld(glm::vec3 voxelSize, float texelsPerVoxel);
 
 // `positions` in world space (density follows world area). Throws when the

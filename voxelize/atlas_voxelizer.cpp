@@ -5,12 +5,13 @@
 // rendered at the request's time.
 //
 // Sliver triangles may cover no texel centre when filled, so the atlas is drawn
-// three times — triangles, their edges as lines, their corners as points — and
-// every texel written holds a point of the surface. The count of triangles left
+// three times — corners as points, edges as lines, then the filled triangles on
+// top — and every texel written holds a point of the surface. The count of triangles left
 // without any texel is reported ("triangles_without_texels").
 //
-// Parameters (VoxelizeRequest): texelsPerVoxel (default 2: texel = smallest
-// voxel edge / 2), atlasResolution (manual, per mesh), atlasCacheDir.
+// Parameters (VoxelizeRequest): texelsPerVoxel (default 2√2: texel = smallest
+// voxel edge · √2/4, the rule in grid_metrics.h), atlasResolution (manual, per
+// mesh), atlasCacheDir.
 #include "voxelize/atlas_voxelizer.h"
 
 #include <glad/gl.h>
@@ -138,9 +139,12 @@ BinaryGrid voxelizeAtlasGl(const VoxelizeRequest& req, Profiler& prof, nlohmann:
       glUseProgram(renderProg);
       glBindVertexArray(vao);
       const GLsizei corners = GLsizei(3 * mesh.triangles.size());
-      glDrawArrays(GL_TRIANGLES, 0, corners);
-      glDrawElements(GL_LINES, GLsizei(lines.size()), GL_UNSIGNED_INT, nullptr);
+      // Corners and edges first, the fill last: a texel whose centre a triangle
+      // covers keeps that centre's point (the regular lattice the resolution
+      // rule relies on); the others hold edge or corner points of slivers.
       glDrawArrays(GL_POINTS, 0, corners);
+      glDrawElements(GL_LINES, GLsizei(lines.size()), GL_UNSIGNED_INT, nullptr);
+      glDrawArrays(GL_TRIANGLES, 0, corners);
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
     {

@@ -113,7 +113,7 @@ BinaryGrid voxelizeExact(const Scene& scene, const GridBox& box, float time, int
             int za, zb;
             if (!cellRange(zmin - eps, zmax + eps, box.resolution.z, za, zb)) continue;
             for (int z = std::max(za, z0); z <= std::min(zb, z1); ++z)
-              if (triangleBoxOverlap(glm::dvec3(x, y, z) + half, half, v[0], v[1], v[2]))
+              if (triangleBoxOverlap(glm::dvec3(x, y, z) + 0.5, half, v[0], v[1], v[2]))
                 grid.setAtomic(uint32_t(x), uint32_t(y), uint32_t(z));
           }
       }

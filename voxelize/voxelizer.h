@@ -14,6 +14,8 @@ namespace vgi {
 class GlContext;
 class ShaderLibrary;
 
+constexpr float kAutoTexelsPerVoxel = 2.8284271f;  // 2√2
+
 struct VoxelizeRequest {
   const Scene* scene = nullptr;
   GridBox box;
@@ -22,8 +24,10 @@ struct VoxelizeRequest {
   GlContext* gl = nullptr;           // for GL voxelizers
   ShaderLibrary* shaders = nullptr;  // idem
   // Atlas voxelizer: texel = smallest voxel edge / texelsPerVoxel, unless a
-  // manual atlasResolution (per mesh, square) is given.
-  float texelsPerVoxel = 2.0f;
+  // manual atlasResolution (per mesh, square) is given. The default 2√2 is the
+  // rule of grid_metrics.h: every cell a planar surface crosses with a disk of
+  // radius ¼ cell gets a point.
+  float texelsPerVoxel = kAutoTexelsPerVoxel;
   int atlasResolution = 0;
   std::string atlasCacheDir;
 };

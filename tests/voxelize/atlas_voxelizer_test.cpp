@@ -9,6 +9,7 @@
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"
 #include "voxelize/grid_metrics.h"
+#include "shaders/shared/sampling.glsl"
 #include "voxelize/slicemap_voxelizer.h"
 #include "voxelize/conservative_voxelizer.h"
 
@@ -212,5 +213,41 @@ TEST(ConservativeVoxelizer, MatchesTheExactVoxelizer) {
       EXPECT_GE(c.precision(), 0.9995) << res.x << "x" << res.y << "x" << res.z;
     }
   EXPECT_EQ(f.gl->errorCount(), 0);
+}
+}  // namespace vgi
+
+namespace vgi {
+// The automatic resolution rule (voxelize/grid_metrics.h): a planar surface
+// crossing a cell with a disk of radius ¼ cell is found by a texel lattice of
+// spacing ≤ √2/4 cell, i.e. ≥ 2√2 ≈ 2.83 texels per voxel. A plane at a generic
+// angle that extends past the grid has no boundary inside it, so the rule must
+// hold exactly there — and a sparser atlas must visibly fail it.
+TEST(AtlasVoxelizer, ResolutionRuleFindsEveryInteriorCellOfAPlane) {
+  GlFixture f;
+  Scene s;
+  int m = test::addMaterial(s, glm::vec3(0.5f));
+  Mesh plane;
+  plane.source = "test";
+  plane.material = m;
+  glm::vec3 n = glm::normalize(glm::vec3(0.31f, 0.83f, 0.47f));
+  shared::Basis b = shared::makeBasis(n);
+  glm::vec3 c(0.25f, 0.25f, 0.5f);
+  for (glm::vec2 q : {glm::vec2(-2, -2), glm::vec2(2, -2), glm::vec2(2, 2), glm::vec2(-2, 2)})
+    plane.positions.push_back(c + q.x * b.t + q.y * b.b);
+  plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+  s.meshes.push_back(plane);
+  VoxelizeRequest r = f.request(s, {64, 64, 128});
+  r.box.origin = glm::vec3(0.0f);  // a fixed box of cubic cells inside the plane's extent
+  r.box.extent = glm::vec3(0.5f, 0.5f, 1.0f);
+  BinaryGrid interior = voxelizeExact(s, r.box, 0, 0, kInteriorShrink);
+  for (float tpv : {kAutoTexelsPerVoxel, 1.0f}) {  // the default, and a sparser one
+    r.texelsPerVoxel = tpv;
+    Profiler prof(true);
+    nlohmann::json stats;
+    BinaryGrid got = voxelizeAtlasGl(r, prof, stats);
+    GridComparison cmp = compareGrids(got, interior);
+    if (tpv >= 2.0f * std::sqrt(2.0f) - 1e-4f) EXPECT_EQ(cmp.holes(), 0u) << "tpv " << tpv;
+    else EXPECT_GT(cmp.holes(), 0u) << "tpv " << tpv << " should be too sparse";
+  }
 }
 }  // namespace vgi

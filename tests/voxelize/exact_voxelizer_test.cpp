@@ -197,3 +197,18 @@ TEST(ExactVoxelizer, ThreadCountDoesNotChangeTheGrid) {
 }
 
 }  // namespace vgi
+
+namespace vgi {
+// Shrinking keeps every cell centred: a quad through the middle of layer 5 stays
+// in it; one 0.2 above its floor leaves the ¼-shrunk cell [5.25, 5.75].
+TEST(ExactVoxelizer, ShrunkCellsStayCentred) {
+  auto quad = [](float z) {
+    return std::vector<std::array<glm::vec3, 3>>{{{{2.3f, 2.3f, z}, {6.7f, 2.3f, z}, {6.7f, 6.7f, z}}},
+                                                 {{{2.3f, 2.3f, z}, {6.7f, 6.7f, z}, {2.3f, 6.7f, z}}}};
+  };
+  EXPECT_EQ(voxelizeExact(gridScene(quad(5.5f)), unitBox({8, 8, 128}), 0, 0, 0.25).count(), 25u);
+  EXPECT_EQ(voxelizeExact(gridScene(quad(5.2f)), unitBox({8, 8, 128}), 0, 0, 0.25).count(), 0u);
+  EXPECT_EQ(voxelizeExact(gridScene(quad(5.8f)), unitBox({8, 8, 128}), 0, 0, 0.25).count(), 0u);
+  EXPECT_EQ(voxelizeExact(gridScene(quad(5.2f)), unitBox({8, 8, 128})).count(), 25u);
+}
+}  // namespace vgi
