@@ -156,7 +156,7 @@ TEST(SlicemapVoxelizer, FacingTrianglesAreFoundEdgeOnOnesAreNot) {
   mesh.material = m;
   // A quad facing +z (normal along the depth axis) and one lying in a plane that contains z.
   mesh.positions = {{0.05f, 0.05f, 0.3f}, {0.95f, 0.05f, 0.3f}, {0.95f, 0.95f, 0.3f}, {0.05f, 0.95f, 0.3f},
-                    {0.5f, 0.05f, 0.05f}, {0.5f, 0.95f, 0.05f}, {0.5f, 0.95f, 0.95f}, {0.5f, 0.05f, 0.95f},
+                    {0.51f, 0.05f, 0.05f}, {0.51f, 0.95f, 0.05f}, {0.51f, 0.95f, 0.95f}, {0.51f, 0.05f, 0.95f},
                     {0, 0, 0}, {1, 1, 1}, {1, 1.0001f, 1}};  // a needle stretching the box to [0,1]³
   mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}, {8, 9, 10}};
   s.meshes.push_back(mesh);
@@ -170,6 +170,7 @@ TEST(SlicemapVoxelizer, FacingTrianglesAreFoundEdgeOnOnesAreNot) {
   GridComparison cf = compareGrids(slice, voxelizeExact(facing, r.box, 0, 0, kInteriorShrink));
   GridComparison ce = compareGrids(slice, voxelizeExact(edgeOn, r.box, 0, 0, kInteriorShrink));
   EXPECT_GE(cf.recall(), 0.999);  // one fragment per column: the facing quad is complete
+  EXPECT_GT(ce.exact, 1000u);     // (the quad is inside a cell column, not on a boundary)
   EXPECT_LT(ce.recall(), 0.1);    // the edge-on quad is one pixel wide at most: mostly holes
   EXPECT_GE(compareGrids(slice, voxelizeExact(s, r.box)).precision(), 0.999);
   EXPECT_EQ(f.gl->errorCount(), 0);
