@@ -1,14 +1,51 @@
 #pragma once
+#include <memory>
 #include <vector>
 
+#include "voxelize/gpu_grid.h"
 #include "voxelize/voxelizer.h"
 
 namespace vgi {
 
-// Binary atlas voxelization on the GPU (VGI §3). Fills stats with "points",
-// "atlas_resolution" (largest), "atlases" (per mesh), "triangles_without_texels".
-// atlasPoints, if given, receives every mesh's atlas position texture (xyz, w =
-// valid), so tests can run the CPU insertion on exactly the same points.
+// Binary atlas voxelization on the GPU (VGI §3.1–3.2). Construction builds every
+// mesh's atlas (cached), uploads the meshes in object space, measures which
+// triangles own texels, and voxelizes the static meshes once. Each frame then
+// copies the static grid and inserts only the dynamic meshes at that time.
+class AtlasVoxelizer {
+ public:
+  // atlasPoints, if given, receives each mesh's atlas position texture at
+  // request.time (xyz, w = valid) for tests that run the CPU insertion.
+  AtlasVoxelizer(const VoxelizeRequest& request, Profiler& profiler,
+                 std::vector<std::vector<glm::vec4>>* atlasPoints = nullptr);
+  ~AtlasVoxelizer();
+  AtlasVoxelizer(const AtlasVoxelizer&) = delete;
+  AtlasVoxelizer& operator=(const AtlasVoxelizer&) = delete;
+
+  // Static grid → frame grid ("copy"), then the dynamic meshes at `time`
+  // ("atlas_render", "insertion").
+  void voxelizeFrame(float time, Profiler& profiler);
+  const GpuGridBuffer& frameGrid() const { return *frame_; }
+  BinaryGrid readFrame() const;
+
+  // "points" (of the last frame, static included), "atlas_resolution",
+  // "atlases" (per mesh), "triangles_without_texels", "static_meshes", "dynamic_meshes".
+  nlohmann::json stats() const;
+
+ private:
+  struct MeshGpu;
+  uint32_t renderAndInsert(const MeshGpu& mesh, float time, const GpuGridBuffer& target, Profiler& profiler,
+                           std::vector<int>* ids, std::vector<glm::vec4>* points);
+  VoxelizeRequest request_;
+  std::vector<std::unique_ptr<MeshGpu>> meshes_;
+  std::unique_ptr<GpuGridBuffer> static_, frame_;
+  unsigned renderProg_ = 0, insertProg_ = 0, fbo_ = 0, targets_[2] = {0, 0}, counter_ = 0;
+  int maxResolution_ = 0;
+  uint32_t staticPoints_ = 0, framePoints_ = 0;
+  nlohmann::json stats_;
+};
+
+// One-shot form for `vgi voxelize` and the registry: construct, one frame at
+// request.time, read back; stats as AtlasVoxelizer::stats().
 BinaryGrid voxelizeAtlasGl(const VoxelizeRequest& request, Profiler& profiler, nlohmann::json& stats,
                            std::vector<std::vector<glm::vec4>>* atlasPoints = nullptr);
 

@@ -15,6 +15,7 @@ class GpuGridBuffer {
   GpuGridBuffer(const GpuGridBuffer&) = delete;
   GpuGridBuffer& operator=(const GpuGridBuffer&) = delete;
   unsigned buffer() const { return buffer_; }
+  size_t bytes() const { return bytes_; }
   void bind(unsigned binding) const;
   void read(BinaryGrid& grid) const;
 
