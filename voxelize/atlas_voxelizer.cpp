@@ -207,8 +207,13 @@ uint32_t AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const Gpu
     // Corners and edges first, the fill last: a texel whose centre a triangle
     // covers keeps that centre's point (the regular lattice the resolution
     // rule relies on); the others hold edge or corner points of slivers.
+    const int clampLoc = glGetUniformLocation(renderProg_, "uClampToTriangle");
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.vbo);
+    glUniform1i(clampLoc, 0);
     glDrawArrays(GL_POINTS, 0, m.corners);
+    glUniform1i(clampLoc, 1);  // line fragments overshoot the edge's ends
     glDrawElements(GL_LINES, m.lineIndices, GL_UNSIGNED_INT, nullptr);
+    glUniform1i(clampLoc, 0);
     glDrawArrays(GL_TRIANGLES, 0, m.corners);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
