@@ -40,6 +40,7 @@ struct AtlasVoxelizer::MeshGpu {
   bool dynamic = false;
   glm::mat4 model0{1.0f};   // object → world at time 0 (the atlas's frame)
   const Mesh* mesh = nullptr;
+  std::vector<glm::vec2> uv;  // the atlas, 3 per triangle
   int resolution = 0;
   GLsizei corners = 0, lineIndices = 0;
   unsigned vao = 0, vbo = 0, ebo = 0;
@@ -86,6 +87,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     }
     atlasMs += atlas.ms;
     m->resolution = atlas.resolution;
+    m->uv = atlas.uv;
     // Position (RGBA32F) + triangle id (R32I) per texel; refuse before GL's allocation fails.
     const double bytes = double(atlas.resolution) * atlas.resolution * 20.0;
     if (bytes > double(1u << 31))
@@ -143,8 +145,8 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     fail("atlas voxelizer: the ", R, "x", R, " atlas framebuffer is incomplete on ", req.gl->renderer());
 
-  // Static meshes into the static grid, once; every mesh's texel ownership is measured here.
-  long lost = 0;
+  // Static meshes into the static grid, once; every mesh's texel coverage is measured here.
+  long lost = 0, sharedTotal = 0;
   for (size_t i = 0; i < meshes_.size(); ++i) {
     const MeshGpu& m = *meshes_[i];
     std::vector<int> ids;
@@ -156,13 +158,28 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     // Dynamic meshes are only measured here (into the frame grid, which each frame overwrites).
     uint32_t n = renderAndInsert(m, m.dynamic ? req.time : 0.0f, m.dynamic ? *frame_ : *static_, prof, &ids, points);
     if (!m.dynamic) staticPoints_ += n;
-    std::vector<char> seen(m.mesh->triangles.size(), 0);
+    // A triangle is lost when no written texel lies on it or within half a
+    // texel of it in the atlas. Slivers inside a chart often own no texel (the
+    // neighbours' fill covers those centres) but are sampled by that lattice.
+    const int R = m.resolution;
+    std::vector<char> owns(m.mesh->triangles.size(), 0);
     for (int id : ids)
-      if (id >= 0 && size_t(id) < seen.size()) seen[size_t(id)] = 1;
-    long meshLost = 0;
-    for (char s : seen) meshLost += !s;
+      if (id >= 0 && size_t(id) < owns.size()) owns[size_t(id)] = 1;
+    long meshLost = 0, sharing = 0;
+    for (size_t t = 0; t < owns.size(); ++t) {
+      if (owns[t]) continue;
+      glm::vec2 lo = glm::min(m.uv[3 * t], glm::min(m.uv[3 * t + 1], m.uv[3 * t + 2])) * float(R);
+      glm::vec2 hi = glm::max(m.uv[3 * t], glm::max(m.uv[3 * t + 1], m.uv[3 * t + 2])) * float(R);
+      bool near = false;
+      for (int y = std::max(0, int(std::floor(lo.y - 0.5f))); !near && y <= std::min(R - 1, int(hi.y + 0.5f)); ++y)
+        for (int x = std::max(0, int(std::floor(lo.x - 0.5f))); !near && x <= std::min(R - 1, int(hi.x + 0.5f)); ++x)
+          near = ids[size_t(y) * size_t(R) + size_t(x)] >= 0;
+      (near ? sharing : meshLost)++;
+    }
     atlases[i]["triangles_without_texels"] = meshLost;
+    atlases[i]["triangles_sampled_by_neighbours"] = sharing;
     lost += meshLost;
+    sharedTotal += sharing;
   }
   stats_["atlas_resolution"] = maxResolution_;
   stats_["atlases"] = atlases;
@@ -170,6 +187,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   stats_["texel_world"] = texel;
   stats_["texels_per_voxel"] = req.texelsPerVoxel;
   stats_["triangles_without_texels"] = lost;
+  stats_["triangles_sampled_by_neighbours"] = sharedTotal;
   stats_["static_meshes"] = staticCount;
   stats_["dynamic_meshes"] = dynamicCount;
 }
