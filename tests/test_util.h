@@ -1,6 +1,7 @@
 // Helpers shared by the tests: data paths and small analytic scenes.
 #pragma once
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -37,6 +38,28 @@ inline int addMaterial(Scene& s, glm::vec3 albedo, glm::vec3 emission = glm::vec
   m.emission = emission;
   s.materials.push_back(m);
   return int(s.materials.size()) - 1;
+}
+
+// A mesh with its own grey Lambert material.
+inline Mesh& addMesh(Scene& s, std::vector<glm::vec3> positions, std::vector<glm::uvec3> triangles) {
+  Mesh m;
+  m.name = "mesh" + std::to_string(s.meshes.size());
+  m.source = "test";
+  m.material = addMaterial(s, glm::vec3(0.5f));
+  m.positions = std::move(positions);
+  m.triangles = std::move(triangles);
+  s.meshes.push_back(std::move(m));
+  return s.meshes.back();
+}
+
+// A scene JSON: the built-in Cornell box plus a small triangle (tests/data/triangle.gltf)
+// that moves by (0.3, 0.2, 0) between times 0 and 1. Returns its path.
+inline std::string writeMovingTriangleScene(const std::string& name) {
+  std::string path = testing::TempDir() + "/" + name + ".json";
+  std::ofstream(path) << R"({ "meshes": [ {"path": "builtin:cornell"},
+      {"path": ")" << dataPath("triangle.gltf") << R"(", "transform": {"scale": 0.2, "translate": [0.1, 0.1, -0.3]},
+       "dynamic": true, "keyframes": [ {"time": 0, "translate": [0, 0, 0]}, {"time": 1, "translate": [0.3, 0.2, 0]} ] } ] })";
+  return path;
 }
 
 // Axis-aligned quad in the plane y = `y`, spanning [-h, h] in x and z.

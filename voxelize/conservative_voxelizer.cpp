@@ -15,7 +15,6 @@
 
 #include "core/error.h"
 #include "core/gl_context.h"
-#include "core/gpu_scene.h"
 #include "core/shader_library.h"
 #include "voxelize/gpu_grid.h"
 
@@ -23,7 +22,6 @@ namespace vgi {
 
 BinaryGrid voxelizeConservativeGl(const VoxelizeRequest& req, Profiler& prof, nlohmann::json& stats) {
   VGI_CHECK(req.gl && req.shaders);
-  BinaryGrid grid(req.box);
   const glm::uvec3 res = req.box.resolution;
   const int side = int(std::max({res.x, res.y, res.z}));
   GLint maxSize = 0;
@@ -31,34 +29,8 @@ BinaryGrid voxelizeConservativeGl(const VoxelizeRequest& req, Profiler& prof, nl
   if (side > maxSize) fail("conservative voxelizer: a ", side, "² view exceeds GL_MAX_FRAMEBUFFER_WIDTH ", maxSize);
   unsigned prog = req.shaders->program(
       {"voxelize/conservative.vert.glsl", "voxelize/conservative.geom.glsl", "voxelize/conservative.frag.glsl"});
-  std::unique_ptr<GpuScene> gpu;
-  {
-    auto s = prof.scope("upload");
-    gpu = std::make_unique<GpuScene>(*req.scene, req.time);
-  }
-  setGridUniforms(prog, req.box);
   glProgramUniform1f(prog, glGetUniformLocation(prog, "uViewport"), float(side));
-  GpuGridBuffer target(req.box);
-  unsigned fbo = 0;
-  glCreateFramebuffers(1, &fbo);  // no attachments: fragments only write the SSBO
-  glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, side);
-  glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, side);
-  {
-    auto s = prof.scope("conservative");
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, side, side);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    glUseProgram(prog);
-    target.bind(0);
-    gpu->draw();
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  }
-  {
-    auto s = prof.scope("readback");
-    target.read(grid);
-  }
-  glDeleteFramebuffers(1, &fbo);
+  BinaryGrid grid = rasterizeSceneIntoGrid(req, prog, side, side, "conservative", prof);
   stats["passes"] = 1;
   return grid;
 }

@@ -3,6 +3,9 @@
 #include <glad/gl.h>
 
 #include "core/error.h"
+#include "core/gpu_scene.h"
+#include "core/profiler.h"
+#include "voxelize/voxelizer.h"
 
 namespace vgi {
 
@@ -13,6 +16,45 @@ void setGridUniforms(unsigned program, const GridBox& box) {
   glProgramUniform4fv(program, glGetUniformLocation(program, "uAxisY"), 1, &g.axisY.x);
   glProgramUniform4fv(program, glGetUniformLocation(program, "uAxisZ"), 1, &g.axisZ.x);
   glProgramUniform4uiv(program, glGetUniformLocation(program, "uResolution"), 1, &g.resolution.x);
+}
+
+void drawWithoutAttachments(int width, int height, const std::function<void()>& draw) {
+  unsigned fbo = 0;
+  glCreateFramebuffers(1, &fbo);
+  glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+  glNamedFramebufferParameteri(fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  draw();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &fbo);
+}
+
+BinaryGrid rasterizeSceneIntoGrid(const VoxelizeRequest& req, unsigned program, int width, int height,
+                                  const std::string& passName, Profiler& prof) {
+  BinaryGrid grid(req.box);
+  std::unique_ptr<GpuScene> gpu;
+  {
+    auto s = prof.scope("upload");
+    gpu = std::make_unique<GpuScene>(*req.scene, req.time);
+  }
+  setGridUniforms(program, req.box);
+  GpuGridBuffer target(req.box);
+  {
+    auto s = prof.scope(passName);
+    drawWithoutAttachments(width, height, [&] {
+      glUseProgram(program);
+      target.bind(0);
+      gpu->draw();
+    });
+  }
+  {
+    auto s = prof.scope("readback");
+    target.read(grid);
+  }
+  return grid;
 }
 
 GpuGridBuffer::GpuGridBuffer(const GridBox& box)

@@ -1,16 +1,11 @@
 // Binary atlas voxelization, insertion (VGI §3.1): one point per valid atlas
 // texel sets the bit of its cell with atomicOr, through the shared kernel
 // (pointBit) that the CPU build runs too.
-#include "../shared/voxel_grid.glsl"
+#include "grid_uniforms.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2D atlasPosition;
 layout(std430, binding = 0) buffer Columns { uint words[]; };
 layout(std430, binding = 1) buffer Counters { uint points; };
-uniform vec4 uOrigin;
-uniform vec4 uAxisX;
-uniform vec4 uAxisY;
-uniform vec4 uAxisZ;
-uniform uvec4 uResolution;
 uniform ivec2 uAtlasSize;
 void main() {
   ivec2 t = ivec2(gl_GlobalInvocationID.xy);
@@ -18,12 +13,6 @@ void main() {
   vec4 p = texelFetch(atlasPosition, t, 0);
   if (p.w == 0.0f) return;
   atomicAdd(points, 1u);
-  GridParams g;
-  g.origin = uOrigin;
-  g.axisX = uAxisX;
-  g.axisY = uAxisY;
-  g.axisZ = uAxisZ;
-  g.resolution = uResolution;
-  PointBit b = pointBit(g, p.xyz);
+  PointBit b = pointBit(gridFromUniforms(), p.xyz);
   if (b.word != 0xffffffffu) atomicOr(words[b.word], b.bit);
 }

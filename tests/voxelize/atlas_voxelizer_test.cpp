@@ -71,15 +71,11 @@ TEST(AtlasVoxelizer, CornellBoxAgainstTheExactVoxelizer) {
 TEST(AtlasVoxelizer, SliversStillProduceTexelsAndVoxels) {
   GlFixture f;
   Scene s;
-  int m = test::addMaterial(s, glm::vec3(0.5f));
-  Mesh mesh;
-  mesh.source = "test";
-  mesh.material = m;
   // Two long needles (width 1e-4 of their length) and a normal triangle.
-  mesh.positions = {{0, 0, 0}, {1, 0.3f, 0.2f}, {1, 0.3001f, 0.2f}, {0, 1, 1}, {0.9f, 0.1f, 0.95f},
-                    {0.9f, 0.1f, 0.9501f}, {0.2f, 0.8f, 0.1f}, {0.5f, 0.9f, 0.3f}, {0.3f, 0.6f, 0.5f}};
-  mesh.triangles = {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}};
-  s.meshes.push_back(mesh);
+  test::addMesh(s,
+                {{0, 0, 0}, {1, 0.3f, 0.2f}, {1, 0.3001f, 0.2f}, {0, 1, 1}, {0.9f, 0.1f, 0.95f},
+                 {0.9f, 0.1f, 0.9501f}, {0.2f, 0.8f, 0.1f}, {0.5f, 0.9f, 0.3f}, {0.3f, 0.6f, 0.5f}},
+                {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}});
   VoxelizeRequest r = f.request(s, {64, 64, 128});
   Profiler prof(true);
   nlohmann::json stats;
@@ -124,11 +120,7 @@ TEST(AtlasVoxelizer, SliversStillProduceTexelsAndVoxels) {
 
 TEST(AtlasVoxelizer, MovedDynamicObjectLeavesNoStaleVoxels) {
   GlFixture f;
-  std::string path = testing::TempDir() + "/dyn_vox.json";
-  std::ofstream(path) << R"({ "meshes": [ {"path": "builtin:cornell"},
-      {"path": ")" << test::dataPath("triangle.gltf") << R"(", "transform": {"scale": 0.2, "translate": [0.1, 0.1, -0.3]},
-       "dynamic": true, "keyframes": [ {"time": 0, "translate": [0, 0, 0]}, {"time": 1, "translate": [0.3, 0.2, 0]} ] } ] })";
-  Scene s = loadScene(path);
+  Scene s = loadScene(test::writeMovingTriangleScene("moving"));
   GridBox box = fitGridBox(s, {64, 64, 128}, 0.0f);
   for (float t : {0.0f, 1.0f}) {
     VoxelizeRequest r = f.request(s, {64, 64, 128}, t);
@@ -150,16 +142,12 @@ namespace vgi {
 TEST(SlicemapVoxelizer, FacingTrianglesAreFoundEdgeOnOnesAreNot) {
   GlFixture f;
   Scene s;
-  int m = test::addMaterial(s, glm::vec3(0.5f));
-  Mesh mesh;
-  mesh.source = "test";
-  mesh.material = m;
+  Mesh& mesh = test::addMesh(s, {}, {});
   // A quad facing +z (normal along the depth axis) and one lying in a plane that contains z.
   mesh.positions = {{0.05f, 0.05f, 0.3f}, {0.95f, 0.05f, 0.3f}, {0.95f, 0.95f, 0.3f}, {0.05f, 0.95f, 0.3f},
                     {0.51f, 0.05f, 0.05f}, {0.51f, 0.95f, 0.05f}, {0.51f, 0.95f, 0.95f}, {0.51f, 0.05f, 0.95f},
                     {0, 0, 0}, {1, 1, 1}, {1, 1.0001f, 1}};  // a needle stretching the box to [0,1]³
   mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}, {8, 9, 10}};
-  s.meshes.push_back(mesh);
   VoxelizeRequest r = f.request(s, {64, 64, 128});
   Profiler prof(true);
   nlohmann::json stats;
@@ -186,10 +174,7 @@ TEST(ConservativeVoxelizer, MatchesTheExactVoxelizer) {
   GlFixture f;
   Scene cornell = loadScene("builtin:cornell");
   Scene hard;
-  int m = test::addMaterial(hard, glm::vec3(0.5f));
-  Mesh mesh;
-  mesh.source = "test";
-  mesh.material = m;
+  Mesh& mesh = test::addMesh(hard, {}, {});
   std::mt19937 rng(4);
   std::uniform_real_distribution<float> u(0, 1);
   for (int i = 0; i < 200; ++i) {  // random triangles of every size
@@ -202,7 +187,6 @@ TEST(ConservativeVoxelizer, MatchesTheExactVoxelizer) {
   uint32_t b = uint32_t(mesh.positions.size());
   mesh.positions.insert(mesh.positions.end(), {{0, 0, 0}, {1, 1, 1}, {1, 1.0001f, 1}});  // a needle
   mesh.triangles.push_back({b, b + 1, b + 2});
-  hard.meshes.push_back(mesh);
   for (const Scene* s : {&cornell, &hard})
     for (glm::uvec3 res : {glm::uvec3(64, 64, 128), glm::uvec3(40, 72, 256)}) {
       VoxelizeRequest r = f.request(*s, res);
@@ -226,17 +210,13 @@ namespace vgi {
 TEST(AtlasVoxelizer, ResolutionRuleFindsEveryInteriorCellOfAPlane) {
   GlFixture f;
   Scene s;
-  int m = test::addMaterial(s, glm::vec3(0.5f));
-  Mesh plane;
-  plane.source = "test";
-  plane.material = m;
+  Mesh& plane = test::addMesh(s, {}, {});
   glm::vec3 n = glm::normalize(glm::vec3(0.31f, 0.83f, 0.47f));
   shared::Basis b = shared::makeBasis(n);
   glm::vec3 c(0.25f, 0.25f, 0.5f);
   for (glm::vec2 q : {glm::vec2(-2, -2), glm::vec2(2, -2), glm::vec2(2, 2), glm::vec2(-2, 2)})
     plane.positions.push_back(c + q.x * b.t + q.y * b.b);
   plane.triangles = {{0, 1, 2}, {0, 2, 3}};
-  s.meshes.push_back(plane);
   VoxelizeRequest r = f.request(s, {64, 64, 128});
   r.box.origin = glm::vec3(0.0f);  // a fixed box of cubic cells inside the plane's extent
   r.box.extent = glm::vec3(0.5f, 0.5f, 1.0f);
@@ -259,11 +239,7 @@ namespace vgi {
 // each frame equals a fresh voxelization at its time.
 TEST(AtlasVoxelizer, FramesReuseTheStaticGridWithoutStaleVoxels) {
   GlFixture f;
-  std::string path = testing::TempDir() + "/frames.json";
-  std::ofstream(path) << R"({ "meshes": [ {"path": "builtin:cornell"},
-      {"path": ")" << test::dataPath("triangle.gltf") << R"(", "transform": {"scale": 0.2, "translate": [0.1, 0.1, -0.3]},
-       "dynamic": true, "keyframes": [ {"time": 0, "translate": [0, 0, 0]}, {"time": 1, "translate": [0.3, 0.2, 0]} ] } ] })";
-  Scene s = loadScene(path);
+  Scene s = loadScene(test::writeMovingTriangleScene("moving"));
   VoxelizeRequest r = f.request(s, {64, 64, 128});
   Profiler prof(true);
   AtlasVoxelizer v(r, prof);
