@@ -10,6 +10,10 @@
 // components and still get UVs — no triangle is dropped.
 #include "voxelize/chart_segmentation.h"
 
+// GCC 12 reports a false -Wmaybe-uninitialized inside OpenMesh's property
+// containers (vector<VectorT>::push_back); it is not in this file's code.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
@@ -101,3 +105,4 @@ Segmentation segmentCharts(const std::vector<glm::vec3>& positions, const std::v
 }
 
 }  // namespace vgi
+#pragma GCC diagnostic pop

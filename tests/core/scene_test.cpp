@@ -81,7 +81,9 @@ TEST(Scene, JsonSceneWithDynamicMeshAndPresets) {
   EXPECT_EQ(s.presets["fast"]["env"], "off");
   // "red" overrides the built-in's red wall.
   for (auto& m : s.materials)
-    if (m.name == "red") EXPECT_FLOAT_EQ(m.albedo.y, 0.2f);
+    if (m.name == "red") {
+      EXPECT_FLOAT_EQ(m.albedo.y, 0.2f);
+    }
   EXPECT_NEAR(s.environmentRadiance({0, 1, 0}).z, 0.3f, 1e-6f);
 }
 
