@@ -24,7 +24,7 @@ nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
 void addVoxelizeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("voxelize", "Voxelize a scene into a binary grid and compare it with the exact voxelizer");
   struct Options {
-    std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto";
+    std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto", kind = "binary";
     float time = 0, texelsPerVoxel = kAutoTexelsPerVoxel;
     int threads = 0, atlasResolution = 0, frames = 1;
     float timeStep = 1.0f / 30.0f;
@@ -36,6 +36,8 @@ void addVoxelizeCommand(CLI::App& app) {
   std::string names;
   for (auto& v : voxelizerRegistry()) names += (names.empty() ? "" : "|") + v.name;
   cmd->add_option("--voxelizer", o->voxelizer, names)->capture_default_str();
+  cmd->add_option("--kind", o->kind, "grids to build: binary, plus any of normal,albedo,glossy (atlas; comma-separated)")
+      ->capture_default_str();
   cmd->add_option("--time", o->time, "animation time")->capture_default_str();
   cmd->add_option("--threads", o->threads, "CPU threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--gl", o->gl, "GL backend: auto|egl|osmesa")->capture_default_str();
@@ -77,30 +79,47 @@ void addVoxelizeCommand(CLI::App& app) {
     }
     if (o->frames < 1 || o->frames > 100000) fail("--frames ", o->frames, ": must be in [1, 100000]");
     if (o->frames > 1 && info.name != "atlas") fail("--frames applies to --voxelizer atlas only");
+    std::string kinds = o->kind;
+    if (kinds == "binary") kinds.clear();
+    else if (kinds.rfind("binary,", 0) == 0) kinds = kinds.substr(7);
+    if (!kinds.empty()) {
+      req.valueGrids = parseValueChannels(kinds);
+      if (info.name != "atlas") fail("--kind ", o->kind, ": multi-valued grids are built by --voxelizer atlas only");
+    }
     nlohmann::json s;
     Profiler prof(gl != nullptr);
     BinaryGrid grid(req.box);
-    if (o->frames == 1) {
+    ValueGrids values;
+    if (info.name != "atlas") {
       grid = info.run(req, prof, s);
     } else {
-      // Static meshes once (their passes are the constructor's), then per frame: copy + dynamic meshes.
+      // Static meshes once (the constructor's passes), then per frame: copy + dynamic meshes.
       AtlasVoxelizer v(req, prof);
-      prof.resolve(true);
-      s["static_timings_ms"] = prof.timingsMs();
       nlohmann::json frames = nlohmann::json::array();
       for (int i = 0; i < o->frames; ++i) {
-        Profiler frameProf(true);
         float t = o->time + float(i) * o->timeStep;
-        v.voxelizeFrame(t, frameProf);
-        frameProf.resolve(true);
-        frames.push_back({{"time", t}, {"timings_ms", frameProf.timingsMs()}, {"total_ms", frameProf.totalMs()}});
+        if (o->frames == 1) {
+          v.voxelizeFrame(t, prof);
+        } else {
+          Profiler frameProf(true);
+          v.voxelizeFrame(t, frameProf);
+          frameProf.resolve(true);
+          frames.push_back({{"time", t}, {"timings_ms", frameProf.timingsMs()}, {"total_ms", frameProf.totalMs()}});
+        }
         req.time = t;
       }
-      grid = v.readFrame();
+      {
+        auto sc = prof.scope("readback");
+        grid = v.readFrame();
+        values = v.readValues();
+      }
       s.update(v.stats());
-      s["frames"] = frames;
+      if (o->frames > 1) s["frames"] = frames;
     }
     prof.resolve(true);
+    s["built"] = nlohmann::json::array({"binary"});
+    for (auto& ch : req.valueGrids) s["built"].push_back(ch);
+    if (!req.valueGrids.empty()) s["value_grids"] = values.summary();
     if (gl && gl->errorCount() > 0) fail("voxelizer '", info.name, "' raised ", gl->errorCount(), " GL error(s)");
     GridComparison cmp, interior;
     if (info.name == "exact") {
@@ -131,7 +150,13 @@ void addVoxelizeCommand(CLI::App& app) {
     s["gl_renderer"] = gl ? gl->renderer() : "none (CPU voxelizer)";
     s["triangles"] = scene.triangleCount();
     s["git_revision"] = gitRevision();
-    if (!o->dump.empty()) writeGridPicture(grid, o->dump);
+    if (!o->dump.empty()) {
+      writeGridPicture(grid, o->dump);
+      // One picture per value grid beside it: NAME_normal.png, …
+      std::string stem = o->dump.substr(0, o->dump.find_last_of('.'));
+      std::string ext = o->dump.substr(o->dump.find_last_of('.'));
+      for (auto& ch : req.valueGrids) writeValuePicture(values, ch, stem + "_" + ch + ext);
+    }
     if (!o->stats.empty()) {
       std::ofstream f(o->stats);
       f << s.dump(2) << "\n";

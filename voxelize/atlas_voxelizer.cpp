@@ -18,9 +18,12 @@
 
 #include <set>
 
+#include <unistd.h>
+
 #include "core/error.h"
 #include "core/gl_context.h"
 #include "core/shader_library.h"
+#include "core/gpu_scene.h"
 #include "voxelize/atlas.h"
 #include "voxelize/gpu_grid.h"
 
@@ -35,8 +38,47 @@ void insertAtlasPoints(const std::vector<glm::vec4>& positions, BinaryGrid& grid
   }
 }
 
+constexpr int kVertexFloats = 11;  // position 3, atlas uv 2, triangle 1, normal 3, texture uv 2
+
+// Per-cell point counts and fixed-point sums of the requested channels.
+struct AtlasVoxelizer::ValueBuffers {
+  size_t cells = 0;
+  unsigned counts = 0;
+  unsigned sums[3] = {0, 0, 0};  // normal, albedo, glossy (0 = not built)
+  ValueBuffers(size_t n, const std::vector<std::string>& channels) : cells(n) {
+    const uint32_t zero = 0;
+    auto make = [&](size_t bytes) {
+      unsigned b = 0;
+      glCreateBuffers(1, &b);
+      glNamedBufferStorage(b, GLsizeiptr(bytes), nullptr, GL_DYNAMIC_STORAGE_BIT);
+      glClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      return b;
+    };
+    counts = make(n * 4);
+    for (size_t k = 0; k < 3; ++k)
+      for (auto& ch : channels)
+        if (ch == valueChannelNames()[k]) sums[k] = make(n * 16);
+  }
+  ~ValueBuffers() {
+    glDeleteBuffers(1, &counts);
+    for (unsigned s : sums)
+      if (s) glDeleteBuffers(1, &s);
+  }
+  void copyTo(const ValueBuffers& o) const {
+    glCopyNamedBufferSubData(counts, o.counts, 0, 0, GLsizeiptr(cells * 4));
+    for (int k = 0; k < 3; ++k)
+      if (sums[k]) glCopyNamedBufferSubData(sums[k], o.sums[k], 0, 0, GLsizeiptr(cells * 16));
+  }
+  void bind() const {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, counts);
+    for (unsigned k = 0; k < 3; ++k)
+      if (sums[k]) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5 + k, sums[k]);
+  }
+};
+
 struct AtlasVoxelizer::MeshGpu {
   std::string name;
+  int material = 0;
   bool dynamic = false;
   glm::mat4 model0{1.0f};   // object → world at time 0 (the atlas's frame)
   const Mesh* mesh = nullptr;
@@ -53,9 +95,28 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   GLint maxTex = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
   const float texel = autoTexelWorld(req.box.voxelSize(), req.texelsPerVoxel);
-  renderProg_ = req.shaders->program({"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"});
+  const bool values = !req.valueGrids.empty();
+  ShaderDefines renderDefs{{"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}};
+  if (values) renderDefs["MULTI_VALUED"] = "1";
+  renderProg_ = req.shaders->program({"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"}, renderDefs);
   insertProg_ = req.shaders->program({"voxelize/atlas_insert.comp.glsl"});
   setGridUniforms(insertProg_, req.box);
+  if (values) {
+    const uint64_t cells = req.box.cellCount();
+    const double bytes = double(cells) * (4.0 + 16.0 * double(req.valueGrids.size())) * 2.0;  // static + frame
+    const double phys = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    if (bytes > 0.5 * phys)
+      fail("multi-valued grids (", req.valueGrids.size(), " channels) at ", req.box.resolution.x, "x",
+           req.box.resolution.y, "x", req.box.resolution.z, " need ", bytes / (1 << 20), " MiB; this machine has ",
+           phys / (1 << 20), " MiB (at most half is used)");
+    ShaderDefines valueDefs;
+    for (auto& ch : req.valueGrids) valueDefs["VALUE_" + std::string(ch == "normal" ? "NORMAL" : ch == "albedo" ? "ALBEDO" : "GLOSSY")] = "1";
+    valueProg_ = req.shaders->program({"voxelize/atlas_insert_values.comp.glsl"}, valueDefs);
+    setGridUniforms(valueProg_, req.box);
+    staticValues_ = std::make_unique<ValueBuffers>(size_t(cells), req.valueGrids);
+    frameValues_ = std::make_unique<ValueBuffers>(size_t(cells), req.valueGrids);
+    materials_ = std::make_unique<GpuScene>(*req.scene, 0.0f);
+  }
   static_ = std::make_unique<GpuGridBuffer>(req.box);
   frame_ = std::make_unique<GpuGridBuffer>(req.box);
   const uint32_t zero = 0;
@@ -69,6 +130,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     auto m = std::make_unique<MeshGpu>();
     m->name = mesh.name;
     m->mesh = &mesh;
+    m->material = mesh.material;
     m->dynamic = mesh.dynamic && !mesh.keyframes.empty();
     (m->dynamic ? dynamicCount : staticCount)++;
     // The atlas comes from the mesh at time 0: rigid motion keeps lengths, so a
@@ -102,14 +164,18 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     atlases.push_back(aj);
 
     std::vector<float> verts;
-    verts.reserve(mesh.triangles.size() * 18);
+    verts.reserve(mesh.triangles.size() * 3 * kVertexFloats);
     std::vector<uint32_t> lines;
     lines.reserve(mesh.triangles.size() * 6);
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const glm::uvec3& tri = mesh.triangles[t];
+      glm::vec3 face = glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]], mesh.positions[tri[2]] - mesh.positions[tri[0]]);
       for (int k = 0; k < 3; ++k) {
-        const glm::vec3& p = mesh.positions[mesh.triangles[t][k]];
+        const glm::vec3& p = mesh.positions[tri[k]];
         const glm::vec2& uv = atlas.uv[3 * t + size_t(k)];
-        verts.insert(verts.end(), {p.x, p.y, p.z, uv.x, uv.y, float(t)});
+        glm::vec3 n = mesh.normals.empty() || mesh.normals[tri[k]] == glm::vec3(0.0f) ? face : mesh.normals[tri[k]];
+        glm::vec2 tex = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[tri[k]];
+        verts.insert(verts.end(), {p.x, p.y, p.z, uv.x, uv.y, float(t), n.x, n.y, n.z, tex.x, tex.y});
       }
       uint32_t b = uint32_t(3 * t);
       lines.insert(lines.end(), {b, b + 1, b + 1, b + 2, b + 2, b});
@@ -121,10 +187,10 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     glCreateBuffers(1, &m->ebo);
     glNamedBufferStorage(m->vbo, GLsizeiptr(std::max<size_t>(verts.size(), 1) * sizeof(float)), verts.data(), 0);
     glNamedBufferStorage(m->ebo, GLsizeiptr(std::max<size_t>(lines.size(), 1) * sizeof(uint32_t)), lines.data(), 0);
-    glVertexArrayVertexBuffer(m->vao, 0, m->vbo, 0, 6 * sizeof(float));
+    glVertexArrayVertexBuffer(m->vao, 0, m->vbo, 0, kVertexFloats * sizeof(float));
     glVertexArrayElementBuffer(m->vao, m->ebo);
-    const int sizes[3] = {3, 2, 1}, offsets[3] = {0, 3, 5};
-    for (unsigned a = 0; a < 3; ++a) {
+    const int sizes[5] = {3, 2, 1, 3, 2}, offsets[5] = {0, 3, 5, 6, 9};
+    for (unsigned a = 0; a < 5; ++a) {
       glEnableVertexArrayAttrib(m->vao, a);
       glVertexArrayAttribFormat(m->vao, a, sizes[a], GL_FLOAT, GL_FALSE, unsigned(offsets[a]) * sizeof(float));
       glVertexArrayAttribBinding(m->vao, a, 0);
@@ -140,8 +206,16 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   glCreateFramebuffers(1, &fbo_);
   glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, targets_[0], 0);
   glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT1, targets_[1], 0);
-  const GLenum bufs[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glNamedFramebufferDrawBuffers(fbo_, 2, bufs);
+  if (values) {
+    glCreateTextures(GL_TEXTURE_2D, 3, valueTargets_);
+    for (int k = 0; k < 3; ++k) {
+      glTextureStorage2D(valueTargets_[k], 1, GL_RGBA32F, R, R);
+      glNamedFramebufferTexture(fbo_, GLenum(GL_COLOR_ATTACHMENT2 + k), valueTargets_[k], 0);
+    }
+  }
+  const GLenum bufs[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
+                          GL_COLOR_ATTACHMENT4};
+  glNamedFramebufferDrawBuffers(fbo_, values ? 5 : 2, bufs);
   if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     fail("atlas voxelizer: the ", R, "x", R, " atlas framebuffer is incomplete on ", req.gl->renderer());
 
@@ -156,7 +230,8 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
       points = &atlasPoints->back();
     }
     // Dynamic meshes are only measured here (into the frame grid, which each frame overwrites).
-    uint32_t n = renderAndInsert(m, m.dynamic ? req.time : 0.0f, m.dynamic ? *frame_ : *static_, prof, &ids, points);
+    uint32_t n = renderAndInsert(m, m.dynamic ? req.time : 0.0f, m.dynamic ? *frame_ : *static_,
+                                 m.dynamic ? frameValues_.get() : staticValues_.get(), prof, &ids, points);
     if (!m.dynamic) staticPoints_ += n;
     // A triangle is lost when no written texel lies on it or within half a
     // texel of it in the atlas. Slivers inside a chart often own no texel (the
@@ -200,11 +275,13 @@ AtlasVoxelizer::~AtlasVoxelizer() {
   }
   glDeleteFramebuffers(1, &fbo_);
   glDeleteTextures(2, targets_);
+  if (valueTargets_[0]) glDeleteTextures(3, valueTargets_);
   glDeleteBuffers(1, &counter_);
 }
 
-uint32_t AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGridBuffer& target, Profiler& prof,
-                                         std::vector<int>* ids, std::vector<glm::vec4>* points) {
+uint32_t AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGridBuffer& target,
+                                         const ValueBuffers* values, Profiler& prof, std::vector<int>* ids,
+                                         std::vector<glm::vec4>* points) {
   const int R = m.resolution;
   const uint32_t zero = 0;
   glNamedBufferSubData(counter_, 0, 4, &zero);
@@ -218,7 +295,13 @@ uint32_t AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const Gpu
     const int clearId[4] = {-1, -1, -1, -1};
     glClearBufferfv(GL_COLOR, 0, clearPos);
     glClearBufferiv(GL_COLOR, 1, clearId);
+    if (values)
+      for (int k = 0; k < 3; ++k) glClearBufferfv(GL_COLOR, 2 + k, clearPos);
     glUseProgram(renderProg_);
+    if (values) {
+      materials_->bind(renderProg_);
+      glUniform1i(glGetUniformLocation(renderProg_, "uMaterial"), m.material);
+    }
     glm::mat4 model = m.mesh->objectToWorld(time);
     glUniformMatrix4fv(glGetUniformLocation(renderProg_, "uModel"), 1, GL_FALSE, &model[0][0]);
     glBindVertexArray(m.vao);
@@ -226,7 +309,7 @@ uint32_t AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const Gpu
     // covers keeps that centre's point (the regular lattice the resolution
     // rule relies on); the others hold edge or corner points of slivers.
     const int clampLoc = glGetUniformLocation(renderProg_, "uClampToTriangle");
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, m.vbo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.vbo);
     glUniform1i(clampLoc, 0);
     glDrawArrays(GL_POINTS, 0, m.corners);
     glUniform1i(clampLoc, 1);  // line fragments overshoot the edge's ends
@@ -242,6 +325,16 @@ uint32_t AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const Gpu
     glBindTextureUnit(0, targets_[0]);
     target.bind(0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counter_);
+    glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  if (values) {
+    auto s = prof.scope("insertion_values");
+    glUseProgram(valueProg_);
+    glProgramUniform2i(valueProg_, glGetUniformLocation(valueProg_, "uAtlasSize"), R, R);
+    glBindTextureUnit(0, targets_[0]);
+    for (unsigned k = 0; k < 3; ++k) glBindTextureUnit(1 + k, valueTargets_[k]);
+    values->bind();
     glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -265,16 +358,36 @@ void AtlasVoxelizer::voxelizeFrame(float time, Profiler& prof) {
     auto s = prof.scope("copy");
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     glCopyNamedBufferSubData(static_->buffer(), frame_->buffer(), 0, 0, GLsizeiptr(static_->bytes()));
+    if (staticValues_) staticValues_->copyTo(*frameValues_);
   }
   framePoints_ = staticPoints_;
   for (auto& m : meshes_)
-    if (m->dynamic) framePoints_ += renderAndInsert(*m, time, *frame_, prof, nullptr, nullptr);
+    if (m->dynamic) framePoints_ += renderAndInsert(*m, time, *frame_, frameValues_.get(), prof, nullptr, nullptr);
 }
 
 BinaryGrid AtlasVoxelizer::readFrame() const {
   BinaryGrid grid(request_.box);
   frame_->read(grid);
   return grid;
+}
+
+ValueGrids AtlasVoxelizer::readValues() const {
+  ValueGrids g;
+  g.box = request_.box;
+  g.channels = request_.valueGrids;
+  if (!frameValues_) return g;
+  const size_t cells = frameValues_->cells;
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  g.counts.resize(cells);
+  glGetNamedBufferSubData(frameValues_->counts, 0, GLsizeiptr(cells * 4), g.counts.data());
+  std::vector<uint32_t> sums(cells * 4);
+  for (auto& ch : g.channels) {
+    size_t k = 0;
+    while (valueChannelNames()[k] != ch) ++k;
+    glGetNamedBufferSubData(frameValues_->sums[k], 0, GLsizeiptr(cells * 16), sums.data());
+    g.means.push_back(decodeMeans(sums, g.counts, ch));
+  }
+  return g;
 }
 
 nlohmann::json AtlasVoxelizer::stats() const {

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "voxelize/gpu_grid.h"
+#include "voxelize/value_grids.h"
 #include "voxelize/voxelizer.h"
 
 namespace vgi {
@@ -26,6 +27,8 @@ class AtlasVoxelizer {
   void voxelizeFrame(float time, Profiler& profiler);
   const GpuGridBuffer& frameGrid() const { return *frame_; }
   BinaryGrid readFrame() const;
+  // The multi-valued grids of the last frame (those the request asked for).
+  ValueGrids readValues() const;
 
   // "points" (of the last frame, static included), "atlas_resolution",
   // "atlases" (per mesh), "triangles_without_texels", "static_meshes", "dynamic_meshes".
@@ -33,11 +36,15 @@ class AtlasVoxelizer {
 
  private:
   struct MeshGpu;
-  uint32_t renderAndInsert(const MeshGpu& mesh, float time, const GpuGridBuffer& target, Profiler& profiler,
-                           std::vector<int>* ids, std::vector<glm::vec4>* points);
+  struct ValueBuffers;
+  uint32_t renderAndInsert(const MeshGpu& mesh, float time, const GpuGridBuffer& target, const ValueBuffers* values,
+                           Profiler& profiler, std::vector<int>* ids, std::vector<glm::vec4>* points);
   VoxelizeRequest request_;
   std::vector<std::unique_ptr<MeshGpu>> meshes_;
   std::unique_ptr<GpuGridBuffer> static_, frame_;
+  std::unique_ptr<ValueBuffers> staticValues_, frameValues_;
+  std::unique_ptr<class GpuScene> materials_;  // material SSBO + textures, for multi-valued grids
+  unsigned valueProg_ = 0, valueTargets_[3] = {0, 0, 0};
   unsigned renderProg_ = 0, insertProg_ = 0, fbo_ = 0, targets_[2] = {0, 0}, counter_ = 0;
   int maxResolution_ = 0;
   uint32_t staticPoints_ = 0, framePoints_ = 0;

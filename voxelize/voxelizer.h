@@ -30,6 +30,9 @@ struct VoxelizeRequest {
   float texelsPerVoxel = kAutoTexelsPerVoxel;
   int atlasResolution = 0;
   std::string atlasCacheDir;
+  // Multi-valued grids to build as well (atlas voxelizer): "normal", "albedo",
+  // "glossy". Only these are built.
+  std::vector<std::string> valueGrids;
 };
 
 struct VoxelizerInfo {

@@ -113,3 +113,17 @@ TEST(Cli, VoxelizeWritesStatsAndPicture) {
   EXPECT_NE(unknown.output.find("octree"), std::string::npos);
 }
 }  // namespace vgi
+
+namespace vgi {
+TEST(Cli, VoxelizeBuildsOnlyTheRequestedValueGrids) {
+  auto r = vgi("voxelize --voxels 64x64x128 --kind binary,albedo --stats " + tmp("kind.json") + " --dump " + tmp("kind.png"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("kind.json")));
+  EXPECT_EQ(s["built"], nlohmann::json::array({"binary", "albedo"}));
+  EXPECT_EQ(s["value_grids"]["albedo"]["cells"], s["voxels_set"]);
+  EXPECT_TRUE(std::filesystem::exists(tmp("kind_albedo.png")));
+  auto exact = vgi("voxelize --voxelizer exact --kind normal");
+  EXPECT_EQ(exact.code, 2);
+  EXPECT_NE(exact.output.find("--voxelizer atlas"), std::string::npos) << exact.output;
+}
+}  // namespace vgi

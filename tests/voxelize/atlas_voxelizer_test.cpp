@@ -261,3 +261,53 @@ TEST(AtlasVoxelizer, FramesReuseTheStaticGridWithoutStaleVoxels) {
   EXPECT_EQ(f.gl->errorCount(), 0);
 }
 }  // namespace vgi
+
+namespace vgi {
+// Multi-valued grids: built only on request, one value cell per binary cell,
+// exact material values where a single surface fills a cell, unit normals on
+// flat walls, glossy parameters round-tripping, frames copying the static part.
+TEST(AtlasVoxelizer, MultiValuedGridsAverageTheirPoints) {
+  GlFixture f;
+  std::string path = testing::TempDir() + "/glossy.json";
+  std::ofstream(path) << R"({ "meshes": [ {"path": "builtin:cornell"} ],
+      "materials": { "white": {"albedo": [0.5, 0.5, 0.5], "ks": [0.3, 0.2, 0.1], "exponent": 50} } })";
+  Scene s = loadScene(path);
+  VoxelizeRequest r = f.request(s, {64, 64, 128});
+  r.valueGrids = {"normal", "albedo", "glossy"};
+  Profiler prof(true);
+  AtlasVoxelizer v(r, prof);
+  v.voxelizeFrame(0.0f, prof);
+  BinaryGrid bin = v.readFrame();
+  ValueGrids vals = v.readValues();
+  ASSERT_EQ(vals.channels.size(), 3u);
+  size_t withValues = 0;
+  for (uint32_t z = 0; z < 128; ++z)
+    for (uint32_t y = 0; y < 64; ++y)
+      for (uint32_t x = 0; x < 64; ++x) {
+        bool has = vals.counts[vals.cellIndex(x, y, z)] > 0;
+        ASSERT_EQ(has, bin.test(x, y, z)) << x << "," << y << "," << z;
+        withValues += has;
+      }
+  EXPECT_EQ(withValues, bin.count());
+  // The middle of the red left wall (x at the top of the grid), and of the floor (y = 0).
+  const auto& albedo = vals.channel("albedo");
+  glm::vec4 red = albedo[vals.cellIndex(63, 32, 64)];
+  EXPECT_NEAR(red.x, 0.63f, 2e-3f);
+  EXPECT_NEAR(red.y, 0.065f, 2e-3f);
+  const auto& normal = vals.channel("normal");
+  glm::vec3 floorN(normal[vals.cellIndex(32, 0, 64)]);
+  EXPECT_NEAR(std::abs(floorN.y), 1.0f, 1e-3f);
+  glm::vec4 glossy = vals.channel("glossy")[vals.cellIndex(32, 0, 64)];  // floor: "white", overridden
+  EXPECT_NEAR(glossy.x, 0.3f, 1e-3f);
+  EXPECT_NEAR(glossy.z, 0.1f, 1e-3f);
+  EXPECT_NEAR(glossy.w, 50.0f, 0.1f);
+  EXPECT_NEAR(albedo[vals.cellIndex(32, 0, 64)].x, 0.5f, 1e-3f);
+  // Only the requested grids: a request without them builds none.
+  VoxelizeRequest plain = f.request(s, {64, 64, 128});
+  AtlasVoxelizer p(plain, prof);
+  EXPECT_TRUE(p.readValues().channels.empty());
+  test::expectError([&] { vals.channel("radiance"); }, {"radiance"});
+  test::expectError([] { parseValueChannels("normal,speed"); }, {"speed"});
+  EXPECT_EQ(f.gl->errorCount(), 0);
+}
+}  // namespace vgi

@@ -1,0 +1,87 @@
+#include "voxelize/value_grids.h"
+
+#include "core/error.h"
+#include "core/image.h"
+#include "shaders/shared/value_grid.glsl"
+
+namespace vgi {
+
+const std::vector<std::string>& valueChannelNames() {
+  static const std::vector<std::string> names = {"normal", "albedo", "glossy"};
+  return names;
+}
+
+std::vector<std::string> parseValueChannels(const std::string& list) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= list.size()) {
+    size_t comma = list.find(',', start);
+    std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    bool known = false;
+    for (auto& n : valueChannelNames()) known |= n == name;
+    if (!known) fail("--kind: unknown grid '", name, "' (binary, normal, albedo, glossy; comma-separated)");
+    bool dup = false;
+    for (auto& o : out) dup |= o == name;
+    if (!dup) out.push_back(name);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::vector<glm::vec4> decodeMeans(const std::vector<uint32_t>& sums, const std::vector<uint32_t>& counts,
+                                   const std::string& channel) {
+  std::vector<glm::vec4> means(counts.size(), glm::vec4(0.0f));
+  const bool normal = channel == "normal", glossy = channel == "glossy";
+  for (size_t i = 0; i < counts.size(); ++i) {
+    if (counts[i] == 0) continue;
+    for (uint32_t c = 0; c < 4; ++c) {
+      if (c == 3 && !glossy) continue;
+      if (glossy && c == 3) {
+        means[i][3] = shared::decodeExponent(shared::fromFixedMean(sums[4 * i + 3], counts[i], 0.0f, shared::exponentCodeMax()));
+        continue;
+      }
+      means[i][int(c)] = shared::fromFixedMean(sums[4 * i + c], counts[i], normal ? -1.0f : 0.0f, 1.0f);
+    }
+  }
+  return means;
+}
+
+const std::vector<glm::vec4>& ValueGrids::channel(const std::string& name) const {
+  for (size_t i = 0; i < channels.size(); ++i)
+    if (channels[i] == name) return means[i];
+  fail("grid '", name, "' was not built (built: ", channels.empty() ? "none" : channels[0], channels.size() > 1 ? ", ..." : "", ")");
+}
+
+nlohmann::json ValueGrids::summary() const {
+  nlohmann::json j = nlohmann::json::object();
+  size_t cells = 0;
+  for (uint32_t c : counts) cells += c > 0;
+  for (size_t k = 0; k < channels.size(); ++k) {
+    glm::dvec4 sum(0.0);
+    for (size_t i = 0; i < counts.size(); ++i)
+      if (counts[i]) sum += glm::dvec4(means[k][i]);
+    glm::dvec4 m = cells ? sum / double(cells) : glm::dvec4(0.0);
+    j[channels[k]] = {{"cells", cells}, {"mean", {m.x, m.y, m.z, m.w}}};
+  }
+  return j;
+}
+
+void writeValuePicture(const ValueGrids& g, const std::string& channel, const std::string& path) {
+  const auto& v = g.channel(channel);
+  const glm::uvec3 r = g.box.resolution;
+  Image img(int(r.x), int(r.y));
+  for (uint32_t y = 0; y < r.y; ++y)
+    for (uint32_t x = 0; x < r.x; ++x)
+      for (uint32_t z = 0; z < r.z; ++z) {
+        size_t i = g.cellIndex(x, y, z);
+        if (!g.counts[i]) continue;
+        glm::vec3 c(v[i]);
+        if (channel == "normal") c = c * 0.5f + 0.5f;
+        img.at(int(x), int(r.y - 1 - y)) = c;
+        break;
+      }
+  writeImage(img, path);
+}
+
+}  // namespace vgi
