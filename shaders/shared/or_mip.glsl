@@ -1,0 +1,25 @@
+// The OR-mip pyramid over the column grid (VGI §4): level l+1 holds, per
+// column, the OR of the (up to) 2×2 columns below it; the depth resolution is
+// the same at every level (a texel is a whole column). Sizes halve rounding up
+// (W → ⌈W/2⌉) down to 1×1. All levels sit in one word array, level after level,
+// each laid out like shaders/shared/voxel_grid.glsl (slab-major columns).
+#ifdef __cplusplus
+#pragma once
+#include "cpp_prelude.h"
+#include "voxel_grid.glsl"
+#endif
+SHARED_BEGIN
+
+SHARED_FN uvec2 mipLevelSize(uvec2 base, uint level) {
+  uvec2 s = base;
+  for (uint i = 0u; i < level; ++i) s = uvec2((s.x + 1u) >> 1u, (s.y + 1u) >> 1u);
+  return s;
+}
+
+// Index of word w of column (x, y) of a level of size `size`, starting at
+// `levelOffset` words into the pyramid; depth D is the same on every level.
+SHARED_FN uint mipWordIndex(uint x, uint y, uint w, uvec2 size, uint depth, uint levelOffset) {
+  return levelOffset + columnWordIndex(x, y, w, uvec4(size.x, size.y, depth, depth / 128u));
+}
+
+SHARED_END
