@@ -1,22 +1,28 @@
-// Atlas-based binary voxelization — Thiedemann et al., "Voxel-based Global
+// Atlas-based voxelization — Thiedemann et al., "Voxel-based Global
 // Illumination", I3D 2011, §3.1: each mesh is rendered once into its texture
 // atlas, writing world positions (unused texels stay invalid); then one point
-// per valid texel sets the bit of its cell. §3.2: static meshes are voxelized
-// once; each frame copies that grid and inserts the dynamic meshes only.
+// per valid texel sets the bit of its cell (binary), and, for multi-valued
+// grids, adds its normal / albedo / glossy values to its cell's sums (averaged
+// by count, as in Bashford-Rogers et al., AVG). §3.2: static meshes are
+// voxelized once; each frame copies that grid and inserts the dynamic meshes.
 //
 // Sliver triangles may cover no texel centre when filled, so the atlas is drawn
-// three times — corners as points, edges as lines, then the filled triangles on
-// top — and every texel written holds a point of the surface. The count of triangles left
-// without any texel is reported ("triangles_without_texels").
+// three times — corners as points, edges as lines (pulled back onto their
+// triangle), then the filled triangles on top, which keep the regular lattice
+// the density rule relies on. Reported per mesh: "triangles_without_texels"
+// (no written texel on or within half a texel of the triangle: lost) and
+// "triangles_sampled_by_neighbours" (slivers covered by adjacent triangles).
 //
-// Parameters (VoxelizeRequest): texelsPerVoxel (default 2√2: texel = smallest
-// voxel edge · √2/4, the rule in grid_metrics.h), atlasResolution (manual, per
-// mesh), atlasCacheDir.
+// Parameters (VoxelizeRequest)
+// | field           | default | meaning                                                         |
+// |-----------------|---------|-----------------------------------------------------------------|
+// | texelsPerVoxel  | 2√2     | texel = smallest voxel edge / this (rule: grid_metrics.h)       |
+// | atlasResolution | 0       | manual square atlas size per mesh (0 = from texelsPerVoxel)      |
+// | atlasCacheDir   | ""      | where atlases are cached by content hash ("" = no cache)        |
+// | valueGrids      | {}      | multi-valued grids to build: normal, albedo, glossy              |
 #include "voxelize/atlas_voxelizer.h"
 
 #include <glad/gl.h>
-
-#include <set>
 
 #include <unistd.h>
 
