@@ -1,5 +1,6 @@
 // vgi voxelize: build a binary voxel grid of a scene with one voxelizer and
 // measure it against the exact one.
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -78,6 +79,8 @@ void addVoxelizeCommand(CLI::App& app) {
       req.shaders = shaders.get();
     }
     if (o->frames < 1 || o->frames > 100000) fail("--frames ", o->frames, ": must be in [1, 100000]");
+    if (!std::isfinite(o->timeStep) || !std::isfinite(o->time))
+      fail("--time ", o->time, " / --time-step ", o->timeStep, ": must be finite numbers");
     if (o->frames > 1 && info.name != "atlas") fail("--frames applies to --voxelizer atlas only");
     std::string kinds = o->kind;
     if (kinds == "binary") kinds.clear();

@@ -127,3 +127,20 @@ TEST(Cli, VoxelizeBuildsOnlyTheRequestedValueGrids) {
   EXPECT_NE(exact.output.find("--voxelizer atlas"), std::string::npos) << exact.output;
 }
 }  // namespace vgi
+
+namespace vgi {
+TEST(Cli, VoxelizeFramesReportPerFramePasses) {
+  std::string scene = test::writeMovingTriangleScene("cli_frames");
+  auto r = vgi("voxelize --scene " + scene + " --voxels 64x64x128 --frames 3 --time-step 0.5 --stats " + tmp("frames.json"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("frames.json")));
+  ASSERT_EQ(s["frames"].size(), 3u);
+  EXPECT_EQ(s["frames"][2]["time"], 1.0);
+  for (const char* pass : {"copy", "atlas_render", "insertion"}) EXPECT_TRUE(s["frames"][1]["timings_ms"].contains(pass)) << pass;
+  EXPECT_EQ(s["dynamic_meshes"], 1);
+  EXPECT_GE(s["precision"].get<double>(), 0.9999);  // the grid of the last frame, against exact at its time
+  auto bad = vgi("voxelize --frames 2 --time-step nan");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.output.find("--time-step"), std::string::npos) << bad.output;
+}
+}  // namespace vgi
