@@ -65,8 +65,12 @@ GridBox fitGridBox(const Scene& scene, glm::uvec3 resolution, float time) {
       lo[i] = mid - w * (std::floor(float(resolution[i]) / 2.0f) + 0.5f) / float(resolution[i]);
       ext[i] = w;
     }
-  g.origin = lo;
-  g.extent = ext;
+  // Pad by 1e-5 of the size on every side: surfaces lying on the bounds (the
+  // walls of a box) then map strictly inside the grid whatever the rounding,
+  // instead of landing a hair outside for one voxelizer and inside for another.
+  const float pad = 1e-5f * std::max({ext.x, ext.y, ext.z});
+  g.origin = lo - glm::vec3(pad);
+  g.extent = ext + glm::vec3(2.0f * pad);
   return g;
 }
 

@@ -29,8 +29,9 @@ struct GridBox {
 // 1 … 8192. Throws naming the option and value.
 glm::uvec3 parseResolution(const std::string& text, const std::string& option = "--voxels");
 
-// The tight axis-aligned box around the scene at `time`. Flat extents (a planar
-// scene) are widened to a sliver so every axis has a positive size.
+// The tight axis-aligned box around the scene at `time`, padded by 1e-5 of its
+// size so surfaces on the bounds stay inside under rounding. Flat extents (a
+// planar scene) are widened to a sliver so every axis has a positive size.
 GridBox fitGridBox(const Scene& scene, glm::uvec3 resolution, float time = 0);
 
 // Throws if a grid of this resolution would not fit in memory (names the size).

@@ -6,6 +6,7 @@
 
 #include "test_util.h"
 #include "voxelize/exact_voxelizer.h"
+#include "core/scene_loader.h"
 #include "voxelize/grid_metrics.h"
 
 namespace vgi {
@@ -210,5 +211,26 @@ TEST(ExactVoxelizer, ShrunkCellsStayCentred) {
   EXPECT_EQ(voxelizeExact(gridScene(quad(5.2f)), unitBox({8, 8, 128}), 0, 0, 0.25).count(), 0u);
   EXPECT_EQ(voxelizeExact(gridScene(quad(5.8f)), unitBox({8, 8, 128}), 0, 0, 0.25).count(), 0u);
   EXPECT_EQ(voxelizeExact(gridScene(quad(5.2f)), unitBox({8, 8, 128})).count(), 25u);
+}
+}  // namespace vgi
+
+namespace vgi {
+// Surfaces on the scene's bounds (walls of a box) must be inside the fitted
+// grid under any rounding: here a tiny object just below the floor moves the
+// box's lower bound by 1e-5, which used to put the ceiling a hair outside the
+// grid for the double-precision exact voxelizer (but not for float ones).
+TEST(ExactVoxelizer, SurfacesOnTheFittedBoundsStayInside) {
+  Scene s = loadScene("builtin:cornell");
+  test::addMesh(s, {{0.40f, -1.26e-5f, 0.10f}, {0.41f, 0.01f, 0.10f}, {0.40f, 0.01f, 0.11f}}, {{0, 1, 2}});
+  GridBox box = fitGridBox(s, glm::uvec3(128));
+  BinaryGrid g = voxelizeExact(s, box);
+  uint32_t ceiling = 0, floorCells = 0;
+  for (uint32_t z = 0; z < 128; ++z)
+    for (uint32_t x = 0; x < 128; ++x) {
+      ceiling += g.test(x, 127, z);
+      floorCells += g.test(x, 0, z);
+    }
+  EXPECT_GT(ceiling, 128u * 100u);  // the ceiling spans (almost) the whole top layer
+  EXPECT_GT(floorCells, 128u * 100u);
 }
 }  // namespace vgi
