@@ -46,7 +46,7 @@ void addRenderCommand(CLI::App& app) {
     opt->gl = parseGlBackend(*gl);
     opt->progress = !*quiet;
     checkOutputPath(*out);
-    if (!stats->empty()) checkOutputPath(*stats + ".exr");  // folder check only
+    if (!stats->empty()) checkOutputFolder(*stats, "--stats");
     installInterruptHandler();
     RenderOutput result = runRender(*opt);
     auto files = writeRenderOutputs(result, *out, *exposure);

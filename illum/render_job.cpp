@@ -37,9 +37,13 @@ void checkOutputPath(const std::string& path) {
   std::string ext = p.extension().string();
   if (ext != ".exr" && ext != ".png")
     fail("-o '", path, "': the output must end in .exr or .png (both are written, plus a .json sidecar)");
-  fs::path dir = p.parent_path();
+  checkOutputFolder(path, "-o");
+}
+
+void checkOutputFolder(const std::string& path, const std::string& option) {
+  fs::path dir = fs::path(path).parent_path();
   if (!dir.empty() && !fs::is_directory(dir))
-    fail("-o '", path, "': folder '", dir.string(), "' does not exist");
+    fail(option, " '", path, "': folder '", dir.string(), "' does not exist");
 }
 
 RenderOutput runRender(const RenderOptions& opt) {

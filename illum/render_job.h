@@ -44,6 +44,8 @@ std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::
 // Throws if `path` cannot be written (missing folder, bad extension) — checked
 // before a long render, so nothing is lost at the end.
 void checkOutputPath(const std::string& path);
+// Throws if the folder `path` would be written into does not exist (`option` names it).
+void checkOutputFolder(const std::string& path, const std::string& option);
 
 // The parameter table of a method, for --help-module.
 std::string describeMethod(const std::string& name);

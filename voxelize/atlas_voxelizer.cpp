@@ -126,8 +126,10 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   static_ = std::make_unique<GpuGridBuffer>(req.box);
   frame_ = std::make_unique<GpuGridBuffer>(req.box);
   const uint32_t zero = 0;
-  glCreateBuffers(1, &counter_);
-  glNamedBufferStorage(counter_, 4, &zero, GL_DYNAMIC_STORAGE_BIT);
+  for (unsigned* counter : {&staticCounter_, &frameCounter_}) {
+    glCreateBuffers(1, counter);
+    glNamedBufferStorage(*counter, 4, &zero, GL_DYNAMIC_STORAGE_BIT);
+  }
 
   nlohmann::json atlases = nlohmann::json::array();
   double atlasMs = 0;
@@ -236,9 +238,9 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
       points = &atlasPoints->back();
     }
     // Dynamic meshes are only measured here (into the frame grid, which each frame overwrites).
-    uint32_t n = renderAndInsert(m, m.dynamic ? req.time : 0.0f, m.dynamic ? *frame_ : *static_,
-                                 m.dynamic ? frameValues_.get() : staticValues_.get(), prof, &ids, points);
-    if (!m.dynamic) staticPoints_ += n;
+    renderAndInsert(m, m.dynamic ? req.time : 0.0f, m.dynamic ? *frame_ : *static_,
+                    m.dynamic ? frameValues_.get() : staticValues_.get(), m.dynamic ? frameCounter_ : staticCounter_,
+                    prof, &ids, points);
     // A triangle is lost when no written texel lies on it or within half a
     // texel of it in the atlas. Slivers inside a chart often own no texel (the
     // neighbours' fill covers those centres) but are sampled by that lattice.
@@ -282,15 +284,14 @@ AtlasVoxelizer::~AtlasVoxelizer() {
   glDeleteFramebuffers(1, &fbo_);
   glDeleteTextures(2, targets_);
   if (valueTargets_[0]) glDeleteTextures(3, valueTargets_);
-  glDeleteBuffers(1, &counter_);
+  glDeleteBuffers(1, &staticCounter_);
+  glDeleteBuffers(1, &frameCounter_);
 }
 
-uint32_t AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGridBuffer& target,
-                                         const ValueBuffers* values, Profiler& prof, std::vector<int>* ids,
-                                         std::vector<glm::vec4>* points) {
+void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGridBuffer& target,
+                                     const ValueBuffers* values, unsigned counter, Profiler& prof,
+                                     std::vector<int>* ids, std::vector<glm::vec4>* points) {
   const int R = m.resolution;
-  const uint32_t zero = 0;
-  glNamedBufferSubData(counter_, 0, 4, &zero);
   {
     auto s = prof.scope("atlas_render");
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
@@ -330,7 +331,7 @@ uint32_t AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const Gpu
     glProgramUniform2i(insertProg_, glGetUniformLocation(insertProg_, "uAtlasSize"), R, R);
     glBindTextureUnit(0, targets_[0]);
     target.bind(0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counter_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counter);
     glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -354,9 +355,6 @@ uint32_t AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const Gpu
     glGetTextureSubImage(targets_[0], 0, 0, 0, 0, R, R, 1, GL_RGBA, GL_FLOAT,
                          GLsizei(points->size() * sizeof(glm::vec4)), points->data());
   }
-  uint32_t n = 0;
-  glGetNamedBufferSubData(counter_, 0, 4, &n);
-  return n;
 }
 
 void AtlasVoxelizer::voxelizeFrame(float time, Profiler& prof) {
@@ -365,10 +363,11 @@ void AtlasVoxelizer::voxelizeFrame(float time, Profiler& prof) {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     glCopyNamedBufferSubData(static_->buffer(), frame_->buffer(), 0, 0, GLsizeiptr(static_->bytes()));
     if (staticValues_) staticValues_->copyTo(*frameValues_);
+    const uint32_t zero = 0;
+    glClearNamedBufferData(frameCounter_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   }
-  framePoints_ = staticPoints_;
   for (auto& m : meshes_)
-    if (m->dynamic) framePoints_ += renderAndInsert(*m, time, *frame_, frameValues_.get(), prof, nullptr, nullptr);
+    if (m->dynamic) renderAndInsert(*m, time, *frame_, frameValues_.get(), frameCounter_, prof, nullptr, nullptr);
 }
 
 BinaryGrid AtlasVoxelizer::readFrame() const {
@@ -398,7 +397,11 @@ ValueGrids AtlasVoxelizer::readValues() const {
 
 nlohmann::json AtlasVoxelizer::stats() const {
   nlohmann::json s = stats_;
-  s["points"] = framePoints_;
+  uint32_t staticPoints = 0, framePoints = 0;
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(staticCounter_, 0, 4, &staticPoints);
+  glGetNamedBufferSubData(frameCounter_, 0, 4, &framePoints);
+  s["points"] = staticPoints + framePoints;  // of the last frame, static meshes included
   return s;
 }
 

@@ -37,17 +37,18 @@ class AtlasVoxelizer {
  private:
   struct MeshGpu;
   struct ValueBuffers;
-  uint32_t renderAndInsert(const MeshGpu& mesh, float time, const GpuGridBuffer& target, const ValueBuffers* values,
-                           Profiler& profiler, std::vector<int>* ids, std::vector<glm::vec4>* points);
+  // Points are counted on the GPU into `counter` (read only by stats(): no sync per mesh).
+  void renderAndInsert(const MeshGpu& mesh, float time, const GpuGridBuffer& target, const ValueBuffers* values,
+                       unsigned counter, Profiler& profiler, std::vector<int>* ids, std::vector<glm::vec4>* points);
   VoxelizeRequest request_;
   std::vector<std::unique_ptr<MeshGpu>> meshes_;
   std::unique_ptr<GpuGridBuffer> static_, frame_;
   std::unique_ptr<ValueBuffers> staticValues_, frameValues_;
   std::unique_ptr<class GpuScene> materials_;  // material SSBO + textures, for multi-valued grids
   unsigned valueProg_ = 0, valueTargets_[3] = {0, 0, 0};
-  unsigned renderProg_ = 0, insertProg_ = 0, fbo_ = 0, targets_[2] = {0, 0}, counter_ = 0;
+  unsigned renderProg_ = 0, insertProg_ = 0, fbo_ = 0, targets_[2] = {0, 0};
+  unsigned staticCounter_ = 0, frameCounter_ = 0;  // atlas points of the static meshes / this frame's dynamic ones
   int maxResolution_ = 0;
-  uint32_t staticPoints_ = 0, framePoints_ = 0;
   nlohmann::json stats_;
 };
 

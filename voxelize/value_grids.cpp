@@ -50,7 +50,9 @@ std::vector<glm::vec4> decodeMeans(const std::vector<uint32_t>& sums, const std:
 const std::vector<glm::vec4>& ValueGrids::channel(const std::string& name) const {
   for (size_t i = 0; i < channels.size(); ++i)
     if (channels[i] == name) return means[i];
-  fail("grid '", name, "' was not built (built: ", channels.empty() ? "none" : channels[0], channels.size() > 1 ? ", ..." : "", ")");
+  std::string built;
+  for (auto& ch : channels) built += (built.empty() ? "" : ", ") + ch;
+  fail("grid '", name, "' was not built (built: ", built.empty() ? "none" : built, ")");
 }
 
 nlohmann::json ValueGrids::summary() const {
