@@ -105,7 +105,8 @@ GLenum stageOf(const std::string& file) {
 ShaderLibrary::Source ShaderLibrary::preprocess(const std::string& file, const ShaderDefines& defines) const {
   Expander e;
   e.root = fs::weakly_canonical(root_).string();
-  e.out << "#version 450 core\n#define SHARED_BEGIN\n#define SHARED_END\n#define SHARED_FN\n";
+  e.out << "#version 450 core\n#define SHARED_BEGIN\n#define SHARED_END\n#define SHARED_FN\n"
+           "#define SHARED_PRECISE precise\n#define PYRAMID_PARAM\n#define PYRAMID_ARG\n";
   for (auto& [k, v] : defines) e.out << "#define " << k << " " << v << "\n";
   e.expand(fs::weakly_canonical(fs::path(root_) / file).string(), "");
   return {e.out.str(), e.files};

@@ -14,6 +14,7 @@ class OrMipPyramid {
   // Adopts words built elsewhere (the GPU); throws if the size does not match.
   OrMipPyramid(const GridBox& box, std::vector<uint32_t> words);
 
+  const GridBox& box() const { return box_; }
   uint32_t levels() const { return uint32_t(offsets_.size()); }
   glm::uvec2 levelSize(uint32_t level) const;
   uint32_t levelOffset(uint32_t level) const { return offsets_[level]; }

@@ -17,3 +17,10 @@
   }                \
   }
 #define SHARED_FN inline
+// GLSL `precise` (no fused multiply-add) where GPU and CPU must agree bit for
+// bit; the C++ side gets the same by compiling with -ffp-contract=off.
+#define SHARED_PRECISE
+// Kernels that read the OR-mip pyramid take its words as a pointer in C++; in
+// GLSL they read a buffer named pyramidWords declared by the including shader.
+#define PYRAMID_PARAM , const uint* pyramidWords
+#define PYRAMID_ARG , pyramidWords

@@ -8,7 +8,18 @@
 #include "cpp_prelude.h"
 #include "voxel_grid.glsl"
 #endif
+#define BINDING_PYRAMID 6  // SSBO: the pyramid's words, for GLSL tracers (shaders/traverse/tracer.glsl)
 SHARED_BEGIN
+
+const uint kMaxPyramidLevels = 16u;
+
+// What a tracer needs to read a pyramid: the grid and where each level starts
+// in the word array (level 0 is the grid itself, at offset 0).
+struct PyramidParams {
+  GridParams grid;
+  uint levels;
+  uint levelOffsets[16];
+};
 
 SHARED_FN uvec2 mipLevelSize(uvec2 base, uint level) {
   uvec2 s = base;

@@ -1,0 +1,161 @@
+// A ray in grid space and the one definition of "the voxels a ray visits" that
+// every voxel tracer (hierarchical, dda, march) follows, so they can be compared
+// exactly (VGI §4; DDA after Amanatides & Woo 1987).
+//
+// Definition. The prepared ray has a grid-space origin o (clamped into the
+// closed grid box), a direction d per unit of world distance, and a parameter
+// range t ∈ [0, tHi] (t is world distance from the grid entry). On axis a the
+// integer plane p is crossed at T_a(p) = (p − o_a)·(1/d_a), always evaluated by
+// planeT() below. The cell on axis a at t is
+//   d_a > 0: max{ p : T_a(p) ≤ t }      d_a < 0: min{ p : T_a(p+1) ≤ t }
+//   d_a = 0: floor(o_a) (the upper face belongs to the last cell)
+// and the voxel at t is the triple of those cells. The ray visits the voxels
+// at t ∈ [0, tHi] that lie in the grid; its first hit is the visited voxel with
+// the smallest entry parameter. Ties (a ray through an edge or a corner) are
+// therefore decided by the definition, not by a tracer's loop order: all axes
+// whose planes are crossed at the same t step together. Because every tracer
+// evaluates T through planeT() on the same prepared ray, they agree bit for bit.
+//
+// Numerical traps handled here: ±0 and tiny direction components (1/d would be
+// ±inf and 0·inf = NaN) are set to exactly 0; origins far outside the grid are
+// rebased to the grid entry so T keeps its precision; a clamped origin makes
+// "the cell left the grid" mean "the ray is leaving", so tracers may stop there.
+// The prepared ray is computed with `precise` arithmetic in GLSL (no fused
+// multiply-add) so llvmpipe and the C++ build (compiled with -ffp-contract=off)
+// produce the same bits.
+#ifdef __cplusplus
+#pragma once
+#include "cpp_prelude.h"
+#include "voxel_grid.glsl"
+#endif
+SHARED_BEGIN
+
+const float kTraceInfinity = 3.0e38f;
+// Direction components below this (grid cells per world unit) count as 0: their
+// planes would be crossed beyond any finite ray anyway.
+const float kTinyDirection = 1.0e-20f;
+
+struct GridRay {
+  vec3 o;         // grid-space origin, clamped into [0, W] × [0, H] × [0, D]
+  vec3 d;         // grid-space direction per unit world distance (tiny parts = 0)
+  vec3 inv;       // 1 / d per axis, 0 where d is 0
+  ivec3 stepDir;  // sign of d: +1, −1 or 0
+  ivec3 res;      // W, H, D
+  float tBase;    // world distance from the ray's origin to o
+  float tHi;      // last parameter inside the grid and the ray; < 0: no voxel visited
+};
+
+// Finite, neither NaN nor ±inf.
+SHARED_FN bool isFiniteFloat(float x) { return (floatBitsToUint(x) & 0x7f800000u) != 0x7f800000u; }
+
+SHARED_FN GridRay prepareGridRay(GridParams g, vec3 origin, vec3 direction, float tmax) {
+  GridRay r;
+  r.res = ivec3(int(g.resolution.x), int(g.resolution.y), int(g.resolution.z));
+  r.tBase = 0.0f;
+  r.tHi = -1.0f;
+  r.o = vec3(0.0f);
+  r.d = vec3(0.0f);
+  r.inv = vec3(0.0f);
+  r.stepDir = ivec3(0);
+  bool finiteInput = isFiniteFloat(origin.x) && isFiniteFloat(origin.y) && isFiniteFloat(origin.z) &&
+                     isFiniteFloat(direction.x) && isFiniteFloat(direction.y) && isFiniteFloat(direction.z) &&
+                     !(tmax != tmax) && tmax >= 0.0f;
+  if (!finiteInput) return r;
+  SHARED_PRECISE vec3 rel = origin - vec3(g.origin.x, g.origin.y, g.origin.z);
+  SHARED_PRECISE vec3 q;
+  SHARED_PRECISE vec3 dg;
+  vec4 axes[3];
+  axes[0] = g.axisX;
+  axes[1] = g.axisY;
+  axes[2] = g.axisZ;
+  for (int a = 0; a < 3; ++a) {
+    SHARED_PRECISE float qa = rel.x * axes[a].x;
+    qa = qa + rel.y * axes[a].y;
+    qa = qa + rel.z * axes[a].z;
+    q[a] = qa * axes[a].w;
+    SHARED_PRECISE float da = direction.x * axes[a].x;
+    da = da + direction.y * axes[a].y;
+    da = da + direction.z * axes[a].z;
+    dg[a] = da * axes[a].w;
+  }
+  SHARED_PRECISE float tEnter = 0.0f;
+  SHARED_PRECISE float tExit = min(tmax, kTraceInfinity);
+  for (int a = 0; a < 3; ++a) {
+    float lo = 0.0f, hi = float(r.res[a]);
+    if (abs(dg[a]) < kTinyDirection) {
+      dg[a] = 0.0f;
+      if (q[a] < lo || q[a] > hi) return r;  // parallel to this slab and outside it
+    } else {
+      r.stepDir[a] = dg[a] > 0.0f ? 1 : -1;
+      r.inv[a] = 1.0f / dg[a];
+      SHARED_PRECISE float t0 = ((dg[a] > 0.0f ? lo : hi) - q[a]) * r.inv[a];
+      SHARED_PRECISE float t1 = ((dg[a] > 0.0f ? hi : lo) - q[a]) * r.inv[a];
+      tEnter = max(tEnter, t0);
+      tExit = min(tExit, t1);
+    }
+  }
+  if (r.stepDir.x == 0 && r.stepDir.y == 0 && r.stepDir.z == 0) return r;  // no direction
+  if (!(tEnter <= tExit)) return r;
+  r.tBase = tEnter;
+  r.tHi = tExit - tEnter;
+  for (int a = 0; a < 3; ++a) {
+    SHARED_PRECISE float oa = q[a] + tEnter * dg[a];
+    r.o[a] = clamp(oa, 0.0f, float(r.res[a]));
+  }
+  r.d = dg;
+  return r;
+}
+
+// The parameter at which the ray crosses integer plane p of axis a (d_a ≠ 0).
+SHARED_FN float planeT(GridRay r, int a, int p) {
+  SHARED_PRECISE float t = (float(p) - r.o[a]) * r.inv[a];
+  return t;
+}
+
+// The cell on axis a at parameter t (the definition above), clamped to
+// [−1, res]: −1 and res are "outside". With `before` set, the cell just before
+// t (planes crossed exactly at t do not count yet): the last cell of a column
+// that the ray leaves at t. The guess from the position is off by at most a
+// cell or two; the loops make the result exact and are bounded by the clamp.
+SHARED_FN int cellAt(GridRay r, int a, float t, bool before) {
+  int n = r.res[a];
+  if (r.stepDir[a] == 0) return min(int(floor(r.o[a])), n - 1);
+  SHARED_PRECISE float pos = r.o[a] + t * r.d[a];
+  int c = int(clamp(floor(pos), -1.0f, float(n)));
+  if (r.stepDir[a] > 0) {
+    // max{p : T(p) ≤ t}   (before: T(p) < t)
+    while (c < n && (before ? planeT(r, a, c + 1) < t : planeT(r, a, c + 1) <= t)) ++c;
+    while (c > -1 && (before ? planeT(r, a, c) >= t : planeT(r, a, c) > t)) --c;
+  } else {
+    // min{p : T(p+1) ≤ t}   (before: T(p+1) < t)
+    while (c > -1 && (before ? planeT(r, a, c) < t : planeT(r, a, c) <= t)) --c;
+    while (c < n && (before ? planeT(r, a, c + 1) >= t : planeT(r, a, c + 1) > t)) ++c;
+  }
+  return c;
+}
+
+// The parameter at which the ray enters cell c of axis a (0 for d_a = 0).
+SHARED_FN float cellEntryT(GridRay r, int a, int c) {
+  if (r.stepDir[a] == 0) return 0.0f;
+  return planeT(r, a, r.stepDir[a] > 0 ? c : c + 1);
+}
+
+// What a tracer returns. t is world distance from the ray's origin to where the
+// ray enters the hit voxel (or its start, if it starts inside).
+struct TraceHit {
+  uint hit;    // 1 or 0
+  float t;
+  uvec3 voxel;
+  uint steps;  // loop iterations (for the bound checks and profiling)
+};
+
+SHARED_FN TraceHit traceMiss(uint steps) {
+  TraceHit h;
+  h.hit = 0u;
+  h.t = 0.0f;
+  h.voxel = uvec3(0u);
+  h.steps = steps;
+  return h;
+}
+
+SHARED_END

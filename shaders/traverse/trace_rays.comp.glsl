@@ -1,0 +1,20 @@
+// A batch of rays through the tracer chosen by VGI_TRACER: for the tests
+// (GPU == CPU bit for bit) and `vgi bench traverse`.
+#include "tracer.glsl"
+layout(local_size_x = 64) in;
+struct Ray {
+  vec3 origin;
+  float tmax;
+  vec3 dir;
+  float pad;
+};
+layout(std430, binding = 0) readonly buffer Rays { Ray rays[]; };
+layout(std430, binding = 1) writeonly buffer Hits { uvec4 hits[]; };  // 2 per ray
+uniform uint uRayCount;
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= uRayCount) return;
+  TraceHit h = traceRay(rays[i].origin, rays[i].dir, rays[i].tmax);
+  hits[2u * i] = uvec4(h.hit, floatBitsToUint(h.t), h.steps, 0u);
+  hits[2u * i + 1u] = uvec4(h.voxel, 0u);
+}

@@ -1,0 +1,40 @@
+// The tracer a GLSL pass uses, chosen at compile time by VGI_TRACER
+// (0 hierarchical, 1 dda, 2 march; see traverse/ray_tracers.cpp's registry):
+//   TraceHit traceRay(vec3 origin, vec3 dir, float tmax)
+//   bool visibleBetween(vec3 a, vec3 b)
+// The pyramid and its parameters are bound by GlPyramid::bind (traverse/gl_ray_tracer.cpp).
+#ifndef VGI_TRACER
+#define VGI_TRACER 0
+#endif
+#include "../shared/voxel_grid.glsl"
+#include "../shared/or_mip.glsl"
+#include "../shared/ray_grid.glsl"
+layout(std430, binding = BINDING_PYRAMID) readonly buffer PyramidWords { uint pyramidWords[]; };
+#include "../shared/trace_hierarchical.glsl"
+#include "../shared/trace_dda.glsl"
+#include "../shared/trace_march.glsl"
+#include "../voxelize/grid_uniforms.glsl"
+uniform uint uPyramidLevels;
+uniform uint uPyramidOffsets[16];
+uniform float uMarchStep;
+
+PyramidParams pyramidFromUniforms() {
+  PyramidParams p;
+  p.grid = gridFromUniforms();
+  p.levels = uPyramidLevels;
+  for (int i = 0; i < 16; ++i) p.levelOffsets[i] = uPyramidOffsets[i];
+  return p;
+}
+
+TraceHit traceRay(vec3 origin, vec3 dir, float tmax) {
+  PyramidParams p = pyramidFromUniforms();
+#if VGI_TRACER == 0
+  return traceHierarchical(p, origin, dir, tmax);
+#elif VGI_TRACER == 1
+  return traceDda(p, origin, dir, tmax);
+#else
+  return traceMarch(p, origin, dir, tmax, uMarchStep);
+#endif
+}
+
+bool visibleBetween(vec3 a, vec3 b) { return traceRay(a, b - a, 1.0f).hit == 0u; }

@@ -1,0 +1,43 @@
+// The OR-mip pyramid on the GPU, for GLSL passes that trace rays through
+// shaders/traverse/tracer.glsl (tracer chosen by the VGI_TRACER define), and a
+// batch entry point used by the tests (GPU == C++ bit for bit) and the bench.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/shader_library.h"
+#include "traverse/ray_tracers.h"
+#include "voxelize/voxel_grid.h"
+
+namespace vgi {
+
+class Profiler;
+
+class GlPyramid {
+ public:
+  explicit GlPyramid(const OrMipPyramid& pyramid, float marchStep = 0.0f);  // uploads the words
+  ~GlPyramid();
+  GlPyramid(const GlPyramid&) = delete;
+  GlPyramid& operator=(const GlPyramid&) = delete;
+
+  // Binds the words at BINDING_PYRAMID and sets the uniforms tracer.glsl
+  // declares on `program` (which must be in use).
+  void bind(unsigned program) const;
+  const GridBox& box() const { return box_; }
+
+ private:
+  unsigned buffer_ = 0;
+  GridBox box_;
+  shared::PyramidParams params_{};
+  float marchStep_ = 0.0f;
+};
+
+// Adds the define that selects a GLSL tracer; throws for tracers GLSL lacks.
+void addTracerDefine(ShaderDefines& defines, const std::string& tracer);
+
+// Traces the rays on the GPU with a GLSL tracer ("hierarchical", "dda",
+// "march"). The pass is timed as "trace_<tracer>" in `profiler`.
+std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& shaders, const std::string& tracer,
+                                     const std::vector<TraceRay>& rays, Profiler& profiler);
+
+}  // namespace vgi

@@ -1,0 +1,130 @@
+// The CPU side of the tracers: the shared GLSL/C++ kernels compiled as C++ and
+// run over ray batches on all cores, plus Embree behind the same interface.
+#include "traverse/ray_tracers.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "shaders/shared/trace_dda.glsl"
+#include "shaders/shared/trace_hierarchical.glsl"
+#include "shaders/shared/trace_march.glsl"
+#include "traverse/embree_tracer.h"
+#include "traverse/or_mip_pyramid.h"
+
+namespace vgi {
+
+const std::vector<TracerInfo>& tracerRegistry() {
+  static const std::vector<TracerInfo> registry = {
+      {"hierarchical", "first hit over the OR-mip pyramid (VGI §4)", true, 0},
+      {"dda", "3D DDA over the finest grid (Amanatides & Woo 1987); the oracle on the grid", true, 1},
+      {"march", "fixed-step ray marching (AVG paper); step = half the smallest voxel edge", true, 2},
+      {"embree", "exact first hit on the triangles (Embree, CPU only)", false, -1},
+  };
+  return registry;
+}
+
+const TracerInfo& findTracer(const std::string& name, const std::string& what) {
+  std::string names;
+  for (const TracerInfo& t : tracerRegistry()) {
+    if (t.name == name) return t;
+    names += (names.empty() ? "" : ", ") + t.name;
+  }
+  fail(what, " '", name, "': unknown tracer (choose from ", names, ")");
+}
+
+shared::PyramidParams pyramidParams(const OrMipPyramid& pyramid) {
+  shared::PyramidParams p{};
+  p.grid = pyramid.box().params();
+  if (pyramid.levels() > shared::kMaxPyramidLevels)
+    fail("OR-mip pyramid: ", pyramid.levels(), " levels, at most ", shared::kMaxPyramidLevels, " supported");
+  p.levels = pyramid.levels();
+  for (uint32_t l = 0; l < pyramid.levels(); ++l) p.levelOffsets[l] = pyramid.levelOffset(l);
+  return p;
+}
+
+float defaultMarchStep(const OrMipPyramid& pyramid) {
+  glm::vec3 v = pyramid.box().voxelSize();
+  return 0.5f * std::min(v.x, std::min(v.y, v.z));
+}
+
+void RayTracer::traceBatch(const std::vector<TraceRay>& rays, std::vector<TraceResult>& out, int threads) const {
+  out.resize(rays.size());
+  parallelFor(rays.size(), 4096, threads, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) out[i] = trace(rays[i]);
+  });
+}
+
+namespace {
+
+TraceResult fromShared(const shared::TraceHit& h) {
+  TraceResult r;
+  r.hit = h.hit != 0u;
+  r.t = h.t;
+  r.voxel = h.voxel;
+  r.steps = h.steps;
+  return r;
+}
+
+class VoxelTracer : public RayTracer {
+ public:
+  VoxelTracer(int kind, const OrMipPyramid& pyramid, float marchStep)
+      : kind_(kind), params_(pyramidParams(pyramid)), words_(pyramid.words().data()), marchStep_(marchStep) {}
+  TraceResult trace(const TraceRay& ray) const override {
+    switch (kind_) {
+      case 0: return fromShared(shared::traceHierarchical(params_, ray.origin, ray.dir, ray.tmax, words_));
+      case 1: return fromShared(shared::traceDda(params_, ray.origin, ray.dir, ray.tmax, words_));
+      default: return fromShared(shared::traceMarch(params_, ray.origin, ray.dir, ray.tmax, marchStep_, words_));
+    }
+  }
+
+ private:
+  int kind_;
+  shared::PyramidParams params_;
+  const uint32_t* words_;
+  float marchStep_;
+};
+
+class EmbreeRayTracer : public RayTracer {
+ public:
+  EmbreeRayTracer(const EmbreeTracer& embree, const OrMipPyramid* pyramid) : embree_(embree) {
+    if (pyramid) {
+      grid_ = pyramid->box().params();
+      hasGrid_ = true;
+    }
+  }
+  TraceResult trace(const TraceRay& ray) const override {
+    TraceResult r;
+    if (!(ray.tmax >= 0.0f)) return r;
+    TriangleHit h = embree_.firstHit(ray.origin, ray.dir, 0.0f, ray.tmax);
+    if (!h.hit) return r;
+    r.hit = true;
+    r.t = h.t;
+    if (hasGrid_) {
+      glm::vec3 q = shared::worldToGrid(grid_, ray.origin + h.t * ray.dir);
+      r.voxel = shared::gridCell(grid_, q);
+    }
+    return r;
+  }
+
+ private:
+  const EmbreeTracer& embree_;
+  shared::GridParams grid_{};
+  bool hasGrid_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<RayTracer> createTracer(const std::string& name, const TracerInputs& in) {
+  const TracerInfo& info = findTracer(name);
+  if (info.name == "embree") {
+    if (!in.embree) fail("tracer 'embree' needs the scene's triangles");
+    return std::make_unique<EmbreeRayTracer>(*in.embree, in.pyramid);
+  }
+  if (!in.pyramid) fail("tracer '", name, "' needs a voxel grid");
+  if (info.name == "march" && in.marchStep < 0.0f) fail("march step ", in.marchStep, " must be > 0");
+  float step = in.marchStep > 0.0f ? in.marchStep : defaultMarchStep(*in.pyramid);
+  return std::make_unique<VoxelTracer>(info.define, *in.pyramid, step);
+}
+
+}  // namespace vgi
