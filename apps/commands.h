@@ -7,4 +7,5 @@ void addRenderCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
 void addVoxelizeCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
 }  // namespace vgi::app

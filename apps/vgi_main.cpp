@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   vgi::app::addInfoCommand(app);
   vgi::app::addDiffCommand(app);
   vgi::app::addVoxelizeCommand(app);
+  vgi::app::addBenchCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

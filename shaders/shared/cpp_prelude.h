@@ -16,7 +16,11 @@
 #define SHARED_END \
   }                \
   }
-#define SHARED_FN inline
+// Always inlined: the kernels are small and called in tight loops, and GLM's
+// vec[i] is a switch that only folds away once the index is a constant.
+#define SHARED_FN inline __attribute__((always_inline))
+// A read-only struct parameter: by const reference in C++, by value in GLSL.
+#define SHARED_IN(T) const T&
 // GLSL `precise` (no fused multiply-add) where GPU and CPU must agree bit for
 // bit; the C++ side gets the same by compiling with -ffp-contract=off.
 #define SHARED_PRECISE

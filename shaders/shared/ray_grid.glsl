@@ -35,12 +35,13 @@ const float kTraceInfinity = 3.0e38f;
 // planes would be crossed beyond any finite ray anyway.
 const float kTinyDirection = 1.0e-20f;
 
+// Arrays rather than vectors: GLM's vec[i] is a switch, an array index is not.
 struct GridRay {
-  vec3 o;         // grid-space origin, clamped into [0, W] × [0, H] × [0, D]
-  vec3 d;         // grid-space direction per unit world distance (tiny parts = 0)
-  vec3 inv;       // 1 / d per axis, 0 where d is 0
-  ivec3 stepDir;  // sign of d: +1, −1 or 0
-  ivec3 res;      // W, H, D
+  float o[3];       // grid-space origin, clamped into [0, W] × [0, H] × [0, D]
+  float d[3];       // grid-space direction per unit world distance (tiny parts = 0)
+  float inv[3];     // 1 / d per axis, 0 where d is 0
+  int stepDir[3];   // sign of d: +1, −1 or 0
+  int res[3];       // W, H, D
   float tBase;    // world distance from the ray's origin to o
   float tHi;      // last parameter inside the grid and the ray; < 0: no voxel visited
 };
@@ -48,66 +49,65 @@ struct GridRay {
 // Finite, neither NaN nor ±inf.
 SHARED_FN bool isFiniteFloat(float x) { return (floatBitsToUint(x) & 0x7f800000u) != 0x7f800000u; }
 
-SHARED_FN GridRay prepareGridRay(GridParams g, vec3 origin, vec3 direction, float tmax) {
+SHARED_FN GridRay prepareGridRay(SHARED_IN(GridParams) g, vec3 origin, vec3 direction, float tmax) {
   GridRay r;
-  r.res = ivec3(int(g.resolution.x), int(g.resolution.y), int(g.resolution.z));
   r.tBase = 0.0f;
   r.tHi = -1.0f;
-  r.o = vec3(0.0f);
-  r.d = vec3(0.0f);
-  r.inv = vec3(0.0f);
-  r.stepDir = ivec3(0);
-  bool finiteInput = isFiniteFloat(origin.x) && isFiniteFloat(origin.y) && isFiniteFloat(origin.z) &&
-                     isFiniteFloat(direction.x) && isFiniteFloat(direction.y) && isFiniteFloat(direction.z) &&
-                     !(tmax != tmax) && tmax >= 0.0f;
-  if (!finiteInput) return r;
-  SHARED_PRECISE vec3 rel = origin - vec3(g.origin.x, g.origin.y, g.origin.z);
-  SHARED_PRECISE vec3 q;
-  SHARED_PRECISE vec3 dg;
   vec4 axes[3];
   axes[0] = g.axisX;
   axes[1] = g.axisY;
   axes[2] = g.axisZ;
   for (int a = 0; a < 3; ++a) {
-    SHARED_PRECISE float qa = rel.x * axes[a].x;
-    qa = qa + rel.y * axes[a].y;
-    qa = qa + rel.z * axes[a].z;
-    q[a] = qa * axes[a].w;
-    SHARED_PRECISE float da = direction.x * axes[a].x;
-    da = da + direction.y * axes[a].y;
-    da = da + direction.z * axes[a].z;
-    dg[a] = da * axes[a].w;
+    r.res[a] = int(g.resolution[a]);
+    r.o[a] = 0.0f;
+    r.d[a] = 0.0f;
+    r.inv[a] = 0.0f;
+    r.stepDir[a] = 0;
   }
+  bool finiteInput = isFiniteFloat(origin.x) && isFiniteFloat(origin.y) && isFiniteFloat(origin.z) &&
+                     isFiniteFloat(direction.x) && isFiniteFloat(direction.y) && isFiniteFloat(direction.z) &&
+                     !(tmax != tmax) && tmax >= 0.0f;
+  if (!finiteInput) return r;
+  SHARED_PRECISE vec3 rel = origin - vec3(g.origin.x, g.origin.y, g.origin.z);
+  float q[3];
   SHARED_PRECISE float tEnter = 0.0f;
   SHARED_PRECISE float tExit = min(tmax, kTraceInfinity);
   for (int a = 0; a < 3; ++a) {
+    SHARED_PRECISE float qa = rel.x * axes[a].x;
+    qa = qa + rel.y * axes[a].y;
+    qa = qa + rel.z * axes[a].z;
+    qa = qa * axes[a].w;
+    q[a] = qa;
+    SHARED_PRECISE float da = direction.x * axes[a].x;
+    da = da + direction.y * axes[a].y;
+    da = da + direction.z * axes[a].z;
+    da = da * axes[a].w;
     float lo = 0.0f, hi = float(r.res[a]);
-    if (abs(dg[a]) < kTinyDirection) {
-      dg[a] = 0.0f;
-      if (q[a] < lo || q[a] > hi) return r;  // parallel to this slab and outside it
+    if (abs(da) < kTinyDirection) {
+      if (qa < lo || qa > hi) return r;  // parallel to this slab and outside it
     } else {
-      r.stepDir[a] = dg[a] > 0.0f ? 1 : -1;
-      r.inv[a] = 1.0f / dg[a];
-      SHARED_PRECISE float t0 = ((dg[a] > 0.0f ? lo : hi) - q[a]) * r.inv[a];
-      SHARED_PRECISE float t1 = ((dg[a] > 0.0f ? hi : lo) - q[a]) * r.inv[a];
+      r.d[a] = da;
+      r.stepDir[a] = da > 0.0f ? 1 : -1;
+      r.inv[a] = 1.0f / da;
+      SHARED_PRECISE float t0 = ((da > 0.0f ? lo : hi) - qa) * r.inv[a];
+      SHARED_PRECISE float t1 = ((da > 0.0f ? hi : lo) - qa) * r.inv[a];
       tEnter = max(tEnter, t0);
       tExit = min(tExit, t1);
     }
   }
-  if (r.stepDir.x == 0 && r.stepDir.y == 0 && r.stepDir.z == 0) return r;  // no direction
+  if (r.stepDir[0] == 0 && r.stepDir[1] == 0 && r.stepDir[2] == 0) return r;  // no direction
   if (!(tEnter <= tExit)) return r;
   r.tBase = tEnter;
   r.tHi = tExit - tEnter;
   for (int a = 0; a < 3; ++a) {
-    SHARED_PRECISE float oa = q[a] + tEnter * dg[a];
+    SHARED_PRECISE float oa = q[a] + tEnter * r.d[a];
     r.o[a] = clamp(oa, 0.0f, float(r.res[a]));
   }
-  r.d = dg;
   return r;
 }
 
 // The parameter at which the ray crosses integer plane p of axis a (d_a ≠ 0).
-SHARED_FN float planeT(GridRay r, int a, int p) {
+SHARED_FN float planeT(SHARED_IN(GridRay) r, int a, int p) {
   SHARED_PRECISE float t = (float(p) - r.o[a]) * r.inv[a];
   return t;
 }
@@ -117,11 +117,13 @@ SHARED_FN float planeT(GridRay r, int a, int p) {
 // t (planes crossed exactly at t do not count yet): the last cell of a column
 // that the ray leaves at t. The guess from the position is off by at most a
 // cell or two; the loops make the result exact and are bounded by the clamp.
-SHARED_FN int cellAt(GridRay r, int a, float t, bool before) {
+SHARED_FN int cellAt(SHARED_IN(GridRay) r, int a, float t, bool before) {
   int n = r.res[a];
-  if (r.stepDir[a] == 0) return min(int(floor(r.o[a])), n - 1);
+  if (r.stepDir[a] == 0) return min(int(r.o[a]), n - 1);  // o ≥ 0: truncation is floor
   SHARED_PRECISE float pos = r.o[a] + t * r.d[a];
-  int c = int(clamp(floor(pos), -1.0f, float(n)));
+  // Truncation, not floor: only a guess (the loops fix it), and floorf is a
+  // library call on baseline x86-64.
+  int c = int(clamp(pos, -1.0f, float(n)));
   if (r.stepDir[a] > 0) {
     // max{p : T(p) ≤ t}   (before: T(p) < t)
     while (c < n && (before ? planeT(r, a, c + 1) < t : planeT(r, a, c + 1) <= t)) ++c;
@@ -134,8 +136,20 @@ SHARED_FN int cellAt(GridRay r, int a, float t, bool before) {
   return c;
 }
 
+// Moves cell c of axis a (the cell at an earlier parameter) to the cell at t:
+// exact by monotonicity, and cheaper than cellAt when t moved little.
+SHARED_FN int advanceCell(SHARED_IN(GridRay) r, int a, int c, float t) {
+  int s = r.stepDir[a];
+  if (s > 0) {
+    while (c < r.res[a] && planeT(r, a, c + 1) <= t) ++c;
+  } else if (s < 0) {
+    while (c > -1 && planeT(r, a, c) <= t) --c;
+  }
+  return c;
+}
+
 // The parameter at which the ray enters cell c of axis a (0 for d_a = 0).
-SHARED_FN float cellEntryT(GridRay r, int a, int c) {
+SHARED_FN float cellEntryT(SHARED_IN(GridRay) r, int a, int c) {
   if (r.stepDir[a] == 0) return 0.0f;
   return planeT(r, a, r.stepDir[a] > 0 ? c : c + 1);
 }

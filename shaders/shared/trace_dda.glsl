@@ -14,41 +14,39 @@
 #endif
 SHARED_BEGIN
 
-SHARED_FN bool voxelSet(PyramidParams p, int x, int y, int z PYRAMID_PARAM) {
+SHARED_FN bool voxelSet(SHARED_IN(PyramidParams) p, int x, int y, int z PYRAMID_PARAM) {
   uint i = columnWordIndex(uint(x), uint(y), depthWord(uint(z)), p.grid.resolution);
   return (pyramidWords[i] & depthBit(uint(z))) != 0u;
 }
 
-SHARED_FN TraceHit traceDda(PyramidParams p, vec3 origin, vec3 direction, float tmax PYRAMID_PARAM) {
+SHARED_FN TraceHit traceDda(SHARED_IN(PyramidParams) p, vec3 origin, vec3 direction, float tmax PYRAMID_PARAM) {
   GridRay r = prepareGridRay(p.grid, origin, direction, tmax);
   if (r.tHi < 0.0f) return traceMiss(0u);
-  ivec3 c = ivec3(cellAt(r, 0, 0.0f, false), cellAt(r, 1, 0.0f, false), cellAt(r, 2, 0.0f, false));
+  int c[3];
+  for (int a = 0; a < 3; ++a) c[a] = cellAt(r, a, 0.0f, false);
   float t = 0.0f;
-  uint maxSteps = uint(r.res.x + r.res.y + r.res.z) + 3u;
+  uint maxSteps = uint(r.res[0] + r.res[1] + r.res[2]) + 3u;
   for (uint steps = 1u; steps <= maxSteps; ++steps) {
-    if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= r.res.x || c.y >= r.res.y || c.z >= r.res.z)
+    if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[0] >= r.res[0] || c[1] >= r.res[1] || c[2] >= r.res[2])
       return traceMiss(steps);  // leaving the grid
-    if (voxelSet(p, c.x, c.y, c.z PYRAMID_ARG)) {
+    if (voxelSet(p, c[0], c[1], c[2] PYRAMID_ARG)) {
       TraceHit h;
       h.hit = 1u;
       h.t = r.tBase + t;
-      h.voxel = uvec3(c);
+      h.voxel = uvec3(uint(c[0]), uint(c[1]), uint(c[2]));
       h.steps = steps;
       return h;
     }
-    vec3 tn;
+    float tn[3];
     for (int a = 0; a < 3; ++a)
       tn[a] = r.stepDir[a] == 0 ? kTraceInfinity : planeT(r, a, r.stepDir[a] > 0 ? c[a] + 1 : c[a]);
-    float tNext = min(tn.x, min(tn.y, tn.z));
+    float tNext = min(tn[0], min(tn[1], tn[2]));
     if (tNext > r.tHi) return traceMiss(steps);
     t = tNext;
-    for (int a = 0; a < 3; ++a) {
-      if (r.stepDir[a] == 0 || tn[a] > t) continue;
-      c[a] += r.stepDir[a];
-      // Planes that round to the same parameter are crossed together.
-      while (c[a] >= 0 && c[a] < r.res[a] && planeT(r, a, r.stepDir[a] > 0 ? c[a] + 1 : c[a]) <= t)
-        c[a] += r.stepDir[a];
-    }
+    // Every axis whose plane is crossed at t steps (planes that round to the
+    // same parameter are crossed together): advanceCell.
+    for (int a = 0; a < 3; ++a)
+      if (tn[a] <= t) c[a] = advanceCell(r, a, c[a], t);
   }
   return traceMiss(maxSteps + 1u);
 }

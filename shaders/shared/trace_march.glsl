@@ -13,20 +13,22 @@ SHARED_BEGIN
 
 const uint kMaxMarchSteps = 1048576u;
 
-SHARED_FN TraceHit traceMarch(PyramidParams p, vec3 origin, vec3 direction, float tmax, float stepLength PYRAMID_PARAM) {
+SHARED_FN TraceHit traceMarch(SHARED_IN(PyramidParams) p, vec3 origin, vec3 direction, float tmax, float stepLength PYRAMID_PARAM) {
   GridRay r = prepareGridRay(p.grid, origin, direction, tmax);
   if (r.tHi < 0.0f || !(stepLength > 0.0f)) return traceMiss(0u);
   uint n = uint(min(r.tHi / stepLength, float(kMaxMarchSteps - 1u))) + 1u;
   for (uint i = 0u; i < n; ++i) {
     SHARED_PRECISE float t = float(i) * stepLength;
-    SHARED_PRECISE vec3 q = r.o + t * r.d;
-    ivec3 c;
-    for (int a = 0; a < 3; ++a) c[a] = clamp(int(floor(q[a])), 0, r.res[a] - 1);
-    if (voxelSet(p, c.x, c.y, c.z PYRAMID_ARG)) {
+    int c[3];
+    for (int a = 0; a < 3; ++a) {
+      SHARED_PRECISE float q = r.o[a] + t * r.d[a];
+      c[a] = min(int(max(q, 0.0f)), r.res[a] - 1);  // floor for q ≥ 0, without a libm call
+    }
+    if (voxelSet(p, c[0], c[1], c[2] PYRAMID_ARG)) {
       TraceHit h;
       h.hit = 1u;
       h.t = r.tBase + t;
-      h.voxel = uvec3(c);
+      h.voxel = uvec3(uint(c[0]), uint(c[1]), uint(c[2]));
       h.steps = i + 1u;
       return h;
     }

@@ -1,0 +1,289 @@
+// vgi bench: measured comparisons that go into docs/BENCHMARKS.md.
+//   traverse  the tracers on the near-field ray population of a scene: speed
+//             (CPU threads, and GLSL where it runs) against agreement with the
+//             DDA oracle and with exact Embree hits.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "apps/commands.h"
+#include "core/build_info.h"
+#include "core/error.h"
+#include "core/gl_context.h"
+#include "core/parallel.h"
+#include "core/profiler.h"
+#include "core/scene_loader.h"
+#include "core/shader_library.h"
+#include "traverse/embree_tracer.h"
+#include "traverse/gl_ray_tracer.h"
+#include "traverse/or_mip_pyramid.h"
+#include "traverse/ray_population.h"
+#include "traverse/ray_tracers.h"
+#include "voxelize/atlas.h"
+#include "voxelize/voxelizer.h"
+
+namespace vgi::app {
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+float parseMaxDist(const std::string& s) {
+  if (s == "inf") return INFINITY;
+  float v = 0;
+  try {
+    size_t used = 0;
+    v = std::stof(s, &used);
+    if (used != s.size()) throw std::invalid_argument(s);
+  } catch (const std::exception&) {
+    fail("--max-dist '", s, "': expected a number (fraction of the scene diagonal) or 'inf'");
+  }
+  if (!(v > 0.0f) || !std::isfinite(v)) fail("--max-dist ", s, ": must be > 0 (or 'inf')");
+  return v;
+}
+
+// Agreement of `r` with a reference result set.
+struct Agreement {
+  double sameHit = 0, sameVoxel = 0, errMean = 0, errP95 = 0, errMax = 0;
+  size_t bothHit = 0;
+};
+
+Agreement agreement(const std::vector<TraceResult>& r, const std::vector<TraceResult>& ref, float voxelSize,
+                    bool compareVoxels) {
+  Agreement a;
+  std::vector<float> errs;
+  size_t sameHit = 0, sameVoxel = 0;
+  const float tol = 1e-5f * voxelSize;
+  for (size_t i = 0; i < r.size(); ++i) {
+    if (r[i].hit != ref[i].hit) continue;
+    ++sameHit;
+    if (!r[i].hit) {
+      ++sameVoxel;
+      continue;
+    }
+    if (r[i].voxel == ref[i].voxel && std::abs(r[i].t - ref[i].t) <= tol) ++sameVoxel;
+    errs.push_back(std::abs(r[i].t - ref[i].t) / voxelSize);
+  }
+  a.sameHit = r.empty() ? 1.0 : double(sameHit) / double(r.size());
+  a.sameVoxel = r.empty() ? 1.0 : double(sameVoxel) / double(r.size());
+  a.bothHit = errs.size();
+  if (!errs.empty()) {
+    double sum = 0;
+    for (float e : errs) sum += e;
+    a.errMean = sum / double(errs.size());
+    std::sort(errs.begin(), errs.end());
+    a.errP95 = errs[std::min(errs.size() - 1, size_t(0.95 * double(errs.size())))];
+    a.errMax = errs.back();
+  }
+  return a;
+}
+
+void addTraverseBench(CLI::App& bench) {
+  auto* cmd = bench.add_subcommand("traverse", "Tracers on the near-field ray population: speed against agreement");
+  struct Options {
+    std::string scene = "builtin:cornell", voxels = "256", voxelizer = "atlas", tracers = "hierarchical,dda,march,embree",
+                maxDist = "0.1", gl = "auto", stats;
+    size_t rays = 1000000;
+    int threads = 0, repeat = 3;
+    uint32_t seed = 1;
+    float offset = 1.0f;
+    bool json = false, noGl = false;
+  };
+  auto o = std::make_shared<Options>();
+  cmd->add_option("--scene", o->scene, "builtin:cornell, a scene .json, or a model file")->capture_default_str();
+  cmd->add_option("--voxels", o->voxels, "N (N×N×N) or WxHxD")->capture_default_str();
+  cmd->add_option("--voxelizer", o->voxelizer, "which voxelizer builds the grid")->capture_default_str();
+  cmd->add_option("--tracers", o->tracers, "comma-separated tracers to run")->capture_default_str();
+  cmd->add_option("--rays", o->rays, "number of rays")->capture_default_str();
+  cmd->add_option("--max-dist", o->maxDist, "ray length as a fraction of the scene diagonal, or 'inf'")
+      ->capture_default_str();
+  cmd->add_option("--offset", o->offset, "ray start offset along the normal, in voxel diagonals")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "CPU threads (0 = all cores)")->capture_default_str();
+  cmd->add_option("--repeat", o->repeat, "timed CPU runs per tracer (the fastest counts)")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "ray population seed")->capture_default_str();
+  cmd->add_option("--gl", o->gl, "GL backend: auto|egl|osmesa")->capture_default_str();
+  cmd->add_flag("--no-gl", o->noGl, "skip the GLSL runs (the voxelizer may still need GL)");
+  cmd->add_flag("--json", o->json, "print the results as JSON instead of a table");
+  cmd->add_option("--stats", o->stats, "also write the JSON here");
+  cmd->callback([o] {
+    if (o->threads < 0 || o->threads > 1024) fail("--threads ", o->threads, ": must be in [0, 1024]");
+    if (o->rays < 1 || o->rays > 100000000) fail("--rays ", o->rays, ": must be in [1, 100000000]");
+    if (o->repeat < 1 || o->repeat > 100) fail("--repeat ", o->repeat, ": must be in [1, 100]");
+    if (!(o->offset >= 0.0f && o->offset <= 100.0f)) fail("--offset ", o->offset, ": must be in [0, 100]");
+    const float maxDist = parseMaxDist(o->maxDist);
+    std::vector<std::string> tracers = splitList(o->tracers);
+    if (tracers.empty()) fail("--tracers '", o->tracers, "': empty list");
+    for (auto& t : tracers) findTracer(t, "--tracers");
+    const VoxelizerInfo& vox = findVoxelizer(o->voxelizer);
+    const glm::uvec3 res = parseResolution(o->voxels);
+    checkGridMemory(res, 2);
+    Scene scene = loadScene(o->scene);
+    FlatScene flat = flatten(scene);
+
+    std::unique_ptr<GlContext> gl;
+    std::unique_ptr<ShaderLibrary> shaders;
+    if (vox.needsGl || !o->noGl) {
+      gl = GlContext::create(parseGlBackend(o->gl));
+      shaders = std::make_unique<ShaderLibrary>();
+    }
+    nlohmann::json s;
+    VoxelizeRequest req;
+    req.scene = &scene;
+    req.box = fitGridBox(scene, res);
+    req.threads = o->threads;
+    req.atlasCacheDir = defaultAtlasCacheDir();
+    req.gl = gl.get();
+    req.shaders = shaders.get();
+    Profiler buildProf(gl != nullptr);
+    nlohmann::json voxStats;
+    BinaryGrid grid = vox.run(req, buildProf, voxStats);
+    auto t0 = std::chrono::steady_clock::now();
+    OrMipPyramid pyramid(grid);
+    const double pyramidMs = msSince(t0);
+    t0 = std::chrono::steady_clock::now();
+    EmbreeTracer embree(flat);
+    const double embreeBuildMs = msSince(t0);
+    buildProf.resolve(true);
+
+    const glm::vec3 vs = req.box.voxelSize();
+    const float voxelSize = (vs.x + vs.y + vs.z) / 3.0f;  // "voxel sizes" in the error columns
+    const float diag = glm::length(req.box.extent);
+    RayPopulation pop;
+    pop.count = o->rays;
+    pop.seed = o->seed;
+    pop.tmax = std::isinf(maxDist) ? INFINITY : maxDist * diag;
+    pop.offset = o->offset * glm::length(vs);
+    pop.viewpoint = scene.camera.position;
+    std::vector<TraceRay> rays = surfaceRays(flat, pop);
+
+    TracerInputs in;
+    in.pyramid = &pyramid;
+    in.embree = &embree;
+    const int threads = resolveThreads(o->threads);
+    std::map<std::string, std::vector<TraceResult>> results;
+    std::map<std::string, double> cpuMs, glMs;
+    for (const std::string& name : {std::string("dda"), std::string("embree")})  // the references, always run
+      if (std::find(tracers.begin(), tracers.end(), name) == tracers.end()) tracers.push_back(name);
+    for (const std::string& name : tracers) {
+      auto tracer = createTracer(name, in);
+      double best = 1e300;
+      for (int i = 0; i < o->repeat; ++i) {
+        auto t1 = std::chrono::steady_clock::now();
+        tracer->traceBatch(rays, results[name], threads);
+        best = std::min(best, msSince(t1));
+      }
+      cpuMs[name] = best;
+    }
+    std::map<std::string, bool> glMatchesCpu;
+    if (!o->noGl) {
+      GlPyramid gpuPyramid(pyramid);
+      for (const std::string& name : tracers) {
+        if (!findTracer(name).glsl) continue;
+        Profiler warm(true), prof(true);
+        traceRaysGl(gpuPyramid, *shaders, name, std::vector<TraceRay>(rays.begin(), rays.begin() + 1), warm);
+        std::vector<TraceResult> r = traceRaysGl(gpuPyramid, *shaders, name, rays, prof);
+        prof.resolve(true);
+        glMs[name] = prof.timingsMs()["trace_" + name].get<double>();
+        bool same = true;
+        const auto& c = results[name];
+        for (size_t i = 0; i < r.size() && same; ++i)
+          same = r[i].hit == c[i].hit && r[i].steps == c[i].steps && (!r[i].hit || (r[i].t == c[i].t && r[i].voxel == c[i].voxel));
+        glMatchesCpu[name] = same;
+      }
+      if (gl->errorCount() > 0) fail("bench traverse: ", gl->errorCount(), " GL error(s)");
+    }
+
+    s["bench"] = "traverse";
+    s["scene"] = o->scene;
+    s["resolution"] = {res.x, res.y, res.z};
+    s["voxelizer"] = vox.name;
+    s["voxelizer_stats"] = {{"voxels_set", grid.count()}, {"timings_ms", buildProf.timingsMs()}};
+    s["pyramid_levels"] = pyramid.levels();
+    s["pyramid_build_cpu_ms"] = pyramidMs;
+    s["embree_build_ms"] = embreeBuildMs;
+    s["rays"] = rays.size();
+    s["max_dist"] = o->maxDist;
+    s["max_dist_world"] = std::isinf(pop.tmax) ? nlohmann::json("inf") : nlohmann::json(pop.tmax);
+    s["offset_world"] = pop.offset;
+    s["voxel_size"] = voxelSize;
+    s["threads"] = threads;
+    s["seed"] = o->seed;
+    s["gl_renderer"] = gl ? gl->renderer() : "none";
+    s["cpu_threads_available"] = std::thread::hardware_concurrency();
+    s["git_revision"] = gitRevision();
+    nlohmann::json per = nlohmann::json::object();
+    for (const std::string& name : tracers) {
+      const auto& r = results[name];
+      Agreement dda = agreement(r, results["dda"], voxelSize, true);
+      Agreement emb = agreement(r, results["embree"], voxelSize, false);
+      size_t hits = 0;
+      uint64_t steps = 0;
+      for (auto& x : r) {
+        hits += x.hit;
+        steps += x.steps;
+      }
+      nlohmann::json j;
+      j["mrays_per_s"] = double(rays.size()) / (cpuMs[name] * 1e3);
+      j["cpu_ms"] = cpuMs[name];
+      if (glMs.count(name)) {
+        j["gl_mrays_per_s"] = double(rays.size()) / (glMs[name] * 1e3);
+        j["gl_ms"] = glMs[name];
+        j["gl_equals_cpu"] = glMatchesCpu[name];
+      }
+      j["hit_rate"] = double(hits) / double(rays.size());
+      j["mean_steps"] = double(steps) / double(rays.size());
+      j["agree_dda"] = dda.sameVoxel;
+      j["agree_dda_hit"] = dda.sameHit;
+      j["agree_embree_hit"] = emb.sameHit;
+      j["dist_err_mean_voxels"] = emb.errMean;
+      j["dist_err_p95_voxels"] = emb.errP95;
+      per[name] = j;
+    }
+    s["tracers"] = per;
+    if (!o->stats.empty()) {
+      std::ofstream f(o->stats);
+      f << s.dump(2) << "\n";
+      if (!f) fail("--stats: cannot write '", o->stats, "'");
+    }
+    if (o->json) {
+      std::printf("%s\n", s.dump(2).c_str());
+      return;
+    }
+    std::printf("%s, %ux%ux%u (%s), %zu rays, max-dist %s (%.4g world), %d threads, %s\n", o->scene.c_str(), res.x,
+                res.y, res.z, vox.name.c_str(), rays.size(), o->maxDist.c_str(), double(pop.tmax), threads,
+                gl ? gl->renderer().c_str() : "no GL");
+    std::printf("%-13s %10s %10s %8s %9s %10s %10s %10s\n", "tracer", "Mrays/s", "GL Mrays/s", "hits", "agree_dda",
+                "agree_emb", "err_mean", "err_p95");
+    for (const std::string& name : tracers) {
+      const auto& j = per[name];
+      std::printf("%-13s %10.3f %10s %8.4f %9.5f %10.5f %10.3f %10.3f\n", name.c_str(), j["mrays_per_s"].get<double>(),
+                  j.contains("gl_mrays_per_s") ? std::to_string(j["gl_mrays_per_s"].get<double>()).substr(0, 8).c_str()
+                                                : "-",
+                  j["hit_rate"].get<double>(), j["agree_dda"].get<double>(), j["agree_embree_hit"].get<double>(),
+                  j["dist_err_mean_voxels"].get<double>(), j["dist_err_p95_voxels"].get<double>());
+    }
+  });
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app) {
+  auto* bench = app.add_subcommand("bench", "Benchmarks (numbers for docs/BENCHMARKS.md)");
+  bench->require_subcommand(1);
+  addTraverseBench(*bench);
+}
+
+}  // namespace vgi::app
