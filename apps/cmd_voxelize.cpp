@@ -26,7 +26,7 @@ void addVoxelizeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("voxelize", "Voxelize a scene into a binary grid and compare it with the exact voxelizer");
   struct Options {
     std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto", kind = "binary";
-    float time = 0, texelsPerVoxel = kAutoTexelsPerVoxel;
+    float time = 0, texelsPerVoxel = kAutoTexelsPerVoxel, footprint = 1.0f;
     int threads = 0, atlasResolution = 0, frames = 1;
     float timeStep = 1.0f / 30.0f;
     bool noCache = false;
@@ -45,6 +45,10 @@ void addVoxelizeCommand(CLI::App& app) {
   cmd->add_option("--texels-per-voxel", o->texelsPerVoxel, "atlas: texel = smallest voxel edge / this")
       ->capture_default_str();
   cmd->add_option("--atlas-resolution", o->atlasResolution, "atlas: manual resolution per mesh (0 = automatic)")
+      ->capture_default_str();
+  cmd->add_option("--atlas-footprint", o->footprint,
+                  "atlas: each point also sets the cells within this many texels that its triangle overlaps "
+                  "(0 = the paper's single point)")
       ->capture_default_str();
   cmd->add_flag("--no-cache", o->noCache, "atlas: do not read or write the atlas cache");
   cmd->add_option("--frames", o->frames, "atlas: voxelize N frames from --time (static once, dynamic per frame)")
@@ -68,6 +72,9 @@ void addVoxelizeCommand(CLI::App& app) {
     if (o->atlasResolution < 0 || o->atlasResolution > 16384)
       fail("--atlas-resolution ", o->atlasResolution, ": must be in [0, 16384]");
     req.texelsPerVoxel = o->texelsPerVoxel;
+    if (!(o->footprint >= 0.0f && o->footprint <= 4.0f))
+      fail("--atlas-footprint ", o->footprint, ": must be in [0, 4] texels");
+    req.atlasFootprint = o->footprint;
     req.atlasResolution = o->atlasResolution;
     req.atlasCacheDir = o->noCache ? "" : defaultAtlasCacheDir();
     std::unique_ptr<GlContext> gl;

@@ -32,15 +32,29 @@
 #include "core/gpu_scene.h"
 #include "voxelize/atlas.h"
 #include "voxelize/gpu_grid.h"
+#include "shaders/shared/atlas_footprint.glsl"
 
 namespace vgi {
 
-void insertAtlasPoints(const std::vector<glm::vec4>& positions, BinaryGrid& grid) {
+void insertAtlasPoints(const AtlasSamples& atlas, BinaryGrid& grid) {
   const shared::GridParams g = grid.box().params();
-  for (const glm::vec4& p : positions) {
+  for (size_t i = 0; i < atlas.positions.size(); ++i) {
+    const glm::vec4& p = atlas.positions[i];
     if (p.w == 0.0f) continue;
     shared::PointBit b = shared::pointBit(g, glm::vec3(p));
-    if (b.word != 0xffffffffu) grid.words()[b.word] |= b.bit;
+    if (b.word == 0xffffffffu) continue;  // outside the grid: no footprint either
+    grid.words()[b.word] |= b.bit;
+    const int tri = atlas.triangles.empty() ? -1 : atlas.triangles[i];
+    if (atlas.footprint <= 0.0f || tri < 0) continue;
+    glm::vec3 a = shared::worldToGrid(g, atlas.corners[3 * size_t(tri)]);
+    glm::vec3 bb = shared::worldToGrid(g, atlas.corners[3 * size_t(tri) + 1]);
+    glm::vec3 c = shared::worldToGrid(g, atlas.corners[3 * size_t(tri) + 2]);
+    shared::CellRange r = shared::footprintCells(g, shared::worldToGrid(g, glm::vec3(p)), atlas.footprint);
+    for (int z = r.lo.z; z <= r.hi.z; ++z)
+      for (int y = r.lo.y; y <= r.hi.y; ++y)
+        for (int x = r.lo.x; x <= r.hi.x; ++x)
+          if (shared::triangleOverlapsBox(glm::vec3(x, y, z) + 0.5f, glm::vec3(0.5f), a, bb, c))
+            grid.set(uint32_t(x), uint32_t(y), uint32_t(z));
   }
 }
 
@@ -90,12 +104,13 @@ struct AtlasVoxelizer::MeshGpu {
   const Mesh* mesh = nullptr;
   std::vector<glm::vec2> uv;  // the atlas, 3 per triangle
   int resolution = 0;
+  float texelWorld = 0;  // world length of one texel of this mesh's atlas
   GLsizei corners = 0, lineIndices = 0;
   unsigned vao = 0, vbo = 0, ebo = 0;
 };
 
 AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
-                               std::vector<std::vector<glm::vec4>>* atlasPoints)
+                               std::vector<AtlasSamples>* atlasPoints)
     : request_(req) {
   VGI_CHECK(req.gl && req.shaders);
   GLint maxTex = 0;
@@ -105,7 +120,10 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   ShaderDefines renderDefs{{"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}};
   if (values) renderDefs["MULTI_VALUED"] = "1";
   renderProg_ = req.shaders->program({"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"}, renderDefs);
-  insertProg_ = req.shaders->program({"voxelize/atlas_insert.comp.glsl"});
+  if (!(req.atlasFootprint >= 0.0f && req.atlasFootprint <= 4.0f))
+    fail("atlas footprint ", req.atlasFootprint, ": must be in [0, 4] texels");
+  insertProg_ = req.shaders->program({"voxelize/atlas_insert.comp.glsl"},
+                                     {{"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}});
   setGridUniforms(insertProg_, req.box);
   if (values) {
     const uint64_t cells = req.box.cellCount();
@@ -117,6 +135,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
            phys / (1 << 20), " MiB (at most half is used)");
     ShaderDefines valueDefs;
     for (auto& ch : req.valueGrids) valueDefs["VALUE_" + std::string(ch == "normal" ? "NORMAL" : ch == "albedo" ? "ALBEDO" : "GLOSSY")] = "1";
+    valueDefs["ATLAS_VERTEX_FLOATS"] = std::to_string(kVertexFloats);
     valueProg_ = req.shaders->program({"voxelize/atlas_insert_values.comp.glsl"}, valueDefs);
     setGridUniforms(valueProg_, req.box);
     staticValues_ = std::make_unique<ValueBuffers>(size_t(cells), req.valueGrids);
@@ -158,6 +177,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     atlasMs += atlas.ms;
     m->resolution = atlas.resolution;
     m->uv = atlas.uv;
+    m->texelWorld = atlas.texelWorld;
     // Position (RGBA32F) + triangle id (R32I) per texel; refuse before GL's allocation fails.
     const double bytes = double(atlas.resolution) * atlas.resolution * 20.0;
     if (bytes > double(1u << 31))
@@ -211,6 +231,12 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   glCreateTextures(GL_TEXTURE_2D, 2, targets_);
   glTextureStorage2D(targets_[0], 1, GL_RGBA32F, R, R);
   glTextureStorage2D(targets_[1], 1, GL_R32I, R, R);
+  // An integer texture with the default (linear) filters is incomplete and
+  // reads as 0 even through texelFetch.
+  for (unsigned t : targets_) {
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
   glCreateFramebuffers(1, &fbo_);
   glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, targets_[0], 0);
   glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT1, targets_[1], 0);
@@ -232,7 +258,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   for (size_t i = 0; i < meshes_.size(); ++i) {
     const MeshGpu& m = *meshes_[i];
     std::vector<int> ids;
-    std::vector<glm::vec4>* points = nullptr;
+    AtlasSamples* points = nullptr;
     if (atlasPoints) {
       atlasPoints->emplace_back();
       points = &atlasPoints->back();
@@ -269,6 +295,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   stats_["atlas_build_ms"] = atlasMs;
   stats_["texel_world"] = texel;
   stats_["texels_per_voxel"] = req.texelsPerVoxel;
+  stats_["atlas_footprint_texels"] = req.atlasFootprint;
   stats_["triangles_without_texels"] = lost;
   stats_["triangles_sampled_by_neighbours"] = sharedTotal;
   stats_["static_meshes"] = staticCount;
@@ -288,9 +315,20 @@ AtlasVoxelizer::~AtlasVoxelizer() {
   glDeleteBuffers(1, &frameCounter_);
 }
 
+// What shaders/voxelize/atlas_point_cells.glsl reads: the atlas targets, the
+// mesh's corners and model matrix, the footprint radius.
+void AtlasVoxelizer::setPointCellInputs(unsigned program, const MeshGpu& m, float time) const {
+  glProgramUniform1f(program, glGetUniformLocation(program, "uFootprint"), request_.atlasFootprint * m.texelWorld);
+  glm::mat4 model = m.mesh->objectToWorld(time);
+  glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "uModel"), 1, GL_FALSE, &model[0][0]);
+  glBindTextureUnit(0, targets_[0]);
+  glBindTextureUnit(4, targets_[1]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.vbo);
+}
+
 void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGridBuffer& target,
                                      const ValueBuffers* values, unsigned counter, Profiler& prof,
-                                     std::vector<int>* ids, std::vector<glm::vec4>* points) {
+                                     std::vector<int>* ids, AtlasSamples* points) {
   const int R = m.resolution;
   {
     auto s = prof.scope("atlas_render");
@@ -329,7 +367,7 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     auto s = prof.scope("insertion");
     glUseProgram(insertProg_);
     glProgramUniform2i(insertProg_, glGetUniformLocation(insertProg_, "uAtlasSize"), R, R);
-    glBindTextureUnit(0, targets_[0]);
+    setPointCellInputs(insertProg_, m, time);
     target.bind(0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counter);
     glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
@@ -339,7 +377,7 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     auto s = prof.scope("insertion_values");
     glUseProgram(valueProg_);
     glProgramUniform2i(valueProg_, glGetUniformLocation(valueProg_, "uAtlasSize"), R, R);
-    glBindTextureUnit(0, targets_[0]);
+    setPointCellInputs(valueProg_, m, time);
     for (unsigned k = 0; k < 3; ++k) glBindTextureUnit(1 + k, valueTargets_[k]);
     values->bind();
     glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
@@ -351,9 +389,17 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
                          ids->data());
   }
   if (points) {
-    points->assign(size_t(R) * size_t(R), glm::vec4(0.0f));
+    points->positions.assign(size_t(R) * size_t(R), glm::vec4(0.0f));
     glGetTextureSubImage(targets_[0], 0, 0, 0, 0, R, R, 1, GL_RGBA, GL_FLOAT,
-                         GLsizei(points->size() * sizeof(glm::vec4)), points->data());
+                         GLsizei(points->positions.size() * sizeof(glm::vec4)), points->positions.data());
+    points->triangles.assign(size_t(R) * size_t(R), -1);
+    glGetTextureSubImage(targets_[1], 0, 0, 0, 0, R, R, 1, GL_RED_INTEGER, GL_INT,
+                         GLsizei(points->triangles.size() * sizeof(int)), points->triangles.data());
+    glm::mat4 model = m.mesh->objectToWorld(time);
+    points->corners.clear();
+    for (const glm::uvec3& tri : m.mesh->triangles)
+      for (int k = 0; k < 3; ++k) points->corners.push_back(glm::vec3(model * glm::vec4(m.mesh->positions[tri[k]], 1.0f)));
+    points->footprint = request_.atlasFootprint * m.texelWorld;
   }
 }
 
@@ -406,7 +452,7 @@ nlohmann::json AtlasVoxelizer::stats() const {
 }
 
 BinaryGrid voxelizeAtlasGl(const VoxelizeRequest& req, Profiler& prof, nlohmann::json& stats,
-                           std::vector<std::vector<glm::vec4>>* atlasPoints) {
+                           std::vector<AtlasSamples>* atlasPoints) {
   AtlasVoxelizer v(req, prof, atlasPoints);
   v.voxelizeFrame(req.time, prof);
   BinaryGrid grid(req.box);

@@ -12,12 +12,18 @@ namespace vgi {
 // mesh's atlas (cached), uploads the meshes in object space, measures which
 // triangles own texels, and voxelizes the static meshes once. Each frame then
 // copies the static grid and inserts only the dynamic meshes at that time.
+// One mesh's atlas as rendered (read back for tests that run the CPU insertion).
+struct AtlasSamples {
+  std::vector<glm::vec4> positions;  // per texel: world position, w = 1 if valid
+  std::vector<int> triangles;        // per texel: the triangle that wrote it, −1 if none
+  std::vector<glm::vec3> corners;    // world corners, 3 per triangle, at the frame's time
+  float footprint = 0;               // world radius of each point's footprint (0: the point only)
+};
+
 class AtlasVoxelizer {
  public:
-  // atlasPoints, if given, receives each mesh's atlas position texture at
-  // request.time (xyz, w = valid) for tests that run the CPU insertion.
-  AtlasVoxelizer(const VoxelizeRequest& request, Profiler& profiler,
-                 std::vector<std::vector<glm::vec4>>* atlasPoints = nullptr);
+  // atlasPoints, if given, receives each mesh's atlas at request.time.
+  AtlasVoxelizer(const VoxelizeRequest& request, Profiler& profiler, std::vector<AtlasSamples>* atlasPoints = nullptr);
   ~AtlasVoxelizer();
   AtlasVoxelizer(const AtlasVoxelizer&) = delete;
   AtlasVoxelizer& operator=(const AtlasVoxelizer&) = delete;
@@ -39,7 +45,8 @@ class AtlasVoxelizer {
   struct ValueBuffers;
   // Points are counted on the GPU into `counter` (read only by stats(): no sync per mesh).
   void renderAndInsert(const MeshGpu& mesh, float time, const GpuGridBuffer& target, const ValueBuffers* values,
-                       unsigned counter, Profiler& profiler, std::vector<int>* ids, std::vector<glm::vec4>* points);
+                       unsigned counter, Profiler& profiler, std::vector<int>* ids, AtlasSamples* points);
+  void setPointCellInputs(unsigned program, const MeshGpu& mesh, float time) const;
   VoxelizeRequest request_;
   std::vector<std::unique_ptr<MeshGpu>> meshes_;
   std::unique_ptr<GpuGridBuffer> static_, frame_;
@@ -55,9 +62,10 @@ class AtlasVoxelizer {
 // One-shot form for `vgi voxelize` and the registry: construct, one frame at
 // request.time, read back; stats as AtlasVoxelizer::stats().
 BinaryGrid voxelizeAtlasGl(const VoxelizeRequest& request, Profiler& profiler, nlohmann::json& stats,
-                           std::vector<std::vector<glm::vec4>>* atlasPoints = nullptr);
+                           std::vector<AtlasSamples>* atlasPoints = nullptr);
 
-// The insertion step on the CPU, through the same kernel (shared::pointBit).
-void insertAtlasPoints(const std::vector<glm::vec4>& positions, BinaryGrid& grid);
+// The insertion step on the CPU, through the same kernels (shared::pointBit,
+// shared::footprintCells, shared::triangleOverlapsBox).
+void insertAtlasPoints(const AtlasSamples& atlas, BinaryGrid& grid);
 
 }  // namespace vgi

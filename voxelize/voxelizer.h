@@ -29,6 +29,10 @@ struct VoxelizeRequest {
   // radius ¼ cell gets a point.
   float texelsPerVoxel = kAutoTexelsPerVoxel;
   int atlasResolution = 0;
+  // Atlas voxelizer: each point also sets the cells within this many texels
+  // that its triangle overlaps (shaders/shared/atlas_footprint.glsl); 0 = the
+  // paper's single point per texel.
+  float atlasFootprint = 1.0f;
   std::string atlasCacheDir;
   // Multi-valued grids to build as well (atlas voxelizer): "normal", "albedo",
   // "glossy". Only these are built.

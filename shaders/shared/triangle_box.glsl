@@ -11,8 +11,11 @@ SHARED_BEGIN
 // True if the projections of triangle (a, b, c) and of the box (half size h,
 // centred at the origin) onto `axis` are disjoint.
 SHARED_FN bool separatedOnAxis(vec3 axis, vec3 a, vec3 b, vec3 c, vec3 h) {
-  float pa = dot(axis, a), pb = dot(axis, b), pc = dot(axis, c);
-  float r = h.x * abs(axis.x) + h.y * abs(axis.y) + h.z * abs(axis.z);
+  // precise: GPU and CPU must round alike (GLSL would fuse multiply-adds).
+  SHARED_PRECISE float pa = dot(axis, a);
+  SHARED_PRECISE float pb = dot(axis, b);
+  SHARED_PRECISE float pc = dot(axis, c);
+  SHARED_PRECISE float r = h.x * abs(axis.x) + h.y * abs(axis.y) + h.z * abs(axis.z);
   return min(pa, min(pb, pc)) > r || max(pa, max(pb, pc)) < -r;
 }
 
@@ -28,8 +31,10 @@ SHARED_FN bool triangleOverlapsBox(vec3 center, vec3 h, vec3 a0, vec3 b0, vec3 c
     return false;
   if (separatedOnAxis(ux, a, b, c, h) || separatedOnAxis(uy, a, b, c, h) || separatedOnAxis(uz, a, b, c, h))
     return false;
-  vec3 n = cross(e0, e1);
-  return abs(dot(n, a)) <= h.x * abs(n.x) + h.y * abs(n.y) + h.z * abs(n.z);
+  SHARED_PRECISE vec3 n = cross(e0, e1);
+  SHARED_PRECISE float d = abs(dot(n, a));
+  SHARED_PRECISE float r = h.x * abs(n.x) + h.y * abs(n.y) + h.z * abs(n.z);
+  return d <= r;
 }
 
 SHARED_END

@@ -19,11 +19,13 @@ struct GridParams {
 };
 
 // World position → continuous grid coordinates (cell (i,j,k) spans [i, i+1) × …).
-SHARED_FN vec3 worldToGrid(GridParams g, vec3 p) {
-  vec3 d = p - vec3(g.origin.x, g.origin.y, g.origin.z);
-  return vec3(dot(d, vec3(g.axisX.x, g.axisX.y, g.axisX.z)) * g.axisX.w,
-              dot(d, vec3(g.axisY.x, g.axisY.y, g.axisY.z)) * g.axisY.w,
-              dot(d, vec3(g.axisZ.x, g.axisZ.y, g.axisZ.z)) * g.axisZ.w);
+// precise: the GPU must round like the CPU (GLSL would fuse the dot products).
+SHARED_FN vec3 worldToGrid(SHARED_IN(GridParams) g, vec3 p) {
+  SHARED_PRECISE vec3 d = p - vec3(g.origin.x, g.origin.y, g.origin.z);
+  SHARED_PRECISE vec3 q = vec3(dot(d, vec3(g.axisX.x, g.axisX.y, g.axisX.z)) * g.axisX.w,
+                               dot(d, vec3(g.axisY.x, g.axisY.y, g.axisY.z)) * g.axisY.w,
+                               dot(d, vec3(g.axisZ.x, g.axisZ.y, g.axisZ.z)) * g.axisZ.w);
+  return q;
 }
 
 // The cell holding grid position q; positions exactly on the upper boundary

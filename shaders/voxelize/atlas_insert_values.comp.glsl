@@ -1,10 +1,11 @@
 // Multi-valued atlas voxelization, insertion: one point per valid atlas texel
-// adds its values to its cell (shaders/shared/value_grid.glsl). Only the
-// channels a caller asked for are compiled in (VALUE_NORMAL, VALUE_ALBEDO, VALUE_GLOSSY).
+// adds its values (shaders/shared/value_grid.glsl) to its cell and, with a
+// footprint, to the other cells it sets in the binary grid
+// (atlas_point_cells.glsl), so every set cell has values. Only the channels a
+// caller asked for are compiled in (VALUE_NORMAL, VALUE_ALBEDO, VALUE_GLOSSY).
 #include "grid_uniforms.glsl"
 #include "../shared/value_grid.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D atlasPosition;
 layout(binding = 1) uniform sampler2D atlasNormal;
 layout(binding = 2) uniform sampler2D atlasAlbedo;
 layout(binding = 3) uniform sampler2D atlasGlossy;
@@ -12,28 +13,25 @@ layout(std430, binding = 4) buffer Counts { uint counts[]; };
 layout(std430, binding = 5) buffer NormalSums { uint normalSums[]; };
 layout(std430, binding = 6) buffer AlbedoSums { uint albedoSums[]; };
 layout(std430, binding = 7) buffer GlossySums { uint glossySums[]; };
-uniform ivec2 uAtlasSize;
-void main() {
-  ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-  if (t.x >= uAtlasSize.x || t.y >= uAtlasSize.y) return;
-  vec4 p = texelFetch(atlasPosition, t, 0);
-  if (p.w == 0.0f) return;
-  GridParams g = gridFromUniforms();
-  vec3 q = worldToGrid(g, p.xyz);
-  if (!insideGrid(g, q)) return;
-  uvec3 cell = gridCell(g, q);
-  atomicAdd(counts[valueIndex(cell, g.resolution, 0u) / 4u], 1u);
+void visitCell(ivec2 t, uvec3 cell) {
+  atomicAdd(counts[valueIndex(cell, uResolution, 0u) / 4u], 1u);
 #ifdef VALUE_NORMAL
   vec4 n = texelFetch(atlasNormal, t, 0);
-  for (uint c = 0u; c < 3u; ++c) atomicAdd(normalSums[valueIndex(cell, g.resolution, c)], toFixed(n[c], -1.0f, 1.0f));
+  for (uint c = 0u; c < 3u; ++c) atomicAdd(normalSums[valueIndex(cell, uResolution, c)], toFixed(n[c], -1.0f, 1.0f));
 #endif
 #ifdef VALUE_ALBEDO
   vec4 a = texelFetch(atlasAlbedo, t, 0);
-  for (uint c = 0u; c < 3u; ++c) atomicAdd(albedoSums[valueIndex(cell, g.resolution, c)], toFixed(a[c], 0.0f, 1.0f));
+  for (uint c = 0u; c < 3u; ++c) atomicAdd(albedoSums[valueIndex(cell, uResolution, c)], toFixed(a[c], 0.0f, 1.0f));
 #endif
 #ifdef VALUE_GLOSSY
   vec4 s = texelFetch(atlasGlossy, t, 0);
-  for (uint c = 0u; c < 3u; ++c) atomicAdd(glossySums[valueIndex(cell, g.resolution, c)], toFixed(s[c], 0.0f, 1.0f));
-  atomicAdd(glossySums[valueIndex(cell, g.resolution, 3u)], toFixed(encodeExponent(s.w), 0.0f, exponentCodeMax()));
+  for (uint c = 0u; c < 3u; ++c) atomicAdd(glossySums[valueIndex(cell, uResolution, c)], toFixed(s[c], 0.0f, 1.0f));
+  atomicAdd(glossySums[valueIndex(cell, uResolution, 3u)], toFixed(encodeExponent(s.w), 0.0f, exponentCodeMax()));
 #endif
+}
+#include "atlas_point_cells.glsl"
+void main() {
+  ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+  if (t.x >= uAtlasSize.x || t.y >= uAtlasSize.y) return;
+  visitPointCells(t);
 }

@@ -1,0 +1,41 @@
+// The cells one atlas point inserts into, for both insertion shaders: its own
+// cell, then (uFootprint > 0) every other cell of its footprint that its
+// triangle overlaps (shaders/shared/atlas_footprint.glsl). The including shader
+// defines `void visitCell(ivec2 texel, uvec3 cell)` first.
+#include "grid_uniforms.glsl"
+#include "../shared/triangle_box.glsl"
+#include "../shared/atlas_footprint.glsl"
+layout(binding = 0) uniform sampler2D atlasPosition;
+layout(binding = 4) uniform isampler2D atlasTriangle;
+layout(std430, binding = 3) readonly buffer Corners { float corners[]; };  // the mesh's VBO
+uniform ivec2 uAtlasSize;
+uniform float uFootprint;  // world radius; 0: the point only
+uniform mat4 uModel;
+
+vec3 gridCorner(GridParams g, int i) {
+  int o = ATLAS_VERTEX_FLOATS * i;
+  precise vec4 w = uModel * vec4(corners[o], corners[o + 1], corners[o + 2], 1.0f);  // rounds like the CPU
+  return worldToGrid(g, w.xyz);
+}
+
+// False if the texel holds no point.
+bool visitPointCells(ivec2 t) {
+  vec4 p = texelFetch(atlasPosition, t, 0);
+  if (p.w == 0.0f) return false;
+  GridParams g = gridFromUniforms();
+  vec3 q = worldToGrid(g, p.xyz);
+  if (!insideGrid(g, q)) return true;
+  uvec3 own = gridCell(g, q);
+  visitCell(t, own);
+  int tri = texelFetch(atlasTriangle, t, 0).x;
+  if (uFootprint <= 0.0f || tri < 0) return true;
+  vec3 a = gridCorner(g, 3 * tri), b = gridCorner(g, 3 * tri + 1), c = gridCorner(g, 3 * tri + 2);
+  CellRange r = footprintCells(g, q, uFootprint);
+  for (int z = r.lo.z; z <= r.hi.z; ++z)
+    for (int y = r.lo.y; y <= r.hi.y; ++y)
+      for (int x = r.lo.x; x <= r.hi.x; ++x) {
+        uvec3 cell = uvec3(x, y, z);
+        if (cell != own && triangleOverlapsBox(vec3(x, y, z) + 0.5f, vec3(0.5f), a, b, c)) visitCell(t, cell);
+      }
+  return true;
+}
