@@ -144,3 +144,28 @@ TEST(Cli, VoxelizeFramesReportPerFramePasses) {
   EXPECT_NE(bad.output.find("--time-step"), std::string::npos) << bad.output;
 }
 }  // namespace vgi
+
+namespace vgi {
+TEST(Cli, BenchTraverseReportsEveryTracer) {
+  CliRun r = vgi("bench traverse --voxels 128 --rays 3000 --repeat 1 --max-dist 0.2 --json --stats " +
+                 tmp("bt.json"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("bt.json")));
+  for (const char* t : {"hierarchical", "dda", "march", "embree"})
+    for (const char* k : {"mrays_per_s", "agree_dda", "agree_embree_hit", "dist_err_p95_voxels"})
+      EXPECT_TRUE(s["tracers"][t].contains(k)) << t << " " << k;
+  EXPECT_EQ(s["tracers"]["hierarchical"]["agree_dda"], 1.0);
+  EXPECT_EQ(s["tracers"]["embree"]["agree_embree_hit"], 1.0);
+  EXPECT_EQ(s["tracers"]["hierarchical"]["gl_equals_cpu"], true);
+  EXPECT_EQ(s["resolution"], nlohmann::json({128, 128, 128}));
+  CliRun a = vgi("bench traverse --max-dist -1");
+  EXPECT_EQ(a.code, 2);
+  EXPECT_NE(a.output.find("--max-dist -1"), std::string::npos) << a.output;
+  CliRun b = vgi("bench traverse --tracers hierarchical,octree");
+  EXPECT_EQ(b.code, 2);
+  EXPECT_NE(b.output.find("octree"), std::string::npos) << b.output;
+  CliRun c = vgi("voxelize --atlas-footprint 9");
+  EXPECT_EQ(c.code, 2);
+  EXPECT_NE(c.output.find("--atlas-footprint 9"), std::string::npos) << c.output;
+}
+}  // namespace vgi
