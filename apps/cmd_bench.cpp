@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "apps/commands.h"
@@ -61,8 +62,7 @@ struct Agreement {
   size_t bothHit = 0;
 };
 
-Agreement agreement(const std::vector<TraceResult>& r, const std::vector<TraceResult>& ref, float voxelSize,
-                    bool compareVoxels) {
+Agreement agreement(const std::vector<TraceResult>& r, const std::vector<TraceResult>& ref, float voxelSize) {
   Agreement a;
   std::vector<float> errs;
   size_t sameHit = 0, sameVoxel = 0;
@@ -227,8 +227,8 @@ void addTraverseBench(CLI::App& bench) {
     nlohmann::json per = nlohmann::json::object();
     for (const std::string& name : tracers) {
       const auto& r = results[name];
-      Agreement dda = agreement(r, results["dda"], voxelSize, true);
-      Agreement emb = agreement(r, results["embree"], voxelSize, false);
+      Agreement dda = agreement(r, results["dda"], voxelSize);
+      Agreement emb = agreement(r, results["embree"], voxelSize);
       size_t hits = 0;
       uint64_t steps = 0;
       for (auto& x : r) {
@@ -250,6 +250,7 @@ void addTraverseBench(CLI::App& bench) {
       j["agree_embree_hit"] = emb.sameHit;
       j["dist_err_mean_voxels"] = emb.errMean;
       j["dist_err_p95_voxels"] = emb.errP95;
+      j["dist_err_max_voxels"] = emb.errMax;
       per[name] = j;
     }
     s["tracers"] = per;
