@@ -50,8 +50,10 @@ TEST(DirectModule, PointAndDirectionalShadowsMatchTheReference) {
   RenderOutput ref = render(path, "reference", {"integrator=direct"}, 96, 16);
   ImageDiff d = compareImages(gl.result.image, ref.result.image);
   EXPECT_LT(d.relMse, 0.01);
-  EXPECT_EQ(gl.stats["extra"]["shadow_maps"]["cube"], 2);
-  EXPECT_EQ(gl.stats["extra"]["shadow_maps"]["directional"], 1);
+  // The point light gets a cube; the 35° spot and the directional light one face each.
+  EXPECT_EQ(gl.stats["extra"]["light_maps"]["cube"], 1);
+  EXPECT_EQ(gl.stats["extra"]["light_maps"]["single_face"], 2);
+  EXPECT_EQ(gl.stats["extra"]["light_maps"]["faces"], 8);
 }
 
 TEST(DirectModule, BadParametersAreErrors) {

@@ -6,23 +6,18 @@
 #include "../../shared/brdf.glsl"
 #include "../../shared/environment.glsl"
 #include "../../shared/gpu_scene.glsl"
+#include "../../shared/light_maps.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2D gPosition;
 layout(binding = 1) uniform sampler2D gNormal;
 layout(binding = 2) uniform sampler2D gAlbedo;
-layout(binding = 3) uniform samplerCubeArray shadowCubes;
-layout(binding = 4) uniform sampler2DArray shadowPlanes;
 layout(rgba32f, binding = 0) uniform image2D uAccum;
 
 uniform vec3 uCameraPosition;
 uniform mat4 uInvViewProj;
-uniform float uShadowRes;
 uniform float uShadowBias;     // in shadow-map texels
 uniform float uNormalOffset;   // in shadow-map texels
-uniform mat4 uPlaneViewProj[MAX_DIRECTIONAL];
-uniform float uPlaneTexelWorld[MAX_DIRECTIONAL];
-uniform vec3 uPlaneOrigin[MAX_DIRECTIONAL];
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -42,32 +37,11 @@ void main() {
     BrdfParams brdf = gpuMaterialBrdf(m, texelFetch(gAlbedo, px, 0).xyz);
     vec3 wo = normalize(uCameraPosition - p);
     L = materials[m].emission.xyz;
-    int cubeSlot = 0;
-    int planeSlot = 0;
     for (int i = 0; i < lights.length(); ++i) {
-      PackedLight light = lights[i];
-      bool directional = uint(light.positionType.w + 0.5f) == LIGHT_DIRECTIONAL;
-      LightSample ls = sampleDeltaLight(light, p);
+      LightSample ls = sampleDeltaLight(lights[i], p);
       float cosI = dot(ls.wi, n);
       bool lit = cosI > 0.0f && (ls.radiance.x + ls.radiance.y + ls.radiance.z) > 0.0f;
-      if (lit && !directional) {
-        // Cube face: 90° over uShadowRes texels, so one texel spans 2·d/res in world.
-        float texel = 2.0f * ls.dist / uShadowRes;
-        vec3 q = p + n * (uNormalOffset * texel);
-        vec3 d = q - light.positionType.xyz;
-        float stored = texture(shadowCubes, vec4(d, float(cubeSlot))).x;
-        lit = length(d) - uShadowBias * texel / max(cosI, 0.2f) <= stored;
-      } else if (lit) {
-        float texel = uPlaneTexelWorld[planeSlot];
-        vec3 q = p + n * (uNormalOffset * texel);
-        vec4 c = uPlaneViewProj[planeSlot] * vec4(q, 1.0f);
-        vec2 uv = c.xy * 0.5f + 0.5f;
-        float stored = texture(shadowPlanes, vec3(uv, float(planeSlot))).x;
-        float depth = dot(q - uPlaneOrigin[planeSlot], light.directionCosCone.xyz);
-        lit = depth - uShadowBias * texel / max(cosI, 0.2f) <= stored;
-      }
-      if (directional) planeSlot++;
-      else cubeSlot++;
+      if (lit) lit = lightMapLit(i, p, n, cosI, uShadowBias, uNormalOffset);
       if (lit) L += evalBrdf(brdf, n, wo, ls.wi) * ls.radiance * cosI;
     }
   }

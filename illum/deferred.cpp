@@ -1,0 +1,130 @@
+#include "illum/deferred.h"
+
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/error.h"
+#include "core/gpu_scene.h"
+#include "core/shader_library.h"
+#include "illum/light_maps.h"
+
+namespace vgi {
+
+float halton(int index, int base) {
+  float f = 1, r = 0;
+  for (int i = index; i > 0; i /= base) {
+    f /= float(base);
+    r += f * float(i % base);
+  }
+  return r;
+}
+
+FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int frame, int frames) {
+  float camFar = glm::length(glm::max(glm::abs(b.lo - cam.position), glm::abs(b.hi - cam.position))) * 1.01f + 1e-6f;
+  glm::mat4 proj = glm::perspective(glm::radians(cam.fovYDeg), float(W) / float(H),
+                                    std::max(camFar * 1e-5f, 1e-7f), camFar);
+  glm::mat4 view = glm::lookAt(cam.position, cam.target, cam.up);
+  glm::vec2 j = frames == 1 ? glm::vec2(0.0f) : glm::vec2(halton(frame + 1, 2), halton(frame + 1, 3)) - 0.5f;
+  glm::vec2 jNdc = 2.0f * j / glm::vec2(W, H);
+  glm::mat4 jitter = glm::translate(glm::mat4(1.0f), glm::vec3(jNdc.x, -jNdc.y, 0.0f));
+  FrameCamera c;
+  c.viewProj = jitter * proj * view;
+  c.invViewProj = glm::inverse(c.viewProj);
+  c.position = cam.position;
+  return c;
+}
+
+GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H) {
+  GLint maxTex = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
+  if (W > maxTex || H > maxTex) fail("--size ", W, "x", H, " exceeds this GL's largest texture (", maxTex, ")");
+  prog_ = shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/gbuffer.frag.glsl"});
+  glCreateTextures(GL_TEXTURE_2D, 3, tex_);
+  for (unsigned t : tex_) {
+    glTextureStorage2D(t, 1, GL_RGBA32F, W, H);
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  glCreateRenderbuffers(1, &depth_);
+  glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, W, H);
+  glCreateFramebuffers(1, &fbo_);
+  for (int i = 0; i < 3; ++i) glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + i, tex_[i], 0);
+  glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  glNamedFramebufferDrawBuffers(fbo_, 3, bufs);
+  if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    fail("the G-buffer framebuffer is incomplete on this GL");
+}
+
+GBuffer::~GBuffer() {
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteRenderbuffers(1, &depth_);
+  glDeleteTextures(3, tex_);
+}
+
+void GBuffer::render(const GpuScene& gpu, const FrameCamera& camera) {
+  const float zero[4] = {0, 0, 0, 0};
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, w_, h_);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  for (int i = 0; i < 3; ++i) glClearBufferfv(GL_COLOR, i, zero);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glUseProgram(prog_);
+  gpu.bind(prog_);
+  glUniformMatrix4fv(glGetUniformLocation(prog_, "uViewProj"), 1, GL_FALSE, glm::value_ptr(camera.viewProj));
+  gpu.draw();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void GBuffer::bind(unsigned firstUnit) const {
+  for (unsigned i = 0; i < 3; ++i) glBindTextureUnit(firstUnit + i, tex_[i]);
+}
+
+Accumulator::Accumulator(int W, int H) : w_(W), h_(H) {
+  glCreateTextures(GL_TEXTURE_2D, 1, &tex_);
+  glTextureStorage2D(tex_, 1, GL_RGBA32F, W, H);
+  const float zero[4] = {0, 0, 0, 0};
+  glClearTexImage(tex_, 0, GL_RGBA, GL_FLOAT, zero);
+}
+
+Accumulator::~Accumulator() { glDeleteTextures(1, &tex_); }
+
+Image Accumulator::read() const {
+  std::vector<glm::vec4> px(size_t(w_) * h_);
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  glGetTextureImage(tex_, 0, GL_RGBA, GL_FLOAT, GLsizei(px.size() * sizeof(glm::vec4)), px.data());
+  Image image(w_, h_);
+  for (int y = 0; y < h_; ++y)
+    for (int x = 0; x < w_; ++x) {
+      const glm::vec4& v = px[size_t(h_ - 1 - y) * w_ + x];  // GL rows start at the bottom
+      image.at(x, y) = v.w > 0 ? glm::vec3(v) / v.w : glm::vec3(0.0f);
+    }
+  return image;
+}
+
+DirectPass::DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadowBias, float normalOffset)
+    : gpu_(gpu) {
+  prog_ = shaders.program({"illum/direct/shade.comp.glsl"});
+  glProgramUniform1f(prog_, glGetUniformLocation(prog_, "uShadowBias"), shadowBias);
+  glProgramUniform1f(prog_, glGetUniformLocation(prog_, "uNormalOffset"), normalOffset);
+}
+
+void DirectPass::shade(const GBuffer& g, const LightMaps& maps, const FrameCamera& cam, const Accumulator& target) {
+  glUseProgram(prog_);
+  gpu_.bind(prog_);  // other passes may have used the same binding points
+  glUniform3fv(glGetUniformLocation(prog_, "uCameraPosition"), 1, &cam.position.x);
+  glUniformMatrix4fv(glGetUniformLocation(prog_, "uInvViewProj"), 1, GL_FALSE, glm::value_ptr(cam.invViewProj));
+  g.bind(0);
+  maps.bind();
+  glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  glDispatchCompute(unsigned(g.width() + 7) / 8, unsigned(g.height() + 7) / 8, 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+}  // namespace vgi

@@ -1,0 +1,152 @@
+#include "illum/light_maps.h"
+
+#include <glad/gl.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/error.h"
+#include "core/gpu_scene.h"
+#include "core/profiler.h"
+#include "core/shader_library.h"
+
+namespace vgi {
+
+LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds& b, int resolution) {
+  LightFaceLayout out;
+  const float diag = std::max(b.diagonal(), 1e-6f);
+  const glm::vec3 center = 0.5f * (b.lo + b.hi);
+  auto add = [&](const glm::mat4& vp, glm::vec3 eye, bool ortho, glm::vec3 axis, float texel) {
+    shared::LightFace f;
+    f.viewProj = vp;
+    f.eyeOrtho = glm::vec4(eye, ortho ? 1.0f : 0.0f);
+    f.axisTexel = glm::vec4(axis, texel);
+    out.faces.push_back(f);
+  };
+  for (const Light& l : lights) {
+    const int first = int(out.faces.size());
+    if (l.type == LightType::Directional) {
+      glm::vec3 d = glm::normalize(l.direction);
+      glm::vec3 up = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+      float r = 0.5f * diag * 1.01f;
+      glm::vec3 origin = center - d * r;
+      glm::mat4 vp = glm::ortho(-r, r, -r, r, 0.0f, 2.0f * r) * glm::lookAt(origin, center, up);
+      add(vp, origin, true, d, 2.0f * r / float(resolution));
+    } else {
+      float maxDist = glm::length(glm::max(glm::abs(b.lo - l.position), glm::abs(b.hi - l.position))) * 1.01f + 1e-6f;
+      float nearP = std::max(maxDist * 1e-5f, 1e-7f);
+      if (l.type == LightType::Spot && l.coneHalfAngleDeg <= kSingleFaceSpotDeg) {
+        // One face with a 2 % margin, so texels on the cone's edge are inside.
+        float fov = 2.0f * glm::radians(l.coneHalfAngleDeg) * 1.02f;
+        glm::vec3 axis = glm::normalize(l.direction);
+        glm::vec3 up = std::abs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+        glm::mat4 vp = glm::perspective(fov, 1.0f, nearP, maxDist) * glm::lookAt(l.position, l.position + axis, up);
+        add(vp, l.position, false, axis, 2.0f * std::tan(0.5f * fov) / float(resolution));
+      } else {
+        // Cube faces in GL's order with their conventional up vectors.
+        const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+        glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, nearP, maxDist);
+        for (int f = 0; f < 6; ++f)
+          add(proj * glm::lookAt(l.position, l.position + dirs[f], ups[f]), l.position, false, dirs[f],
+              2.0f / float(resolution));
+      }
+    }
+    out.ranges.push_back(glm::ivec4(first, int(out.faces.size()) - first, 0, 0));
+  }
+  return out;
+}
+
+LightMaps::LightMaps(const Scene& scene, const GpuScene& gpu, ShaderLibrary& shaders, int resolution,
+                     bool reflective, Profiler& profiler)
+    : resolution_(resolution), reflective_(reflective) {
+  GLint maxTex = 0, maxLayers = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
+  if (resolution > maxTex) fail("parameter 'shadow_res': ", resolution, " exceeds GL_MAX_TEXTURE_SIZE ", maxTex);
+  layout_ = layoutLightFaces(scene.lights, gpu.bounds(), resolution);
+  const int layers = std::max(1, faceCount());
+  if (layers > maxLayers)
+    fail("the scene's ", scene.lights.size(), " lights need ", layers, " light-map faces; this GL allows ", maxLayers);
+
+  const GLenum formats[4] = {GL_R32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F};
+  const int channels = reflective ? 4 : 1;
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, channels, textures_);
+  for (int c = 0; c < channels; ++c) {
+    glTextureStorage3D(textures_[c], 1, formats[c], resolution, resolution, layers);
+    glTextureParameteri(textures_[c], GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(textures_[c], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(textures_[c], GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(textures_[c], GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+  glCreateBuffers(1, &faceBuffer_);
+  glNamedBufferStorage(faceBuffer_, GLsizeiptr(std::max<size_t>(1, layout_.faces.size()) * sizeof(shared::LightFace)),
+                       layout_.faces.empty() ? nullptr : layout_.faces.data(), 0);
+  glCreateBuffers(1, &rangeBuffer_);
+  glNamedBufferStorage(rangeBuffer_, GLsizeiptr(std::max<size_t>(1, layout_.ranges.size()) * sizeof(glm::ivec4)),
+                       layout_.ranges.empty() ? nullptr : layout_.ranges.data(), 0);
+
+  ShaderDefines defs;
+  if (reflective) defs["REFLECTIVE"] = "1";
+  unsigned prog = shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/light_map.frag.glsl"}, defs);
+  auto s = profiler.scope(reflective ? "rsm" : "shadow_maps");
+  unsigned fbo = 0, depth = 0;
+  glCreateFramebuffers(1, &fbo);
+  glCreateRenderbuffers(1, &depth);
+  glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT32F, resolution, resolution);
+  glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+  glNamedFramebufferDrawBuffers(fbo, channels, bufs);
+  glUseProgram(prog);
+  gpu.bind(prog);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glViewport(0, 0, resolution, resolution);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  const float far = 1e30f, zero[4] = {0, 0, 0, 0}, farv[4] = {far, far, far, far};
+  for (size_t li = 0; li < layout_.ranges.size(); ++li) {
+    const glm::ivec4 r = layout_.ranges[li];
+    glUniform1i(glGetUniformLocation(prog, "uLight"), int(li));
+    for (int f = r.x; f < r.x + r.y; ++f) {
+      const shared::LightFace& face = layout_.faces[size_t(f)];
+      for (int c = 0; c < channels; ++c)
+        glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0 + c, textures_[c], 0, f);
+      if (f == r.x && glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        fail("light maps: the framebuffer is incomplete on this GL");
+      glClearBufferfv(GL_COLOR, 0, farv);
+      for (int c = 1; c < channels; ++c) glClearBufferfv(GL_COLOR, c, zero);
+      glClear(GL_DEPTH_BUFFER_BIT);
+      glUniform3fv(glGetUniformLocation(prog, "uEye"), 1, &face.eyeOrtho.x);
+      glUniform3fv(glGetUniformLocation(prog, "uAxis"), 1, &face.axisTexel.x);
+      glUniform1i(glGetUniformLocation(prog, "uOrthographic"), face.eyeOrtho.w > 0.5f ? 1 : 0);
+      glUniformMatrix4fv(glGetUniformLocation(prog, "uViewProj"), 1, GL_FALSE, glm::value_ptr(face.viewProj));
+      gpu.draw();
+    }
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteRenderbuffers(1, &depth);
+}
+
+LightMaps::~LightMaps() {
+  glDeleteTextures(4, textures_);
+  unsigned b[2] = {faceBuffer_, rangeBuffer_};
+  glDeleteBuffers(2, b);
+}
+
+void LightMaps::bind() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_LIGHT_FACES, faceBuffer_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_LIGHT_RANGES, rangeBuffer_);
+  const unsigned units[4] = {TEXUNIT_LIGHT_DISTANCE, TEXUNIT_LIGHT_POSITION, TEXUNIT_LIGHT_NORMAL,
+                             TEXUNIT_LIGHT_RADIANCE};
+  for (int c = 0; c < (reflective_ ? 4 : 1); ++c) glBindTextureUnit(units[c], textures_[c]);
+}
+
+nlohmann::json LightMaps::describe() const {
+  int single = 0, cube = 0;
+  for (auto& r : layout_.ranges) (r.y == 6 ? cube : single)++;
+  return {{"faces", faceCount()}, {"cube", cube}, {"single_face", single}, {"resolution", resolution_},
+          {"reflective", reflective_}};
+}
+
+}  // namespace vgi

@@ -1,0 +1,52 @@
+// Light maps for every delta light of a scene (shaders/shared/light_maps.glsl):
+// distance maps for shadow tests and, when reflective, reflective shadow maps
+// (position, normal, reflected direct radiance; VGI §5.1) — one 2D array
+// texture per channel, a face table as an SSBO.
+#pragma once
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/scene.h"
+#include "shaders/shared/light_maps.glsl"
+
+namespace vgi {
+
+class GpuScene;
+class Profiler;
+class ShaderLibrary;
+
+// The faces of each light, in scene order (first face, count) and their
+// matrices; pure geometry, so it is testable without GL.
+struct LightFaceLayout {
+  std::vector<shared::LightFace> faces;
+  std::vector<glm::ivec4> ranges;  // per light: x first face, y count
+};
+// Spot lights with a cone half-angle up to this get one perspective face.
+constexpr float kSingleFaceSpotDeg = 60.0f;
+LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds& bounds, int resolution);
+
+class LightMaps {
+ public:
+  // Renders the maps (timed as "light_maps" or "rsm").
+  LightMaps(const Scene& scene, const GpuScene& gpu, ShaderLibrary& shaders, int resolution, bool reflective,
+            Profiler& profiler);
+  ~LightMaps();
+  LightMaps(const LightMaps&) = delete;
+  LightMaps& operator=(const LightMaps&) = delete;
+
+  // Binds the face table and the map textures (TEXUNIT_LIGHT_*).
+  void bind() const;
+  int faceCount() const { return int(layout_.faces.size()); }
+  bool reflective() const { return reflective_; }
+  nlohmann::json describe() const;  // for the stats
+
+ private:
+  LightFaceLayout layout_;
+  int resolution_;
+  bool reflective_;
+  unsigned faceBuffer_ = 0, rangeBuffer_ = 0;
+  unsigned textures_[4] = {0, 0, 0, 0};  // distance, position, normal, radiance
+};
+
+}  // namespace vgi

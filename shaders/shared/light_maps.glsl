@@ -1,0 +1,104 @@
+// Light maps: one set of faces per delta light, all layers of one 2D array
+// texture per channel — six perspective faces for a point light (or a spot
+// light wider than 60°), one perspective face for a narrower spot light, one
+// orthographic face fitted to the scene for a directional light. Each texel
+// stores the distance to the light (shadow maps, the `direct` module) and, for
+// reflective shadow maps (Dachsbacher and Stamminger 2005; VGI §5.1), the world
+// position, the normal and the diffusely reflected direct radiance of the
+// surface the light sees there.
+//
+// Distances are measured like the shadow test needs them: from the light
+// position (perspective faces) or along the light's direction of travel from
+// the map's plane (orthographic faces).
+#ifdef __cplusplus
+#pragma once
+#include "cpp_prelude.h"
+#endif
+
+#define BINDING_LIGHT_FACES 4       // SSBO LightFace[]
+#define BINDING_LIGHT_RANGES 5      // SSBO ivec4[] per light: x first face, y face count
+#define TEXUNIT_LIGHT_DISTANCE 10   // sampler2DArray R32F
+#define TEXUNIT_LIGHT_POSITION 11   // sampler2DArray RGBA32F (w = 1 where a surface was seen)
+#define TEXUNIT_LIGHT_NORMAL 12     // sampler2DArray RGBA16F
+#define TEXUNIT_LIGHT_RADIANCE 13   // sampler2DArray RGBA16F, reflected direct radiance (diffuse)
+
+SHARED_BEGIN
+
+struct LightFace {
+  mat4 viewProj;
+  vec4 eyeOrtho;        // xyz eye (light position, or the plane origin); w = 1 for orthographic
+  vec4 axisTexel;       // xyz view axis; w = texel size per unit distance (perspective) or in world units
+};
+
+// The cube face (GL order +x −x +y −y +z −z) a direction falls in.
+SHARED_FN int cubeFaceIndex(vec3 d) {
+  vec3 a = abs(d);
+  if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0f ? 0 : 1;
+  if (a.y >= a.z) return d.y >= 0.0f ? 2 : 3;
+  return d.z >= 0.0f ? 4 : 5;
+}
+
+SHARED_FN vec3 lightFaceEye(SHARED_IN(LightFace) f) { return vec3(f.eyeOrtho.x, f.eyeOrtho.y, f.eyeOrtho.z); }
+
+// The face of a light (first, count) that sees point p.
+SHARED_FN int lightMapFace(SHARED_IN(LightFace) first, int firstIndex, int count, vec3 p) {
+  return count == 6 ? firstIndex + cubeFaceIndex(p - lightFaceEye(first)) : firstIndex;
+}
+
+// The distance the map stores for a surface at p.
+SHARED_FN float lightMapDistance(SHARED_IN(LightFace) f, vec3 p) {
+  vec3 d = p - lightFaceEye(f);
+  if (f.eyeOrtho.w > 0.5f) return dot(d, vec3(f.axisTexel.x, f.axisTexel.y, f.axisTexel.z));
+  return length(d);
+}
+
+// The world size of one texel at a stored distance.
+SHARED_FN float lightMapTexelWorld(SHARED_IN(LightFace) f, float dist) {
+  return f.eyeOrtho.w > 0.5f ? f.axisTexel.w : f.axisTexel.w * dist;
+}
+
+// Texture coordinates of p in the face ([0,1]² inside).
+SHARED_FN vec2 lightMapUv(SHARED_IN(LightFace) f, vec3 p) {
+  vec4 c = f.viewProj * vec4(p.x, p.y, p.z, 1.0f);
+  return vec2(c.x / c.w * 0.5f + 0.5f, c.y / c.w * 0.5f + 0.5f);
+}
+
+// VGI §5.1: a hit point y back-projected into a reflective shadow map receives
+// the stored radiance when |y − p_rsm| < ε, ε = max(v, s/cos α · z/z_near):
+// v the voxel discretisation (here the voxel diagonal, as a voxel-entry hit can
+// be that far from the surface in its voxel), s/cos α · z/z_near the world size
+// of the RSM texel at the stored surface, stretched by the angle α between the
+// surface normal and the light direction (cos α clamped at 0.1).
+SHARED_FN float backProjectionEpsilon(float voxelDiagonal, float texelWorld, float cosAlpha) {
+  return max(voxelDiagonal, texelWorld / max(cosAlpha, 0.1f));
+}
+
+SHARED_END
+
+#ifndef __cplusplus
+layout(std430, binding = BINDING_LIGHT_FACES) readonly buffer LightFaceBuffer { LightFace lightFaces[]; };
+layout(std430, binding = BINDING_LIGHT_RANGES) readonly buffer LightRangeBuffer { ivec4 lightRanges[]; };
+layout(binding = TEXUNIT_LIGHT_DISTANCE) uniform sampler2DArray lightDistance;
+layout(binding = TEXUNIT_LIGHT_POSITION) uniform sampler2DArray lightPosition;
+layout(binding = TEXUNIT_LIGHT_NORMAL) uniform sampler2DArray lightNormal;
+layout(binding = TEXUNIT_LIGHT_RADIANCE) uniform sampler2DArray lightRadiance;
+
+// The face of light `light` that sees p.
+int lightFaceOf(int light, vec3 p) {
+  ivec4 r = lightRanges[light];
+  return lightMapFace(lightFaces[r.x], r.x, r.y, p);
+}
+
+// Shadow test of a surface point p (normal n, cos θ to the light) against the
+// light's distance map: the lookup is moved `normalOffset` texels along n and
+// the comparison biased by `bias` texels, slope-scaled by 1/cos θ.
+bool lightMapLit(int light, vec3 p, vec3 n, float cosI, float bias, float normalOffset) {
+  LightFace face = lightFaces[lightFaceOf(light, p)];
+  float texel = lightMapTexelWorld(face, lightMapDistance(face, p));
+  vec3 q = p + n * (normalOffset * texel);
+  int f = lightFaceOf(light, q);
+  face = lightFaces[f];
+  float stored = texture(lightDistance, vec3(lightMapUv(face, q), float(f))).x;
+  return lightMapDistance(face, q) - bias * texel / max(cosI, 0.2f) <= stored;
+}
+#endif
