@@ -35,6 +35,8 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--stats", *stats, "also write the stats JSON here");
   cmd->add_option("--exposure", *exposure, "PNG exposure multiplier")->capture_default_str();
   cmd->add_flag("--quiet", *quiet, "no progress bar");
+  auto aovs = std::make_shared<std::string>();
+  cmd->add_option("--aov", *aovs, "extra outputs, comma-separated (e.g. indirect,direct): <stem>.<aov>.exr/.png");
   cmd->add_option("--help-module", *helpModule, "print a method's parameters and exit");
   cmd->callback([=] {
     if (!helpModule->empty()) {
@@ -45,6 +47,7 @@ void addRenderCommand(CLI::App& app) {
     parseSize(*size, opt->width, opt->height);
     opt->gl = parseGlBackend(*gl);
     opt->progress = !*quiet;
+    opt->aovs = splitList(*aovs);
     checkOutputPath(*out);
     if (!stats->empty()) checkOutputFolder(*stats, "--stats");
     installInterruptHandler();

@@ -79,7 +79,7 @@ RenderResult DirectMethod::render(const RenderRequest& req, Profiler& prof) {
   result.sppCompleted = done;
   result.interrupted = done < req.spp;
   result.extra["light_maps"] = maps.describe();
-  result.extra["built"] = {"gbuffer", "light_maps"};
+  result.built = {"gbuffer", "light_maps"};
   return result;
 }
 

@@ -30,6 +30,12 @@ struct RenderRequest {
   GlContext* gl = nullptr;          // set for methods with needsGl()
   ShaderLibrary* shaders = nullptr; // idem
   bool progress = true;             // draw a progress bar on a terminal
+  std::vector<std::string> aovs;    // extra outputs asked for (a subset of Method::outputs())
+  bool wants(const std::string& aov) const {
+    for (auto& a : aovs)
+      if (a == aov) return true;
+    return false;
+  }
 };
 
 struct RenderResult {
@@ -37,18 +43,25 @@ struct RenderResult {
   int sppCompleted = 0;   // < requested when interrupted (Ctrl-C)
   bool interrupted = false;
   nlohmann::json extra = nlohmann::json::object();  // method-specific stats
+  std::map<std::string, Image> aovs;                 // the extra outputs asked for
+  std::vector<std::string> built;                    // the resources this render built
 };
 
 class Method {
  public:
   virtual ~Method() = default;
   virtual RenderResult render(const RenderRequest& request, Profiler& profiler) = 0;
+  // Extra output channels (AOVs) it can write besides the combined image.
+  virtual std::vector<std::string> outputs() const { return {}; }
 };
 
 struct MethodInfo {
   std::string name;
   std::string description;
   bool needsGl;
+  // The resources a frame builds (a module builds only these): "gbuffer",
+  // "light_maps", "rsm", "binary_grid", "or_mip_pyramid", "bvh", ….
+  std::vector<std::string> needs;
   std::function<std::unique_ptr<Method>(ParamSet& params, const Scene& scene)> create;
 };
 

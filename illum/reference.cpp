@@ -122,11 +122,17 @@ class ReferenceRenderer : public Method {
   }
 
   RenderResult render(const RenderRequest& req, Profiler& profiler) override;
+  // nearfield splits its estimate into the direct part and the one indirect bounce.
+  std::vector<std::string> outputs() const override {
+    return integrator_ == Integrator::NearField ? std::vector<std::string>{"direct", "indirect"}
+                                                : std::vector<std::string>{};
+  }
 
  private:
-  vec3 li(vec3 o, vec3 d, Pcg32& rng) const;
+  // Radiance along (o, d); `indirect` receives the indirect part where the integrator separates one.
+  vec3 li(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const;
   vec3 pathLi(vec3 o, vec3 d, Pcg32& rng) const;
-  vec3 nearFieldLi(vec3 o, vec3 d, Pcg32& rng) const;
+  vec3 nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const;
   float aoLi(vec3 o, vec3 d, Pcg32& rng) const;
   bool intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) const;
   vec3 directLight(const SurfacePoint& sp) const;
@@ -218,7 +224,7 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng) const {
   return L;
 }
 
-vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng) const {
+vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
   SurfacePoint x;
   if (!intersect(o, d, 1e30f, x)) return scene_->environmentRadiance(d);
   vec3 L = x.emission + directLight(x);
@@ -229,10 +235,10 @@ vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng) const {
   SurfacePoint y;
   vec3 yo = offsetOrigin(x, wi);
   if (intersect(yo, wi, radius_, y))
-    L += weight * (y.emission + directLight(y));
+    indirect = weight * (y.emission + directLight(y));
   else if (env_)
-    L += weight * scene_->environmentRadiance(wi);
-  return L;
+    indirect = weight * scene_->environmentRadiance(wi);
+  return L + indirect;
 }
 
 float ReferenceRenderer::aoLi(vec3 o, vec3 d, Pcg32& rng) const {
@@ -243,11 +249,11 @@ float ReferenceRenderer::aoLi(vec3 o, vec3 d, Pcg32& rng) const {
   return tracer_->occluded(offsetOrigin(x, wi), wi, 0.0f, radius_) ? 0.0f : 1.0f;
 }
 
-vec3 ReferenceRenderer::li(vec3 o, vec3 d, Pcg32& rng) const {
+vec3 ReferenceRenderer::li(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
   switch (integrator_) {
     case Integrator::Path:
     case Integrator::Direct: return pathLi(o, d, rng);
-    case Integrator::NearField: return nearFieldLi(o, d, rng);
+    case Integrator::NearField: return nearFieldLi(o, d, rng, indirect);
     case Integrator::Ao: return vec3(aoLi(o, d, rng));
   }
   return vec3(0.0f);
@@ -274,6 +280,8 @@ RenderResult ReferenceRenderer::render(const RenderRequest& req, Profiler& profi
   const int W = req.width, H = req.height, tile = 16;
   const int tilesX = (W + tile - 1) / tile, tilesY = (H + tile - 1) / tile;
   std::vector<glm::dvec3> sum(size_t(W) * H, glm::dvec3(0.0));
+  const bool splitIndirect = req.wants("indirect") || req.wants("direct");
+  std::vector<glm::dvec3> sumIndirect(splitIndirect ? sum.size() : 0, glm::dvec3(0.0));
   std::vector<int> count(size_t(W) * H, 0);
   int threads = req.threads > 0 ? req.threads : int(std::max(1u, std::thread::hardware_concurrency()));
 
@@ -299,9 +307,11 @@ RenderResult ReferenceRenderer::render(const RenderRequest& req, Profiler& profi
               float px = (2.0f * (x + j.x) / W - 1.0f) * tanHalf * aspect;
               float py = (1.0f - 2.0f * (y + j.y) / H) * tanHalf;
               vec3 d = glm::normalize(fwd + px * right + py * up);
-              vec3 L = li(cam.position, d, rng);
+              vec3 indirect(0.0f);
+              vec3 L = li(cam.position, d, rng, indirect);
               if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) sum[pix] += glm::dvec3(L);
               else throw std::logic_error("reference: non-finite radiance");
+              if (splitIndirect) sumIndirect[pix] += glm::dvec3(indirect);
             }
             count[pix] += n;
           }
@@ -333,9 +343,20 @@ RenderResult ReferenceRenderer::render(const RenderRequest& req, Profiler& profi
     minCount = std::min(minCount, count[i]);
     if (count[i] > 0) result.image.pixels[i] = vec3(sum[i] / double(count[i]));
   }
+  if (splitIndirect) {
+    Image indirect(W, H), direct(W, H);
+    for (size_t i = 0; i < sum.size(); ++i)
+      if (count[i] > 0) {
+        indirect.pixels[i] = vec3(sumIndirect[i] / double(count[i]));
+        direct.pixels[i] = vec3((sum[i] - sumIndirect[i]) / double(count[i]));
+      }
+    if (req.wants("indirect")) result.aovs["indirect"] = std::move(indirect);
+    if (req.wants("direct")) result.aovs["direct"] = std::move(direct);
+  }
   result.interrupted = done < req.spp;
   result.sppCompleted = minCount;
   result.extra["threads"] = threads;
+  result.built = {"bvh"};
   result.extra["triangles"] = flat_.triangleCount();
   tracer_.reset();
   return result;

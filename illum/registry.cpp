@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "illum/direct.h"
 #include "illum/method.h"
+#include "illum/nearfield.h"
 #include "illum/reference.h"
 
 namespace vgi {
@@ -10,8 +11,11 @@ namespace vgi {
 const std::vector<MethodInfo>& methodRegistry() {
   static const std::vector<MethodInfo> table = {
       {"direct", "GL deferred direct lighting with shadow maps (delta lights, emission)", true,
-       [](ParamSet& p, const Scene& s) { return createDirectMethod(p, s); }},
-      {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
+       {"gbuffer", "light_maps"}, [](ParamSet& p, const Scene& s) { return createDirectMethod(p, s); }},
+      {"nearfield", "GL near-field one-bounce GI: voxel visibility + RSM back-projection (VGI 5.1)", true,
+       {"binary_grid", "or_mip_pyramid", "rsm", "gbuffer"},
+       [](ParamSet& p, const Scene& s) { return createNearFieldMethod(p, s); }},
+      {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false, {"bvh"},
        [](ParamSet& p, const Scene& s) { return createReferenceMethod(p, s); }},
   };
   return table;

@@ -1,5 +1,6 @@
 #include "illum/render_job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -68,6 +69,14 @@ RenderOutput runRender(const RenderOptions& opt) {
   for (auto& kv : opt.set) params.setFromString(kv, "--set");
   std::unique_ptr<Method> method = info.create(params, scene);
   params.checkAllUsed("method '" + opt.method + "'");
+  const std::vector<std::string> outputs = method->outputs();
+  for (auto& a : opt.aovs)
+    if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) {
+      std::string known;
+      for (auto& o : outputs) known += (known.empty() ? "" : ", ") + o;
+      fail("--aov '", a, "': method '", opt.method, "' has no such output (",
+           known.empty() ? "it has none besides the image" : "known: " + known, ")");
+    }
 
   std::unique_ptr<GlContext> gl;
   std::unique_ptr<ShaderLibrary> shaders;
@@ -86,6 +95,7 @@ RenderOutput runRender(const RenderOptions& opt) {
   req.gl = gl.get();
   req.shaders = shaders.get();
   req.progress = opt.progress;
+  req.aovs = opt.aovs;
 
   RenderOutput out;
   auto t0 = std::chrono::steady_clock::now();
@@ -119,6 +129,9 @@ RenderOutput runRender(const RenderOptions& opt) {
     s["degenerate_triangles_dropped"] = scene.report.degenerateTrianglesDropped;
     s["warnings"] = scene.report.warnings;
     s["extra"] = out.result.extra;
+    s["built"] = out.result.built;
+    s["needs"] = info.needs;
+    s["aovs"] = opt.aovs;
   }
   out.stats["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (gl && gl->errorCount() > 0)
@@ -133,6 +146,12 @@ std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::
   std::vector<std::string> files = {stem.string() + ".exr", stem.string() + ".png", stem.string() + ".json"};
   writeImage(out.result.image, files[0]);
   writeImage(out.result.image, files[1], exposure);
+  for (auto& [name, image] : out.result.aovs) {
+    for (const char* ext : {".exr", ".png"}) {
+      files.push_back(stem.string() + "." + name + ext);
+      writeImage(image, files.back(), ext[1] == 'p' ? exposure : 1.0f);
+    }
+  }
   nlohmann::json s = out.stats;
   s["outputs"] = files;
   s["exposure_png"] = exposure;
@@ -146,9 +165,16 @@ std::string describeMethod(const std::string& name) {
   const MethodInfo& info = findMethod(name);
   Scene scene = loadScene("builtin:cornell");  // defaults that depend on the scene use the Cornell box
   ParamSet params;
-  info.create(params, scene);
+  std::unique_ptr<Method> method = info.create(params, scene);
   std::ostringstream os;
   os << name << ": " << info.description << (info.needsGl ? " [GL]" : " [CPU]") << "\n";
+  auto list = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? std::string("-") : s;
+  };
+  os << "needs: " << list(info.needs) << "\n";
+  os << "outputs: image" << (method->outputs().empty() ? "" : ", " + list(method->outputs())) << " (--aov NAME,...)\n";
   os << "parameters (--set key=value; scene-dependent defaults shown for builtin:cornell):\n";
   for (auto& d : params.docs())
     os << "  " << d.key << " (" << d.type << ", default " << d.defaultValue << "): " << d.doc << "\n";

@@ -25,6 +25,7 @@ struct RenderOptions {
   float time = 0;
   GlBackend gl = GlBackend::Auto;
   bool progress = true;
+  std::vector<std::string> aovs;  // --aov: extra output channels
 };
 
 struct RenderOutput {
@@ -38,7 +39,7 @@ void parseSize(const std::string& text, int& width, int& height);
 RenderOutput runRender(const RenderOptions& options);
 
 // Writes <stem>.exr, <stem>.png and <stem>.json (stats) for output path `path`
-// (.exr or .png); returns the files written.
+// (.exr or .png), and <stem>.<aov>.exr/.png per extra output; returns the files written.
 std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path, float exposure);
 
 // Throws if `path` cannot be written (missing folder, bad extension) — checked

@@ -1,0 +1,66 @@
+// Joint bilateral upsampling (Kopf et al. 2007) of the indirect buffer to full
+// resolution, and the composite: the full-resolution G-buffer guides the
+// weights (bilinear × geometry) of the 4×4 nearest indirect pixels; the
+// reflected indirect light albedo × E/π is added to the frame's accumulated
+// direct light (rgb only: the direct pass counted the frame in w). Where no
+// neighbour lies on the pixel's surface (thin features under ¼ resolution),
+// the geometrically closest one is used. The indirect alone goes to
+// uIndirectAov when uWriteAov is set.
+#include "geometry_weights.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2D gPosition;
+layout(binding = 1) uniform sampler2D gNormal;
+layout(binding = 2) uniform sampler2D gAlbedo;
+layout(binding = 3) uniform sampler2D uInput;
+layout(rgba32f, binding = 0) uniform image2D uAccum;
+layout(rgba32f, binding = 1) uniform image2D uIndirectAov;
+uniform int uScale;
+uniform int uWriteAov;
+
+ivec2 representative(ivec2 q, ivec2 full) { return min(q * uScale + uScale / 2, full - 1); }
+
+void main() {
+  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 full = imageSize(uAccum);
+  if (px.x >= full.x || px.y >= full.y) return;
+  vec4 P = texelFetch(gPosition, px, 0);
+  if (P.w == 0.0f) {
+    if (uWriteAov != 0) imageStore(uIndirectAov, px, imageLoad(uIndirectAov, px) + vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    return;
+  }
+  vec3 p = P.xyz;
+  vec3 n = texelFetch(gNormal, px, 0).xyz;
+  ivec2 low = textureSize(uInput, 0);
+  vec3 E = vec3(0.0f);
+  if (uScale == 1) {
+    E = texelFetch(uInput, px, 0).xyz;
+  } else {
+    // Position of this pixel in indirect-pixel units (representatives sit at q·s + s/2).
+    vec2 u = (vec2(px) - float(uScale / 2)) / float(uScale);
+    ivec2 base = ivec2(floor(u));
+    vec3 sum = vec3(0.0f), best = vec3(0.0f);
+    float wsum = 0.0f, bestW = -1.0f;
+    for (int dy = -1; dy <= 2; ++dy)
+      for (int dx = -1; dx <= 2; ++dx) {
+        ivec2 q = base + ivec2(dx, dy);
+        if (q.x < 0 || q.y < 0 || q.x >= low.x || q.y >= low.y) continue;
+        vec4 c = texelFetch(uInput, q, 0);
+        if (c.w == 0.0f) continue;
+        ivec2 rp = representative(q, full);
+        float g = geometryWeight(p, n, texelFetch(gPosition, rp, 0).xyz, texelFetch(gNormal, rp, 0).xyz, 1.0f);
+        vec2 d = abs(vec2(q) - u);
+        float bilinear = max(1.0f - d.x, 0.0f) * max(1.0f - d.y, 0.0f);
+        sum += bilinear * g * c.xyz;
+        wsum += bilinear * g;
+        if (g > bestW) {
+          bestW = g;
+          best = c.xyz;
+        }
+      }
+    E = wsum > 1e-6f ? sum / wsum : best;
+  }
+  vec3 indirect = texelFetch(gAlbedo, px, 0).xyz * E;
+  vec4 acc = imageLoad(uAccum, px);
+  imageStore(uAccum, px, vec4(acc.xyz + indirect, acc.w));
+  if (uWriteAov != 0) imageStore(uIndirectAov, px, imageLoad(uIndirectAov, px) + vec4(indirect, 1.0f));
+}
