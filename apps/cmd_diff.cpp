@@ -32,7 +32,7 @@ void addDiffCommand(CLI::App& app) {
       j["b"] = *b;
       std::printf("%s\n", j.dump(2).c_str());
     } else {
-      std::printf("rmse    %.6g\nrelmse  %.6g\nmae     %.6g\nssim    %.6f\n", d.rmse, d.relMse, d.mae, d.ssim);
+      std::printf("rmse    %.6g\nrelmse  %.6g\nmae     %.6g\nrel_mae %.6g\nssim    %.6f\n", d.rmse, d.relMse, d.mae, d.relMae, d.ssim);
     }
   });
 }

@@ -7,7 +7,7 @@
 namespace vgi {
 
 nlohmann::json ImageDiff::toJson() const {
-  return {{"rmse", rmse}, {"relmse", relMse}, {"mae", mae}, {"ssim", ssim}};
+  return {{"rmse", rmse}, {"relmse", relMse}, {"mae", mae}, {"rel_mae", relMae}, {"ssim", ssim}};
 }
 
 namespace {
@@ -59,7 +59,7 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
          ", ", nameB, " is ", b.width, "x", b.height);
   if (a.pixels.empty()) fail("cannot compare empty images (", nameA, ")");
   ImageDiff d;
-  double se = 0, rel = 0, ae = 0;
+  double se = 0, rel = 0, ae = 0, level = 0;
   for (size_t i = 0; i < a.pixels.size(); ++i)
     for (int k = 0; k < 3; ++k) {
       double x = a.pixels[i][k], r = b.pixels[i][k];
@@ -70,11 +70,13 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
       se += e * e;
       rel += e * e / (r * r + 0.01);
       ae += std::abs(e);
+      level += std::abs(r);
     }
   const double n = double(a.pixels.size()) * 3;
   d.rmse = std::sqrt(se / n);
   d.relMse = rel / n;
   d.mae = ae / n;
+  d.relMae = level > 0 ? ae / level : (ae > 0 ? INFINITY : 0.0);
   d.ssim = meanSsim(a, b);
   return d;
 }

@@ -13,6 +13,9 @@ namespace vgi {
 
 struct ImageDiff {
   double rmse = 0, relMse = 0, mae = 0, ssim = 1;
+  // Σ|a − b| / Σ|b|: the error relative to the reference's own level, for dim
+  // images (e.g. an indirect channel) where relMSE's +0.01 hides everything.
+  double relMae = 0;
   nlohmann::json toJson() const;
 };
 

@@ -28,6 +28,17 @@
 // | rr_depth   | int    | 3                  | path: bounces before Russian roulette starts         |
 // | radius     | float  | 0.1 · scene diag.  | nearfield/ao: ray length (world units)               |
 // | env        | bool   | true               | nearfield: rays leaving `radius` read the environment |
+// | visibility | string | exact              | nearfield: exact, or voxels (see below)              |
+// | voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        |
+// | offset     | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diagonals |
+//
+// nearfield with visibility=voxels isolates the voxel-visibility error of the
+// `nearfield` module: the bounce ray starts `offset` voxel diagonals along the
+// normal (as the module's) and the hierarchical tracer decides, on an exact
+// (triangle–box) voxelization, whether and where it stops within `radius`;
+// the surface there is then found and shaded exactly (Embree, within two voxel
+// diagonals of the hit voxel's entry; none there — a voxel the ray grazes
+// without meeting its surface — contributes nothing).
 #include "illum/reference.h"
 
 #include <algorithm>
@@ -43,6 +54,9 @@
 #include "shaders/shared/lights.glsl"
 #include "shaders/shared/sampling.glsl"
 #include "traverse/embree_tracer.h"
+#include "traverse/or_mip_pyramid.h"
+#include "traverse/ray_tracers.h"
+#include "voxelize/exact_voxelizer.h"
 
 namespace vgi {
 
@@ -118,6 +132,18 @@ class ReferenceRenderer : public Method {
     else params.declare("radius", "float", std::to_string(0.1f * diag), radiusDoc);
     if (check(usesEnv, "env")) env_ = params.getBool("env", true, envDoc);
     else params.declare("env", "bool", "true", envDoc);
+    const char* visDoc = "nearfield: exact, or voxels (voxel visibility on an exact voxelization)";
+    const char* voxDoc = "nearfield, visibility=voxels: grid resolution N or WxHxD";
+    const char* offDoc = "nearfield, visibility=voxels: ray start offset along the normal, voxel diagonals";
+    if (check(usesEnv, "visibility"))
+      voxelVisibility_ = params.getString("visibility", "exact", visDoc, {"exact", "voxels"}) == "voxels";
+    else params.declare("visibility", "string", "exact", visDoc);
+    if (check(voxelVisibility_, "voxels")) {
+      voxels_ = parseResolution(params.getString("voxels", "128", voxDoc), "parameter 'voxels'");
+      checkGridMemory(voxels_, 2);
+    } else params.declare("voxels", "string", "128", voxDoc);
+    if (check(voxelVisibility_, "offset")) offset_ = params.getFloat("offset", 1.0f, offDoc, 0.0f, 100.0f);
+    else params.declare("offset", "float", "1.0", offDoc);
     if (integrator_ == Integrator::Direct) maxDepth_ = 1;
   }
 
@@ -142,11 +168,17 @@ class ReferenceRenderer : public Method {
   int maxDepth_ = 8, rrDepth_ = 3;
   float radius_ = 0;
   bool env_ = true;
+  bool voxelVisibility_ = false;
+  glm::uvec3 voxels_{128};
+  float offset_ = 1.0f;
 
   // Per render.
   const Scene* scene_ = nullptr;
   FlatScene flat_;
   std::unique_ptr<EmbreeTracer> tracer_;
+  std::unique_ptr<OrMipPyramid> pyramid_;       // visibility=voxels
+  std::unique_ptr<RayTracer> voxelTracer_;
+  float voxelDiagonal_ = 0;
   std::vector<PackedLight> lights_;
   float eps_ = 1e-5f;
 };
@@ -233,6 +265,19 @@ vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) 
   if (!(pdf > 0.0f) || dot(wi, x.n) <= 0.0f || dot(wi, x.ng) <= 0.0f) return L;
   vec3 weight = evalBrdf(x.brdf, x.n, x.wo, wi) * (dot(wi, x.n) / pdf);
   SurfacePoint y;
+  if (voxelTracer_) {
+    TraceRay ray;
+    ray.origin = x.p + x.n * (offset_ * voxelDiagonal_);
+    ray.dir = wi;
+    ray.tmax = radius_;
+    TraceResult h = voxelTracer_->trace(ray);
+    if (!h.hit) {
+      if (env_) indirect = weight * scene_->environmentRadiance(wi);
+    } else if (intersect(ray.origin, wi, h.t + 2.0f * voxelDiagonal_, y)) {
+      indirect = weight * (y.emission + directLight(y));
+    }
+    return L + indirect;
+  }
   vec3 yo = offsetOrigin(x, wi);
   if (intersect(yo, wi, radius_, y))
     indirect = weight * (y.emission + directLight(y));
@@ -265,6 +310,15 @@ RenderResult ReferenceRenderer::render(const RenderRequest& req, Profiler& profi
     auto s = profiler.scope("build_bvh");
     flat_ = flatten(*req.scene, req.time);
     tracer_ = std::make_unique<EmbreeTracer>(flat_);
+  }
+  if (voxelVisibility_) {
+    auto s = profiler.scope("voxelize_exact");
+    GridBox box = fitGridBox(*req.scene, voxels_, req.time);
+    pyramid_ = std::make_unique<OrMipPyramid>(voxelizeExact(*req.scene, box, req.time, req.threads));
+    TracerInputs in;
+    in.pyramid = pyramid_.get();
+    voxelTracer_ = createTracer("hierarchical", in);
+    voxelDiagonal_ = glm::length(box.voxelSize());
   }
   lights_.clear();
   for (auto& l : req.scene->lights) lights_.push_back(packLight(l));
@@ -357,8 +411,15 @@ RenderResult ReferenceRenderer::render(const RenderRequest& req, Profiler& profi
   result.sppCompleted = minCount;
   result.extra["threads"] = threads;
   result.built = {"bvh"};
+  if (voxelTracer_) {
+    result.built.push_back("binary_grid");
+    result.built.push_back("or_mip_pyramid");
+    result.extra["voxel_diagonal"] = voxelDiagonal_;
+  }
   result.extra["triangles"] = flat_.triangleCount();
   tracer_.reset();
+  voxelTracer_.reset();
+  pyramid_.reset();
   return result;
 }
 

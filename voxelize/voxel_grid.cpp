@@ -58,9 +58,12 @@ GridBox fitGridBox(const Scene& scene, glm::uvec3 resolution, float time) {
   glm::vec3 lo = b.lo;
   for (int i = 0; i < 3; ++i)
     if (ext[i] < 1e-4f * largest) {
-      // Planar scene: a thin slab with the plane through the centre of its
-      // middle cell (not on a cell boundary, which would set two layers).
-      float w = 1e-4f * largest;
+      // Planar scene: a slab as thick as the cells of the largest axis are
+      // long (cubic-ish cells, so texel-based voxelizers get a usable texel
+      // size), with the plane through the centre of its middle cell (not on a
+      // cell boundary, which would set two layers).
+      int li = ext.x == largest ? 0 : (ext.y == largest ? 1 : 2);
+      float w = largest * float(resolution[i]) / float(resolution[li]);
       float mid = lo[i] + 0.5f * ext[i];
       lo[i] = mid - w * (std::floor(float(resolution[i]) / 2.0f) + 0.5f) / float(resolution[i]);
       ext[i] = w;

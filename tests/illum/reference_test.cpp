@@ -166,7 +166,7 @@ TEST(Reference, ParametersOfOtherIntegratorsAreRejected) {
   test::expectError([&] { createReferenceMethod(p, s); }, {"maxdepth", "integrator=ao"});
   ParamSet docs;
   createReferenceMethod(docs, s);
-  EXPECT_EQ(docs.docs().size(), 5u);  // all parameters documented
+  EXPECT_EQ(docs.docs().size(), 8u);  // all parameters documented
   EXPECT_FALSE(docs.resolved().contains("radius"));  // only the path integrator's resolved
   ParamSet q;
   q.setFromString("integrator=path");
