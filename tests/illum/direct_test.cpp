@@ -5,23 +5,12 @@
 #include "core/image_metrics.h"
 #include "core/scene_loader.h"
 #include "illum/render_job.h"
+#include "render_util.h"
 #include "test_util.h"
 
 namespace vgi {
 
-namespace {
-RenderOutput render(const std::string& scene, const std::string& method, std::vector<std::string> set,
-                    int size, int spp) {
-  RenderOptions o;
-  o.scene = scene;
-  o.method = method;
-  o.set = std::move(set);
-  o.width = o.height = size;
-  o.spp = spp;
-  o.progress = false;
-  return runRender(o);
-}
-}  // namespace
+using test::render;
 
 TEST(DirectModule, MatchesTheEmbreeDirectReferenceOnTheCornellBox) {
   RenderOutput gl = render("builtin:cornell", "direct", {}, 96, 16);

@@ -8,24 +8,14 @@
 #include "core/image_metrics.h"
 #include "illum/method.h"
 #include "illum/render_job.h"
+#include "render_util.h"
 #include "test_util.h"
 
 namespace vgi {
 
-namespace {
-RenderOutput render(const std::string& scene, const std::string& method, std::vector<std::string> set, int size,
-                    int spp, std::vector<std::string> aovs = {}) {
-  RenderOptions o;
-  o.scene = scene;
-  o.method = method;
-  o.set = std::move(set);
-  o.width = o.height = size;
-  o.spp = spp;
-  o.progress = false;
-  o.aovs = std::move(aovs);
-  return runRender(o);
-}
+using test::render;
 
+namespace {
 glm::dvec3 mean(const Image& im) {
   glm::dvec3 s(0.0);
   for (auto& p : im.pixels) s += glm::dvec3(p);

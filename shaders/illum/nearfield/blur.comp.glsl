@@ -2,16 +2,11 @@
 // interleave block; offsets −⌊k/2⌋ … ⌈k/2⌉−1), so each pixel averages each of
 // the k² direction sets of its neighbourhood exactly once — but only from neighbours on its own surface (depth along the
 // normal, normal similarity), which keeps indirect shadows and corners sharp.
-#include "geometry_weights.glsl"
+#include "indirect_buffer.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D gPosition;
-layout(binding = 1) uniform sampler2D gNormal;
 layout(binding = 3) uniform sampler2D uInput;
 layout(rgba32f, binding = 0) uniform writeonly image2D uOutput;
-uniform int uScale;
 uniform int uInterleave;
-
-ivec2 representative(ivec2 q, ivec2 full) { return min(q * uScale + uScale / 2, full - 1); }
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);

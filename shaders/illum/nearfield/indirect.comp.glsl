@@ -23,13 +23,11 @@
 #include "../../shared/gpu_scene.glsl"
 #include "../../shared/light_maps.glsl"
 #include "../../traverse/tracer.glsl"
+#include "indirect_buffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D gPosition;
-layout(binding = 1) uniform sampler2D gNormal;
 layout(rgba32f, binding = 0) uniform writeonly image2D uIndirect;
 
-uniform int uScale;          // full-resolution pixels per indirect pixel (1, 2, 4)
 uniform int uRays;           // N
 uniform int uInterleave;     // k
 uniform float uRadius;       // r, world units
@@ -38,9 +36,6 @@ uniform float uVoxelDiagonal;
 uniform int uEnv;
 uniform vec2 uRotation;      // per-frame Cranley–Patterson rotation
 uniform int uRsmRes;
-
-// The full-resolution texel an indirect pixel stands for.
-ivec2 representative(ivec2 q, ivec2 full) { return min(q * uScale + uScale / 2, full - 1); }
 
 float radicalInverse(uint i) { return float(bitfieldReverse(i) >> 8u) * (1.0f / 16777216.0f); }
 

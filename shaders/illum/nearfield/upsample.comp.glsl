@@ -6,18 +6,13 @@
 // neighbour lies on the pixel's surface (thin features under ¼ resolution),
 // the geometrically closest one is used. The indirect alone goes to
 // uIndirectAov when uWriteAov is set.
-#include "geometry_weights.glsl"
+#include "indirect_buffer.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D gPosition;
-layout(binding = 1) uniform sampler2D gNormal;
 layout(binding = 2) uniform sampler2D gAlbedo;
 layout(binding = 3) uniform sampler2D uInput;
 layout(rgba32f, binding = 0) uniform image2D uAccum;
 layout(rgba32f, binding = 1) uniform image2D uIndirectAov;
-uniform int uScale;
 uniform int uWriteAov;
-
-ivec2 representative(ivec2 q, ivec2 full) { return min(q * uScale + uScale / 2, full - 1); }
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
