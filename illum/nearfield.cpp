@@ -82,8 +82,9 @@ class NearFieldMethod : public Method {
     q.offset = p.getFloat("offset", 1.0f, "ray start offset along the normal, in voxel diagonals", 0.0f, 100.0f);
     q.voxels = parseResolution(p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"),
                                "parameter 'voxels'");
-    q.voxelizer = p.getString("voxelizer", "atlas", "binary voxelizer (see vgi voxelize --help)");
-    findVoxelizer(q.voxelizer);
+    std::vector<std::string> voxelizers;
+    for (auto& v : voxelizerRegistry()) voxelizers.push_back(v.name);
+    q.voxelizer = p.getString("voxelizer", "atlas", "binary voxelizer (see vgi voxelize --help)", voxelizers);
     checkGridMemory(q.voxels, 2);
     readShadowParams(p, q.shadow);
   }

@@ -129,6 +129,8 @@ TEST(Modules, BadParametersAndOutputsAreErrors) {
   test::expectError([] { render("builtin:cornell", "nearfield", {"tracer=embree"}, 8, 1); }, {"tracer", "embree"});
   test::expectError([] { render("builtin:cornell", "nearfield", {"voxels=100"}, 8, 1); }, {"voxels", "100"});
   test::expectError([] { render("builtin:cornell", "nearfield", {"rays=0"}, 8, 1); }, {"rays", "0"});
+  test::expectError([] { render("builtin:cornell", "nearfield", {"voxelizer=bogus"}, 8, 1); },
+                    {"voxelizer", "bogus", "atlas"});
   test::expectError([] { render("builtin:cornell", "nearfield", {"raidus=1"}, 8, 1); }, {"raidus"});
   test::expectError([] { render("builtin:cornell", "nearfield", {}, 8, 1, {"glow"}); },
                     {"--aov", "glow", "direct, indirect"});
