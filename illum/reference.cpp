@@ -111,7 +111,7 @@ class ReferenceRenderer : public Method {
                                         : Integrator::Ao;
     const bool usesDepth = integrator_ == Integrator::Path;
     const bool usesRadius = integrator_ == Integrator::NearField || integrator_ == Integrator::Ao;
-    const bool usesEnv = integrator_ == Integrator::NearField;
+    const bool nearField = integrator_ == Integrator::NearField;  // env, visibility
     // Every parameter is documented; only the integrator's own are read (and so
     // appear in the stats); giving another integrator's parameter is an error.
     auto check = [&](bool uses, const char* key) {
@@ -130,12 +130,12 @@ class ReferenceRenderer : public Method {
     float diag = scene.bounds().diagonal();
     if (check(usesRadius, "radius")) radius_ = params.getFloat("radius", 0.1f * diag, radiusDoc, 1e-30f, 1e30f);
     else params.declare("radius", "float", std::to_string(0.1f * diag), radiusDoc);
-    if (check(usesEnv, "env")) env_ = params.getBool("env", true, envDoc);
+    if (check(nearField, "env")) env_ = params.getBool("env", true, envDoc);
     else params.declare("env", "bool", "true", envDoc);
     const char* visDoc = "nearfield: exact, or voxels (voxel visibility on an exact voxelization)";
     const char* voxDoc = "nearfield, visibility=voxels: grid resolution N or WxHxD";
     const char* offDoc = "nearfield, visibility=voxels: ray start offset along the normal, voxel diagonals";
-    if (check(usesEnv, "visibility"))
+    if (check(nearField, "visibility"))
       voxelVisibility_ = params.getString("visibility", "exact", visDoc, {"exact", "voxels"}) == "voxels";
     else params.declare("visibility", "string", "exact", visDoc);
     if (check(voxelVisibility_, "voxels")) {

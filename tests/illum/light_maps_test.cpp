@@ -1,0 +1,78 @@
+// The light-map face layout (C++, illum/light_maps.cpp) against the shared
+// lookup functions the GLSL passes run (shaders/shared/light_maps.glsl): every
+// point a light can see falls inside the face the lookup picks, and distances
+// and texel sizes follow the face's projection.
+#include <random>
+
+#include "illum/light_maps.h"
+#include "test_util.h"
+
+namespace vgi {
+
+using namespace vgi::shared;
+
+namespace {
+Light makeLight(LightType type, glm::vec3 dir, float coneDeg) {
+  Light l;
+  l.type = type;
+  l.position = glm::vec3(0.2f, 0.3f, -0.1f);
+  l.direction = dir;
+  l.coneHalfAngleDeg = coneDeg;
+  return l;
+}
+}  // namespace
+
+TEST(LightMaps, EveryVisiblePointProjectsIntoTheFaceTheLookupPicks) {
+  Bounds b;
+  b.extend(glm::vec3(-2.0f));
+  b.extend(glm::vec3(2.0f));
+  const glm::vec3 down = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+  std::vector<Light> lights = {makeLight(LightType::Point, down, 90), makeLight(LightType::Spot, down, 40),
+                               makeLight(LightType::Spot, down, 80), makeLight(LightType::Directional, down, 90)};
+  LightFaceLayout layout = layoutLightFaces(lights, b, 512);
+  ASSERT_EQ(layout.ranges.size(), 4u);
+  EXPECT_EQ(layout.ranges[0].y, 6);  // point: cube
+  EXPECT_EQ(layout.ranges[1].y, 1);  // 40° spot: one face
+  EXPECT_EQ(layout.ranges[2].y, 6);  // 80° spot: cube
+  EXPECT_EQ(layout.ranges[3].y, 1);  // directional: one orthographic face
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+  int checked[4] = {0, 0, 0, 0};
+  for (int i = 0; i < 20000; ++i) {
+    glm::vec3 p(u(rng), u(rng), u(rng));
+    for (size_t l = 0; l < lights.size(); ++l) {
+      const glm::ivec4 r = layout.ranges[l];
+      if (lights[l].type == LightType::Spot &&
+          glm::dot(glm::normalize(p - lights[l].position), down) < std::cos(glm::radians(lights[l].coneHalfAngleDeg)))
+        continue;  // outside the cone: never lit, never looked up
+      int f = lightMapFace(layout.faces[size_t(r.x)], r.x, r.y, p);
+      ASSERT_GE(f, r.x);
+      ASSERT_LT(f, r.x + r.y);
+      const LightFace& face = layout.faces[size_t(f)];
+      glm::vec2 uv = lightMapUv(face, p);
+      // In front of the face (a point behind it projects mirrored, possibly inside [0,1]²).
+      glm::vec4 clip = face.viewProj * glm::vec4(p, 1.0f);
+      EXPECT_GT(clip.w, 0.0f) << "light " << l << " face " << f;
+      EXPECT_TRUE(uv.x >= -1e-4f && uv.x <= 1.0001f && uv.y >= -1e-4f && uv.y <= 1.0001f)
+          << "light " << l << " face " << f << " uv " << uv.x << "," << uv.y;
+      float d = lightMapDistance(face, p);
+      if (lights[l].type == LightType::Directional) {
+        EXPECT_GT(d, 0.0f);  // the map's plane lies before the scene
+        EXPECT_FLOAT_EQ(lightMapTexelWorld(face, d), lightMapTexelWorld(face, 1.0f));
+      } else {
+        EXPECT_NEAR(d, glm::length(p - lights[l].position), 1e-5f);
+        EXPECT_NEAR(lightMapTexelWorld(face, 2.0f * d), 2.0f * lightMapTexelWorld(face, d), 1e-6f);
+      }
+      ++checked[l];
+    }
+  }
+  for (int c : checked) EXPECT_GT(c, 500);
+}
+
+TEST(LightMaps, BackProjectionEpsilonFollowsTheRule) {
+  EXPECT_FLOAT_EQ(backProjectionEpsilon(0.1f, 0.01f, 1.0f), 0.1f);     // voxel-bound
+  EXPECT_FLOAT_EQ(backProjectionEpsilon(0.01f, 0.05f, 0.5f), 0.1f);    // texel / cos α
+  EXPECT_FLOAT_EQ(backProjectionEpsilon(0.01f, 0.05f, 0.0f), 0.5f);    // cos α clamped at 0.1
+}
+
+}  // namespace vgi
