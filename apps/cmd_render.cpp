@@ -28,7 +28,12 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--spp", opt->spp, "samples per pixel (GL methods: jittered frames)")->capture_default_str();
   cmd->add_option("--seed", opt->seed, "random seed")->capture_default_str();
   cmd->add_option("--threads", opt->threads, "CPU threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--time", opt->time, "animation time for dynamic meshes")->capture_default_str();
+  cmd->add_option("--time", opt->time, "animation time for dynamic meshes (of the first frame)")->capture_default_str();
+  cmd->add_option("--frames", opt->frames,
+                  "render an animation of N frames from --time: <stem>_NNNN.exr/.png per frame, one <stem>.json "
+                  "with per-frame stats")
+      ->capture_default_str();
+  cmd->add_option("--time-step", opt->timeStep, "time between frames")->capture_default_str();
   cmd->add_option("--gl", *gl, "GL backend: auto|egl|osmesa")->capture_default_str();
   cmd->add_option("-o,--output", *out, "output image (.exr or .png; both are written, plus .json)")
       ->capture_default_str();
@@ -51,14 +56,34 @@ void addRenderCommand(CLI::App& app) {
     checkOutputPath(*out);
     if (!stats->empty()) checkOutputFolder(*stats, "--stats");
     installInterruptHandler();
-    RenderOutput result = runRender(*opt);
-    auto files = writeRenderOutputs(result, *out, *exposure);
+    std::vector<std::string> files;
+    RenderOutput result;
+    if (opt->frames == 1) {
+      result = runRender(*opt);
+      files = writeRenderOutputs(result, *out, *exposure);
+    } else {
+      // Each frame is written as soon as it is done: an interrupted animation keeps its frames.
+      result = runRender(*opt, [&](int frame, const RenderOutput& f) {
+        for (auto& file : writeFrameImages(f, *out, frame, *exposure)) files.push_back(file);
+      });
+      files.insert(files.begin(), writeAnimationStats(result, *out, files, *exposure));
+    }
     if (!stats->empty()) {
       FILE* f = std::fopen(stats->c_str(), "w");
       if (!f) fail("--stats: cannot write '", *stats, "'");
       std::string text = result.stats.dump(2) + "\n";
       std::fwrite(text.data(), 1, text.size(), f);
       std::fclose(f);
+    }
+    if (opt->frames > 1) {
+      if (result.stats["interrupted"].get<bool>())
+        std::fprintf(stderr, "interrupted: wrote %d of %d frames\n", result.stats["frames_completed"].get<int>(),
+                     opt->frames);
+      std::fprintf(stderr, "%s %s %dx%d %d spp, %d frames: %.1f ms (%s)\n", opt->method.c_str(), opt->scene.c_str(),
+                   opt->width, opt->height, opt->spp, result.stats["frames_completed"].get<int>(),
+                   result.stats["wall_ms"].get<double>(), result.stats["gl_renderer"].get<std::string>().c_str());
+      std::fprintf(stderr, "wrote %s and %zu frame files\n", files[0].c_str(), files.size() - 1);
+      return;
     }
     if (result.result.interrupted)
       std::fprintf(stderr, "interrupted: wrote %d of %d samples per pixel\n", result.result.sppCompleted, opt->spp);

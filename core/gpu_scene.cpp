@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/error.h"
+
 namespace vgi {
 
 shared::PackedLight packLight(const Light& l) {
@@ -29,6 +31,16 @@ static_assert(sizeof(shared::PackedLight) == 48, "std430 layout of PackedLight")
 static_assert(sizeof(shared::PackedMaterial) == 48, "std430 layout of PackedMaterial");
 
 namespace {
+// Interleaved position, normal, uv: 8 floats per vertex.
+void interleave(const FlatScene& f, std::vector<float>& verts) {
+  verts.reserve(f.positions.size() * 8);
+  for (size_t i = 0; i < f.positions.size(); ++i) {
+    const glm::vec3 &p = f.positions[i], &n = f.normals[i];
+    const glm::vec2& uv = f.uvs[i];
+    verts.insert(verts.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y});
+  }
+}
+
 unsigned makeSsbo(const void* data, size_t bytes) {
   unsigned b = 0;
   glCreateBuffers(1, &b);
@@ -44,16 +56,11 @@ GpuScene::GpuScene(const Scene& scene, float time) {
   triangles_ = f.triangleCount();
   bounds_ = scene.bounds(time);
   std::vector<float> verts;
-  verts.reserve(f.positions.size() * 8);
-  for (size_t i = 0; i < f.positions.size(); ++i) {
-    const glm::vec3 &p = f.positions[i], &n = f.normals[i];
-    const glm::vec2& uv = f.uvs[i];
-    verts.insert(verts.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y});
-  }
+  interleave(f, verts);
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glNamedBufferStorage(vbo_, GLsizeiptr(std::max<size_t>(verts.size(), 8) * sizeof(float)),
-                       verts.empty() ? nullptr : verts.data(), 0);
+                       verts.empty() ? nullptr : verts.data(), GL_DYNAMIC_STORAGE_BIT);
   glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 8 * sizeof(float));
   for (unsigned a = 0; a < 3; ++a) {
     glEnableVertexArrayAttrib(vao_, a);
@@ -115,6 +122,15 @@ GpuScene::GpuScene(const Scene& scene, float time) {
   glTextureParameteri(envMap_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(envMap_, GL_TEXTURE_WRAP_S, GL_REPEAT);
   glTextureParameteri(envMap_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+void GpuScene::setTime(const Scene& scene, float time) {
+  FlatScene f = flatten(scene, time);
+  if (f.triangleCount() != triangles_) fail("GpuScene::setTime: the scene has ", f.triangleCount(), " triangles, not ", triangles_);
+  bounds_ = scene.bounds(time);
+  std::vector<float> verts;
+  interleave(f, verts);
+  if (!verts.empty()) glNamedBufferSubData(vbo_, 0, GLsizeiptr(verts.size() * sizeof(float)), verts.data());
 }
 
 GpuScene::~GpuScene() {

@@ -18,6 +18,10 @@ class GpuScene {
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
 
+  // Re-uploads the vertices at `time` (the frames of an animation; materials,
+  // textures and lights stay). `scene` must be the one it was made from.
+  void setTime(const Scene& scene, float time);
+
   // Binds SSBOs, textures and the environment uniforms of `program`.
   void bind(unsigned program) const;
   void draw() const;  // all triangles; gl_PrimitiveID = triangle index

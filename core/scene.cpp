@@ -61,6 +61,12 @@ Bounds Scene::bounds(float time) const {
   return b;
 }
 
+bool Scene::hasDynamicMeshes() const {
+  for (auto& m : meshes)
+    if (m.dynamic) return true;
+  return false;
+}
+
 glm::vec3 Scene::environmentRadiance(glm::vec3 dir) const {
   if (environment.mapTexture < 0) return environment.color;
   glm::vec2 uv = shared::latLongUv(dir);

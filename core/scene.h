@@ -106,6 +106,7 @@ struct Scene {
 
   size_t triangleCount() const;
   Bounds bounds(float time = 0) const;
+  bool hasDynamicMeshes() const;
   glm::vec3 environmentRadiance(glm::vec3 dir) const;
 };
 

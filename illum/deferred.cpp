@@ -89,6 +89,10 @@ void GBuffer::bind(unsigned firstUnit) const {
 Accumulator::Accumulator(int W, int H) : w_(W), h_(H) {
   glCreateTextures(GL_TEXTURE_2D, 1, &tex_);
   glTextureStorage2D(tex_, 1, GL_RGBA32F, W, H);
+  clear();
+}
+
+void Accumulator::clear() const {
   const float zero[4] = {0, 0, 0, 0};
   glClearTexImage(tex_, 0, GL_RGBA, GL_FLOAT, zero);
 }

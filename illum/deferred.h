@@ -50,6 +50,7 @@ class Accumulator {
   Accumulator(const Accumulator&) = delete;
   Accumulator& operator=(const Accumulator&) = delete;
   unsigned texture() const { return tex_; }
+  void clear() const;
   Image read() const;  // rgb / w, rows top-down
 
  private:

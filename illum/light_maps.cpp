@@ -86,6 +86,12 @@ LightMaps::LightMaps(const Scene& scene, const GpuScene& gpu, ShaderLibrary& sha
   glNamedBufferStorage(rangeBuffer_, GLsizeiptr(std::max<size_t>(1, layout_.ranges.size()) * sizeof(glm::ivec4)),
                        layout_.ranges.empty() ? nullptr : layout_.ranges.data(), 0);
 
+  render(gpu, shaders, profiler);
+}
+
+void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler) {
+  const bool reflective = reflective_;
+  const int resolution = resolution_, channels = reflective ? 4 : 1;
   ShaderDefines defs;
   if (reflective) defs["REFLECTIVE"] = "1";
   unsigned prog = shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/light_map.frag.glsl"}, defs);

@@ -35,6 +35,10 @@ class LightMaps {
   LightMaps(const LightMaps&) = delete;
   LightMaps& operator=(const LightMaps&) = delete;
 
+  // Renders the maps again for the scene as `gpu` holds it now (the frames of
+  // an animation); the face layout stays the one made at construction.
+  void render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler);
+
   // Binds the face table and the map textures (TEXUNIT_LIGHT_*).
   void bind() const;
   int faceCount() const { return int(layout_.faces.size()); }

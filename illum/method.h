@@ -26,7 +26,12 @@ struct RenderRequest {
   int spp = 1;
   uint32_t seed = 0;
   int threads = 0;  // CPU threads; 0 = all cores
-  float time = 0;   // animation time
+  float time = 0;   // animation time of this frame
+  // An animation calls render() once per frame, in order, on the same Method
+  // with `time` = frameTimes[frame]; a method may keep what does not change
+  // between its calls (static voxels, programs). A still: one frame.
+  std::vector<float> frameTimes;
+  int frame = 0;
   GlContext* gl = nullptr;          // set for methods with needsGl()
   ShaderLibrary* shaders = nullptr; // idem
   bool progress = true;             // draw a progress bar on a terminal

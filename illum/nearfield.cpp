@@ -2,10 +2,13 @@
 // visibility and RSM back-projection — Thiedemann, Henrich, Grosch, Müller,
 // "Voxel-based Global Illumination", I3D 2011, §5.1 (Fig. 7, 12, 15).
 //
-// Per render: the scene is voxelized once into a binary grid (any voxelizer of
-// voxelize/, the atlas voxelizer by default) and its OR-mip pyramid uploaded;
-// reflective shadow maps are rendered for every light. Per frame (`--spp`
-// frames, jittered, directions rotated): G-buffer → deferred direct light →
+// Per render: the scene is voxelized into a binary grid (any voxelizer of
+// voxelize/, the atlas voxelizer by default), its OR-mip pyramid built on the
+// GPU, and reflective shadow maps rendered for every light. In an animation
+// (`vgi render --frames N`) these are kept between frames; with dynamic meshes
+// the atlas voxelizer keeps the static meshes' grid and re-inserts only the
+// dynamic ones (VGI §3.2), then the pyramid and the RSMs are rebuilt. Per
+// sample (`--spp` jittered passes, directions rotated): G-buffer → deferred direct light →
 // indirect gathering at 1, ½ or ¼ resolution (shaders/illum/nearfield/
 // indirect.comp: N cosine rays per pixel, interleaved k×k, first hit by the
 // chosen GLSL tracer, ε back-projection into the RSMs, environment beyond r)
@@ -50,6 +53,7 @@
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/or_mip_pyramid.h"
 #include "voxelize/atlas.h"
+#include "voxelize/atlas_voxelizer.h"
 #include "voxelize/voxelizer.h"
 
 namespace vgi {
@@ -92,7 +96,16 @@ class NearFieldMethod : public Method {
   RenderResult render(const RenderRequest& req, Profiler& profiler) override;
 
  private:
+  // What a render keeps between the frames of an animation.
+  struct SceneState {
+    VoxelizeRequest vreq;
+    std::unique_ptr<AtlasVoxelizer> atlas;  // the atlas voxelizer holds the static meshes' grid
+    std::unique_ptr<GlPyramid> pyramid;
+    std::unique_ptr<GpuScene> gpu;
+    std::unique_ptr<LightMaps> rsm;
+  };
   NearFieldParams p_;
+  std::unique_ptr<SceneState> state_;
 };
 
 void uniform1i(unsigned prog, const char* name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
@@ -108,30 +121,61 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
   RenderResult result;
   nlohmann::json& extra = result.extra;
 
-  // ---- once per render: voxels, pyramid, scene upload, RSMs
-  VoxelizeRequest vreq;
-  vreq.scene = &scene;
-  vreq.box = fitGridBox(scene, p_.voxels, req.time);
-  vreq.time = req.time;
-  vreq.threads = req.threads;
-  vreq.gl = req.gl;
-  vreq.shaders = req.shaders;
-  vreq.atlasCacheDir = defaultAtlasCacheDir();
+  // ---- scene resources: made on the first frame; for a scene with dynamic
+  // meshes, updated per frame (static meshes stay voxelized, dynamic ones are
+  // re-inserted, the pyramid is rebuilt on the GPU, RSMs re-rendered).
+  const bool first = !state_;
+  const bool dynamic = scene.hasDynamicMeshes();
+  if (first) {
+    state_ = std::make_unique<SceneState>();
+    // One grid box for the whole animation: the union of the frames' bounds.
+    Bounds b;
+    for (float t : req.frameTimes.empty() ? std::vector<float>{req.time} : req.frameTimes) {
+      Bounds f = scene.bounds(t);
+      b.extend(f.lo);
+      b.extend(f.hi);
+      if (!dynamic) break;
+    }
+    state_->vreq.scene = &scene;
+    state_->vreq.box = fitGridBox(b, p_.voxels);
+    state_->vreq.threads = req.threads;
+    state_->vreq.gl = req.gl;
+    state_->vreq.shaders = req.shaders;
+    state_->vreq.atlasCacheDir = defaultAtlasCacheDir();
+    state_->vreq.time = req.time;
+    if (p_.voxelizer == "atlas") state_->atlas = std::make_unique<AtlasVoxelizer>(state_->vreq, prof);
+    state_->pyramid = std::make_unique<GlPyramid>(state_->vreq.box);
+    {
+      auto s = prof.scope("upload");
+      state_->gpu = std::make_unique<GpuScene>(scene, req.time);
+    }
+    state_->rsm = std::make_unique<LightMaps>(scene, *state_->gpu, shaders, p_.shadow.resolution, true, prof);
+  } else if (dynamic) {
+    {
+      auto s = prof.scope("upload");
+      state_->gpu->setTime(scene, req.time);
+    }
+    state_->rsm->render(*state_->gpu, shaders, prof);
+  }
+  SceneState& st = *state_;
   nlohmann::json voxStats;
-  BinaryGrid grid = findVoxelizer(p_.voxelizer).run(vreq, prof, voxStats);
-  std::unique_ptr<GlPyramid> glPyramid;
-  {
-    auto s = prof.scope("pyramid");
-    OrMipPyramid pyramid(grid);
-    glPyramid = std::make_unique<GlPyramid>(pyramid);
+  if (first || dynamic) {
+    st.vreq.time = req.time;
+    if (st.atlas) {
+      st.atlas->voxelizeFrame(req.time, prof);
+      auto s = prof.scope("pyramid");
+      st.pyramid->build(st.atlas->frameGrid(), shaders);
+    } else {
+      BinaryGrid grid = findVoxelizer(p_.voxelizer).run(st.vreq, prof, voxStats);
+      auto s = prof.scope("pyramid");
+      st.pyramid->build(grid, shaders);
+    }
   }
-  const float voxelDiagonal = glm::length(vreq.box.voxelSize());
-  std::unique_ptr<GpuScene> gpu;
-  {
-    auto s = prof.scope("upload");
-    gpu = std::make_unique<GpuScene>(scene, req.time);
-  }
-  LightMaps rsm(scene, *gpu, shaders, p_.shadow.resolution, true, prof);
+  if (st.atlas) voxStats = st.atlas->stats();
+  GlPyramid* glPyramid = st.pyramid.get();
+  GpuScene* gpu = st.gpu.get();
+  LightMaps& rsm = *st.rsm;
+  const float voxelDiagonal = glm::length(st.vreq.box.voxelSize());
   GBuffer gbuffer(W, H, shaders);
   Accumulator accum(W, H);
   std::unique_ptr<Accumulator> indirectAov;
@@ -246,8 +290,10 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
   extra["indirect_size"] = {lw, lh};
   extra["blur_window_px"] = blur ? p_.interleave : 0;
   extra["rays_per_frame"] = uint64_t(lw) * lh * p_.rays;
+  // (After the image's read-back: counting the voxels adds no wait to the frame.)
   extra["grid"] = {{"resolution", {p_.voxels.x, p_.voxels.y, p_.voxels.z}}, {"voxelizer", p_.voxelizer},
-                   {"voxels_set", grid.count()}, {"stats", voxStats}};
+                   {"voxels_set", glPyramid->countLevel0()}, {"stats", voxStats},
+                   {"rebuilt_this_frame", first || dynamic}};
   extra["light_maps"] = rsm.describe();
   return result;
 }

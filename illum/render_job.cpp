@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +12,7 @@
 #include "core/build_info.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/progress.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
 
@@ -47,11 +50,14 @@ void checkOutputFolder(const std::string& path, const std::string& option) {
     fail(option, " '", path, "': folder '", dir.string(), "' does not exist");
 }
 
-RenderOutput runRender(const RenderOptions& opt) {
+RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
   if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
   if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
     fail("--size ", opt.width, "x", opt.height, ": each side must be in [1, 16384]");
   if (opt.threads < 0 || opt.threads > 1024) fail("--threads ", opt.threads, ": must be in [0, 1024]");
+  if (opt.frames < 1 || opt.frames > 100000) fail("--frames ", opt.frames, ": must be in [1, 100000]");
+  if (!std::isfinite(opt.time) || !std::isfinite(opt.timeStep))
+    fail("--time ", opt.time, " / --time-step ", opt.timeStep, ": must be finite numbers");
   const MethodInfo& info = findMethod(opt.method);
   Scene scene = loadScene(opt.scene);
 
@@ -91,74 +97,170 @@ RenderOutput runRender(const RenderOptions& opt) {
   req.spp = opt.spp;
   req.seed = opt.seed;
   req.threads = opt.threads;
-  req.time = opt.time;
   req.gl = gl.get();
   req.shaders = shaders.get();
-  req.progress = opt.progress;
+  req.progress = opt.progress && opt.frames == 1;
   req.aovs = opt.aovs;
+  for (int f = 0; f < opt.frames; ++f) req.frameTimes.push_back(opt.time + float(f) * opt.timeStep);
+
+  // What describes the run (the same for every frame).
+  nlohmann::json run;
+  run["method"] = opt.method;
+  run["scene"] = opt.scene;
+  run["width"] = opt.width;
+  run["height"] = opt.height;
+  run["spp"] = opt.spp;
+  run["seed"] = opt.seed;
+  run["time"] = opt.time;
+  run["gl_renderer"] = gl ? gl->renderer() : "none (CPU method)";
+  run["gl_version"] = gl ? gl->version() : "";
+  run["gl_backend"] = gl ? gl->backendName() : "";
+  run["cpu_threads_available"] = std::thread::hardware_concurrency();
+  run["params"] = params.resolved();
+  run["preset"] = opt.preset;
+  run["git_revision"] = gitRevision();
+  run["triangles"] = scene.triangleCount();
+  run["degenerate_triangles_dropped"] = scene.report.degenerateTrianglesDropped;
+  run["warnings"] = scene.report.warnings;
+  run["needs"] = info.needs;
+  run["aovs"] = opt.aovs;
+  auto checkGl = [&] {
+    if (gl && gl->errorCount() > 0)
+      fail("method '", opt.method, "' raised ", gl->errorCount(), " GL error(s) on ", gl->renderer(),
+           "; the image is not trustworthy and was not written");
+  };
 
   RenderOutput out;
-  auto t0 = std::chrono::steady_clock::now();
-  {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (opt.frames == 1) {
+    req.time = opt.time;
     Profiler profiler(gl != nullptr);
     out.result = method->render(req, profiler);
     profiler.resolve(true);
     nlohmann::json& s = out.stats;
-    s["method"] = opt.method;
-    s["scene"] = opt.scene;
-    s["width"] = opt.width;
-    s["height"] = opt.height;
-    s["spp"] = opt.spp;
+    s = run;
     s["spp_completed"] = out.result.sppCompleted;
     s["interrupted"] = out.result.interrupted;
-    s["seed"] = opt.seed;
-    s["time"] = opt.time;
-    s["gl_renderer"] = gl ? gl->renderer() : "none (CPU method)";
-    s["gl_version"] = gl ? gl->version() : "";
-    s["gl_backend"] = gl ? gl->backendName() : "";
     s["gl_errors"] = gl ? gl->errorCount() : 0;
-    s["cpu_threads_available"] = std::thread::hardware_concurrency();
     s["timings_ms"] = profiler.timingsMs();
     s["cpu_timings_ms"] = profiler.cpuTimingsMs();
     s["pass_calls"] = profiler.callCounts();
     s["total_ms"] = profiler.totalMs();
-    s["params"] = params.resolved();
-    s["preset"] = opt.preset;
-    s["git_revision"] = gitRevision();
-    s["triangles"] = scene.triangleCount();
-    s["degenerate_triangles_dropped"] = scene.report.degenerateTrianglesDropped;
-    s["warnings"] = scene.report.warnings;
     s["extra"] = out.result.extra;
     s["built"] = out.result.built;
-    s["needs"] = info.needs;
-    s["aovs"] = opt.aovs;
+    out.stats["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    checkGl();
+    return out;
   }
-  out.stats["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  if (gl && gl->errorCount() > 0)
-    fail("method '", opt.method, "' raised ", gl->errorCount(), " GL error(s) on ", gl->renderer(),
-         "; the image is not trustworthy and was not written");
+
+  // An animation: one Profiler per frame; the run's timings are their sums.
+  if (!scene.hasDynamicMeshes())
+    run["warnings"].push_back("--frames " + std::to_string(opt.frames) +
+                              ": the scene has no dynamic meshes, so every frame shows the same instant");
+  nlohmann::json frames = nlohmann::json::array(), timings = nlohmann::json::object(),
+                 cpuTimings = nlohmann::json::object(), calls = nlohmann::json::object();
+  auto addInto = [](nlohmann::json& sum, const nlohmann::json& part) {
+    for (auto& [k, v] : part.items()) sum[k] = (sum.contains(k) ? sum[k].get<double>() : 0.0) + v.get<double>();
+  };
+  ProgressBar bar("frames", opt.frames);
+  bool interrupted = false;
+  for (int f = 0; f < opt.frames && !interrupted; ++f) {
+    req.frame = f;
+    req.time = req.frameTimes[size_t(f)];
+    const auto tf = std::chrono::steady_clock::now();
+    Profiler profiler(gl != nullptr);
+    out.result = method->render(req, profiler);
+    profiler.resolve(true);
+    checkGl();
+    interrupted = out.result.interrupted || interruptRequested();
+    nlohmann::json fs;
+    fs["frame"] = f;
+    fs["time"] = req.time;
+    fs["spp_completed"] = out.result.sppCompleted;
+    fs["timings_ms"] = profiler.timingsMs();
+    fs["total_ms"] = profiler.totalMs();
+    fs["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tf).count();
+    fs["extra"] = out.result.extra;
+    fs["built"] = out.result.built;
+    addInto(timings, fs["timings_ms"]);
+    addInto(cpuTimings, profiler.cpuTimingsMs());
+    addInto(calls, profiler.callCounts());
+    out.stats = run;
+    out.stats.update(fs);
+    if (onFrame) onFrame(f, out);
+    frames.push_back(fs);
+    if (opt.progress) bar.advance();
+  }
+  bar.finish();
+  nlohmann::json& s = out.stats;
+  s = run;
+  s["frames_requested"] = opt.frames;
+  s["frames_completed"] = frames.size();
+  s["time_step"] = opt.timeStep;
+  s["interrupted"] = interrupted;
+  s["gl_errors"] = gl ? gl->errorCount() : 0;
+  s["timings_ms"] = timings;
+  s["cpu_timings_ms"] = cpuTimings;
+  s["pass_calls"] = calls;
+  double total = 0;
+  for (auto& [k, v] : timings.items()) total += v.get<double>();
+  s["total_ms"] = total;
+  s["built"] = out.result.built;
+  s["frames"] = frames;
+  s["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
 
-std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path, float exposure) {
-  checkOutputPath(path);
-  fs::path stem = fs::path(path).replace_extension("");
-  std::vector<std::string> files = {stem.string() + ".exr", stem.string() + ".png", stem.string() + ".json"};
-  writeImage(out.result.image, files[0]);
-  writeImage(out.result.image, files[1], exposure);
-  for (auto& [name, image] : out.result.aovs) {
+namespace {
+
+// <stem>.exr, <stem>.png, then <stem>.<aov>.exr/.png per extra output.
+std::vector<std::string> writeImages(const RenderResult& r, const std::string& stem, float exposure) {
+  std::vector<std::string> files = {stem + ".exr", stem + ".png"};
+  writeImage(r.image, files[0]);
+  writeImage(r.image, files[1], exposure);
+  for (auto& [name, image] : r.aovs) {
     for (const char* ext : {".exr", ".png"}) {
-      files.push_back(stem.string() + "." + name + ext);
+      files.push_back(stem + "." + name + ext);
       writeImage(image, files.back(), ext[1] == 'p' ? exposure : 1.0f);
     }
   }
-  nlohmann::json s = out.stats;
+  return files;
+}
+
+void writeStats(nlohmann::json s, const std::string& json, const std::vector<std::string>& files, float exposure) {
   s["outputs"] = files;
   s["exposure_png"] = exposure;
-  std::ofstream js(files[2]);
+  std::ofstream js(json);
   js << s.dump(2) << "\n";
-  if (!js) fail("cannot write '", files[2], "'");
+  if (!js) fail("cannot write '", json, "'");
+}
+
+std::string stemOf(const std::string& path) {
+  checkOutputPath(path);
+  return fs::path(path).replace_extension("").string();
+}
+
+}  // namespace
+
+std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path, float exposure) {
+  const std::string stem = stemOf(path);
+  std::vector<std::string> files = writeImages(out.result, stem, exposure);
+  files.insert(files.begin() + 2, stem + ".json");
+  writeStats(out.stats, stem + ".json", files, exposure);
   return files;
+}
+
+std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame, float exposure) {
+  char number[16];
+  std::snprintf(number, sizeof number, "_%04d", frame);
+  return writeImages(out.result, stemOf(path) + number, exposure);
+}
+
+std::string writeAnimationStats(const RenderOutput& out, const std::string& path, const std::vector<std::string>& files,
+                                float exposure) {
+  const std::string json = stemOf(path) + ".json";
+  writeStats(out.stats, json, files, exposure);
+  return json;
 }
 
 std::string describeMethod(const std::string& name) {

@@ -2,6 +2,7 @@
 // (scene preset, then --set), create the method, make a GL context if the
 // method needs one, render, and describe everything in a stats JSON.
 #pragma once
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,8 @@ struct RenderOptions {
   uint32_t seed = 1;
   int threads = 0;
   float time = 0;
+  int frames = 1;                   // > 1: an animation from `time`, `timeStep` apart
+  float timeStep = 1.0f / 30.0f;
   GlBackend gl = GlBackend::Auto;
   bool progress = true;
   std::vector<std::string> aovs;  // --aov: extra output channels
@@ -36,11 +39,23 @@ struct RenderOutput {
 // Parses "WxH" (each 1..16384); throws naming the option and value.
 void parseSize(const std::string& text, int& width, int& height);
 
-RenderOutput runRender(const RenderOptions& options);
+// Renders a still (options.frames == 1: the returned output holds the image)
+// or an animation: then `onFrame` receives each frame as it completes (its
+// stats are the frame's: time, timings, extra) and the returned output holds
+// the last frame's image and stats for the whole run, with a "frames" array.
+// Ctrl-C stops an animation after the current frame.
+using FrameSink = std::function<void(int frame, const RenderOutput& output)>;
+RenderOutput runRender(const RenderOptions& options, const FrameSink& onFrame = {});
 
 // Writes <stem>.exr, <stem>.png and <stem>.json (stats) for output path `path`
 // (.exr or .png), and <stem>.<aov>.exr/.png per extra output; returns the files written.
 std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path, float exposure);
+// An animation's frame: <stem>_NNNN.exr/.png and <stem>_NNNN.<aov>.exr/.png (no JSON);
+// returns the files written.
+std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame, float exposure);
+// The stats JSON <stem>.json of an animation, listing `files`; returns its path.
+std::string writeAnimationStats(const RenderOutput& out, const std::string& path, const std::vector<std::string>& files,
+                                float exposure);
 
 // Throws if `path` cannot be written (missing folder, bad extension) — checked
 // before a long render, so nothing is lost at the end.

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/profiler.h"
+#include "shaders/shared/or_mip.glsl"
 #include "traverse/or_mip_pyramid.h"
 #include "voxelize/gpu_grid.h"
 
@@ -14,9 +15,74 @@ namespace vgi {
 
 GlPyramid::GlPyramid(const OrMipPyramid& pyramid, float marchStep)
     : box_(pyramid.box()), params_(pyramidParams(pyramid)) {
+  totalWords_ = uint32_t(pyramid.words().size());
   marchStep_ = marchStep > 0.0f ? marchStep : defaultMarchStep(pyramid);
   glCreateBuffers(1, &buffer_);
-  glNamedBufferStorage(buffer_, GLsizeiptr(pyramid.words().size() * 4), pyramid.words().data(), 0);
+  glNamedBufferStorage(buffer_, GLsizeiptr(pyramid.words().size() * 4), pyramid.words().data(),
+                       GL_DYNAMIC_STORAGE_BIT);
+}
+
+GlPyramid::GlPyramid(const GridBox& box, float marchStep) : box_(box), params_(pyramidParams(box)) {
+  marchStep_ = marchStep > 0.0f ? marchStep : defaultMarchStep(box);
+  OrMipPyramid::layout(box, totalWords_);
+  glCreateBuffers(1, &buffer_);
+  glNamedBufferStorage(buffer_, GLsizeiptr(size_t(totalWords_) * 4), nullptr, GL_DYNAMIC_STORAGE_BIT);
+}
+
+void GlPyramid::build(const GpuGridBuffer& grid, ShaderLibrary& shaders) {
+  const size_t bytes = size_t(box_.resolution.x) * box_.resolution.y * (box_.resolution.z / 32u) * 4;
+  if (grid.bytes() != bytes) fail("GlPyramid::build: grid of ", grid.bytes(), " bytes, the pyramid's level 0 has ", bytes);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glCopyNamedBufferSubData(grid.buffer(), buffer_, 0, 0, GLsizeiptr(bytes));
+  reduce(shaders);
+}
+
+void GlPyramid::build(const BinaryGrid& grid, ShaderLibrary& shaders) {
+  if (!(grid.box().resolution == box_.resolution)) fail("GlPyramid::build: the grid's resolution differs from the pyramid's");
+  glNamedBufferSubData(buffer_, 0, GLsizeiptr(grid.words().size() * 4), grid.words().data());
+  reduce(shaders);
+}
+
+void GlPyramid::reduce(ShaderLibrary& shaders) {
+  const unsigned prog = shaders.program({"traverse/or_mip.comp.glsl"});
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_);
+  glUseProgram(prog);
+  const glm::uvec2 base(box_.resolution.x, box_.resolution.y);
+  const uint32_t D = box_.resolution.z, wpc = D / 32u;
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  for (uint32_t l = 1; l < params_.levels; ++l) {
+    glm::uvec2 s = shared::mipLevelSize(base, l), c = shared::mipLevelSize(base, l - 1);
+    glUniform2ui(glGetUniformLocation(prog, "uSize"), s.x, s.y);
+    glUniform2ui(glGetUniformLocation(prog, "uChildSize"), c.x, c.y);
+    glUniform1ui(glGetUniformLocation(prog, "uDepth"), D);
+    glUniform1ui(glGetUniformLocation(prog, "uOffset"), params_.levelOffsets[l]);
+    glUniform1ui(glGetUniformLocation(prog, "uChildOffset"), params_.levelOffsets[l - 1]);
+    glDispatchCompute((s.x + 7u) / 8u, (s.y + 7u) / 8u, wpc);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  }
+}
+
+std::vector<uint32_t> GlPyramid::read() const {
+  std::vector<uint32_t> words(totalWords_);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(buffer_, 0, GLsizeiptr(size_t(totalWords_) * 4), words.data());
+  return words;
+}
+
+uint64_t GlPyramid::countLevel0() const {
+  const uint32_t words = params_.levels > 1 ? params_.levelOffsets[1] : totalWords_;
+  std::vector<uint32_t> w(words);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(buffer_, 0, GLsizeiptr(size_t(words) * 4), w.data());
+  uint64_t n = 0;
+  for (uint32_t x : w) n += uint64_t(__builtin_popcount(x));
+  return n;
+}
+
+std::vector<uint32_t> buildOrMipGl(const BinaryGrid& grid, ShaderLibrary& shaders) {
+  GlPyramid p(grid.box());
+  p.build(grid, shaders);
+  return p.read();
 }
 
 GlPyramid::~GlPyramid() {

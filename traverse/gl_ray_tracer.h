@@ -13,9 +13,14 @@ namespace vgi {
 
 class Profiler;
 
+class GpuGridBuffer;
+
 class GlPyramid {
  public:
   explicit GlPyramid(const OrMipPyramid& pyramid, float marchStep = 0.0f);  // uploads the words
+  // A pyramid for grids of `box`, filled on the GPU by build() (per frame for
+  // dynamic scenes: no read-back, no CPU pass).
+  explicit GlPyramid(const GridBox& box, float marchStep = 0.0f);
   ~GlPyramid();
   GlPyramid(const GlPyramid&) = delete;
   GlPyramid& operator=(const GlPyramid&) = delete;
@@ -25,12 +30,26 @@ class GlPyramid {
   void bind(unsigned program) const;
   const GridBox& box() const { return box_; }
 
+  // Level 0 := the grid's words (a GPU copy, or an upload), then every level
+  // above by one dispatch of shaders/traverse/or_mip.comp.glsl — the index
+  // kernel of the CPU build, so the words equal OrMipPyramid's.
+  void build(const GpuGridBuffer& grid, ShaderLibrary& shaders);
+  void build(const BinaryGrid& grid, ShaderLibrary& shaders);
+  std::vector<uint32_t> read() const;  // all levels' words
+  uint64_t countLevel0() const;        // set voxels of the grid (reads level 0 back)
+
  private:
+  void reduce(ShaderLibrary& shaders);
+  uint32_t totalWords_ = 0;
   unsigned buffer_ = 0;
   GridBox box_;
   shared::PyramidParams params_{};
   float marchStep_ = 0.0f;
 };
+
+// The pyramid's words built on the GPU from a CPU grid (tests compare them
+// with OrMipPyramid's).
+std::vector<uint32_t> buildOrMipGl(const BinaryGrid& grid, ShaderLibrary& shaders);
 
 // Adds the define that selects a GLSL tracer; throws for tracers GLSL lacks.
 void addTracerDefine(ShaderDefines& defines, const std::string& tracer);

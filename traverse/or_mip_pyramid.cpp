@@ -6,10 +6,7 @@
 // children.
 #include "traverse/or_mip_pyramid.h"
 
-#include <glad/gl.h>
-
 #include "core/error.h"
-#include "core/shader_library.h"
 #include "shaders/shared/or_mip.glsl"
 
 namespace vgi {
@@ -64,34 +61,6 @@ OrMipPyramid::OrMipPyramid(const BinaryGrid& grid) : box_(grid.box()) {
           words_[shared::mipWordIndex(x, y, w, s, D, offsets_[l])] = r;
         }
   }
-}
-
-std::vector<uint32_t> buildOrMipGl(const BinaryGrid& grid, ShaderLibrary& shaders) {
-  uint32_t total = 0;
-  std::vector<uint32_t> offsets = OrMipPyramid::layout(grid.box(), total);
-  unsigned prog = shaders.program({"traverse/or_mip.comp.glsl"});
-  unsigned buf = 0;
-  glCreateBuffers(1, &buf);
-  glNamedBufferStorage(buf, GLsizeiptr(size_t(total) * 4), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  glNamedBufferSubData(buf, 0, GLsizeiptr(grid.words().size() * 4), grid.words().data());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buf);
-  glUseProgram(prog);
-  const glm::uvec2 base(grid.box().resolution.x, grid.box().resolution.y);
-  const uint32_t D = grid.box().resolution.z, wpc = D / 32u;
-  for (uint32_t l = 1; l < offsets.size(); ++l) {
-    glm::uvec2 s = shared::mipLevelSize(base, l), c = shared::mipLevelSize(base, l - 1);
-    glUniform2ui(glGetUniformLocation(prog, "uSize"), s.x, s.y);
-    glUniform2ui(glGetUniformLocation(prog, "uChildSize"), c.x, c.y);
-    glUniform1ui(glGetUniformLocation(prog, "uDepth"), D);
-    glUniform1ui(glGetUniformLocation(prog, "uOffset"), offsets[l]);
-    glUniform1ui(glGetUniformLocation(prog, "uChildOffset"), offsets[l - 1]);
-    glDispatchCompute((s.x + 7u) / 8u, (s.y + 7u) / 8u, wpc);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-  }
-  std::vector<uint32_t> words(total);
-  glGetNamedBufferSubData(buf, 0, GLsizeiptr(size_t(total) * 4), words.data());
-  glDeleteBuffers(1, &buf);
-  return words;
 }
 
 }  // namespace vgi

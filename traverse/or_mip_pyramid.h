@@ -1,5 +1,5 @@
 // The OR-mip pyramid of a binary grid (VGI §4, after Forest et al. 2009 without
-// the octree): built on the CPU or on the GPU from the same index kernel
+// the octree): built on the CPU here or on the GPU (GlPyramid) from the same index kernel
 // (shaders/shared/or_mip.glsl), so both produce the same words.
 #pragma once
 #include <vector>
@@ -31,9 +31,6 @@ class OrMipPyramid {
   std::vector<uint32_t> words_;
 };
 
-// The same pyramid built by a GL compute pass per level (one dispatch per
-// level, barrier between); reads the grid's words, returns the pyramid's words.
-class ShaderLibrary;
-std::vector<uint32_t> buildOrMipGl(const BinaryGrid& grid, ShaderLibrary& shaders);
+// The same pyramid is built on the GPU by GlPyramid::build (traverse/gl_ray_tracer.h).
 
 }  // namespace vgi

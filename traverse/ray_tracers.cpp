@@ -33,20 +33,26 @@ const TracerInfo& findTracer(const std::string& name, const std::string& what) {
   fail(what, " '", name, "': unknown tracer (choose from ", names, ")");
 }
 
-shared::PyramidParams pyramidParams(const OrMipPyramid& pyramid) {
+shared::PyramidParams pyramidParams(const GridBox& box) {
   shared::PyramidParams p{};
-  p.grid = pyramid.box().params();
-  if (pyramid.levels() > shared::kMaxPyramidLevels)
-    fail("OR-mip pyramid: ", pyramid.levels(), " levels, at most ", shared::kMaxPyramidLevels, " supported");
-  p.levels = pyramid.levels();
-  for (uint32_t l = 0; l < pyramid.levels(); ++l) p.levelOffsets[l] = pyramid.levelOffset(l);
+  p.grid = box.params();
+  uint32_t total = 0;
+  std::vector<uint32_t> offsets = OrMipPyramid::layout(box, total);
+  if (offsets.size() > shared::kMaxPyramidLevels)
+    fail("OR-mip pyramid: ", offsets.size(), " levels, at most ", shared::kMaxPyramidLevels, " supported");
+  p.levels = uint32_t(offsets.size());
+  for (uint32_t l = 0; l < p.levels; ++l) p.levelOffsets[l] = offsets[l];
   return p;
 }
 
-float defaultMarchStep(const OrMipPyramid& pyramid) {
-  glm::vec3 v = pyramid.box().voxelSize();
+shared::PyramidParams pyramidParams(const OrMipPyramid& pyramid) { return pyramidParams(pyramid.box()); }
+
+float defaultMarchStep(const GridBox& box) {
+  glm::vec3 v = box.voxelSize();
   return 0.5f * std::min(v.x, std::min(v.y, v.z));
 }
+
+float defaultMarchStep(const OrMipPyramid& pyramid) { return defaultMarchStep(pyramid.box()); }
 
 void RayTracer::traceBatch(const std::vector<TraceRay>& rays, std::vector<TraceResult>& out, int threads) const {
   out.resize(rays.size());

@@ -20,6 +20,7 @@
 namespace vgi {
 
 class OrMipPyramid;
+struct GridBox;
 class EmbreeTracer;
 
 // std430-compatible: { vec3 origin; float tmax; vec3 dir; float pad; }.
@@ -66,8 +67,10 @@ class RayTracer {
 std::unique_ptr<RayTracer> createTracer(const std::string& name, const TracerInputs& inputs);
 
 // The pyramid as the shared kernels read it.
+shared::PyramidParams pyramidParams(const GridBox& box);
 shared::PyramidParams pyramidParams(const OrMipPyramid& pyramid);
-// Default march step: half the smallest voxel edge of the pyramid's grid.
+// Default march step: half the smallest voxel edge of the grid.
+float defaultMarchStep(const GridBox& box);
 float defaultMarchStep(const OrMipPyramid& pyramid);
 
 }  // namespace vgi

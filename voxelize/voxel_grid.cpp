@@ -49,7 +49,10 @@ glm::uvec3 parseResolution(const std::string& text, const std::string& option) {
 }
 
 GridBox fitGridBox(const Scene& scene, glm::uvec3 resolution, float time) {
-  Bounds b = scene.bounds(time);
+  return fitGridBox(scene.bounds(time), resolution);
+}
+
+GridBox fitGridBox(Bounds b, glm::uvec3 resolution) {
   if (b.empty()) fail("cannot fit a voxel grid: the scene is empty");
   GridBox g;
   g.resolution = resolution;

@@ -33,6 +33,8 @@ glm::uvec3 parseResolution(const std::string& text, const std::string& option = 
 // size so surfaces on the bounds stay inside under rounding. Flat extents (a
 // planar scene) are widened to a sliver so every axis has a positive size.
 GridBox fitGridBox(const Scene& scene, glm::uvec3 resolution, float time = 0);
+// The same for given bounds (e.g. the union over an animation's frames).
+GridBox fitGridBox(Bounds bounds, glm::uvec3 resolution);
 
 // Throws if a grid of this resolution would not fit in memory (names the size).
 void checkGridMemory(glm::uvec3 resolution, int grids = 1);

@@ -39,6 +39,27 @@ TEST(Cli, RenderWritesExrPngAndStats) {
   EXPECT_TRUE(std::filesystem::exists(tmp("cli_stats.json")));
 }
 
+// An animation: one image pair per frame (AOVs too), one stats JSON listing them with per-frame stats.
+TEST(Cli, RenderFramesWritesNumberedImagesAndOneStatsFile) {
+  CliRun r = vgi("render --scene builtin:cornell --method nearfield --size 16x16 --spp 1 --frames 2 --time-step 0.5 "
+                 "--aov indirect --quiet -o " + tmp("anim.exr"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* f : {"anim_0000.exr", "anim_0000.png", "anim_0001.exr", "anim_0001.png", "anim_0001.indirect.exr"})
+    EXPECT_TRUE(std::filesystem::exists(tmp(f))) << f;
+  EXPECT_FALSE(std::filesystem::exists(tmp("anim.exr")));
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("anim.json")));
+  ASSERT_EQ(s["frames"].size(), 2u);
+  EXPECT_EQ(s["frames"][1]["time"], 0.5);
+  EXPECT_EQ(s["frames_completed"], 2);
+  EXPECT_EQ(s["outputs"].size(), 8u);  // 2 frames × (image, indirect) × (exr, png)
+  CliRun bad = vgi("render --frames 0 --size 8x8 -o " + tmp("x.exr"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.output.find("--frames 0"), std::string::npos) << bad.output;
+  CliRun nan = vgi("render --frames 2 --time-step nan --size 8x8 -o " + tmp("x.exr"));
+  EXPECT_EQ(nan.code, 2);
+  EXPECT_NE(nan.output.find("--time-step"), std::string::npos) << nan.output;
+}
+
 TEST(Cli, BadArgumentsFailWithClearMessages) {
   CliRun a = vgi("render --set nosuch=1 --size 8x8 -o " + tmp("x.exr"));
   EXPECT_EQ(a.code, 2);

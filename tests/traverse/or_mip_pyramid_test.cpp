@@ -7,6 +7,7 @@
 #include "core/gl_context.h"
 #include "core/shader_library.h"
 #include "test_util.h"
+#include "traverse/gl_ray_tracer.h"
 #include "traverse/or_mip_pyramid.h"
 
 namespace vgi {

@@ -6,6 +6,8 @@
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
 #include "test_util.h"
+#include "traverse/gl_ray_tracer.h"
+#include "traverse/or_mip_pyramid.h"
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"
 #include "voxelize/grid_metrics.h"
@@ -283,9 +285,15 @@ TEST(AtlasVoxelizer, FramesReuseTheStaticGridWithoutStaleVoxels) {
   EXPECT_EQ(v.stats()["static_meshes"], 7);
   EXPECT_EQ(v.stats()["dynamic_meshes"], 1);
   std::vector<BinaryGrid> frames;
+  GlPyramid pyramid(r.box);
   for (float t : {0.0f, 1.0f, 0.0f}) {
     v.voxelizeFrame(t, prof);
     frames.push_back(v.readFrame());
+    // The frame's pyramid, built on the GPU from the GPU grid (as `nearfield`
+    // does per frame), equals the CPU build from the read-back grid.
+    pyramid.build(v.frameGrid(), f.shaders);
+    EXPECT_EQ(pyramid.read(), OrMipPyramid(frames.back()).words()) << "time " << t;
+    EXPECT_EQ(pyramid.countLevel0(), frames.back().count());
   }
   EXPECT_EQ(frames[0].words(), frames[2].words());
   EXPECT_NE(frames[0].words(), frames[1].words());
