@@ -123,7 +123,8 @@ struct Animation {
   std::vector<Image> images;
   RenderOutput last;
 };
-Animation animate(const std::string& scene, int frames, float step) {
+// 32², one sample, full-resolution indirect: small, and every voxel counts.
+RenderOptions smallNearField(const std::string& scene) {
   RenderOptions o;
   o.scene = scene;
   o.method = "nearfield";
@@ -131,6 +132,11 @@ Animation animate(const std::string& scene, int frames, float step) {
   o.width = o.height = 32;
   o.spp = 1;
   o.progress = false;
+  return o;
+}
+
+Animation animate(const std::string& scene, int frames, float step) {
+  RenderOptions o = smallNearField(scene);
   o.frames = frames;
   o.timeStep = step;
   Animation a;
@@ -152,13 +158,7 @@ TEST(NearField, AnimationFramesEqualStillsAtTheirTimes) {
   const nlohmann::json& frames = a.last.stats["frames"];
   ASSERT_EQ(frames.size(), 3u);
   for (int f = 0; f < 3; ++f) {
-    RenderOptions o;
-    o.scene = scene;
-    o.method = "nearfield";
-    o.set = {"resolution=1", "interleave=1"};
-    o.width = o.height = 32;
-    o.spp = 1;
-    o.progress = false;
+    RenderOptions o = smallNearField(scene);
     o.time = 0.5f * float(f);
     RenderOutput still = runRender(o);
     EXPECT_EQ(a.images[size_t(f)].pixels, still.result.image.pixels) << "frame " << f;
