@@ -22,6 +22,7 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
     f.eyeOrtho = glm::vec4(eye, ortho ? 1.0f : 0.0f);
     f.axisTexel = glm::vec4(axis, texel);
     out.faces.push_back(f);
+    out.drawn.push_back(true);
   };
   for (const Light& l : lights) {
     const int first = int(out.faces.size());
@@ -47,9 +48,17 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
         const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
         glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, nearP, maxDist);
-        for (int f = 0; f < 6; ++f)
+        for (int f = 0; f < 6; ++f) {
           add(proj * glm::lookAt(l.position, l.position + dirs[f], ups[f]), l.position, false, dirs[f],
               2.0f / float(resolution));
+          // A face's frustum lies within atan(√2) of its axis: wholly outside
+          // a spot's cone when its axis is farther than that from the cone
+          // (a small margin keeps faces that merely touch the cone).
+          if (l.type == LightType::Spot) {
+            float angle = std::acos(glm::clamp(glm::dot(dirs[f], glm::normalize(l.direction)), -1.0f, 1.0f));
+            out.drawn.back() = angle <= glm::radians(l.coneHalfAngleDeg) + std::atan(std::sqrt(2.0f)) + 1e-3f;
+          }
+        }
       }
     }
     out.ranges.push_back(glm::ivec4(first, int(out.faces.size()) - first, 0, 0));
@@ -121,6 +130,7 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
         fail("light maps: the framebuffer is incomplete on this GL");
       glClearBufferfv(GL_COLOR, 0, farv);
       for (int c = 1; c < channels; ++c) glClearBufferfv(GL_COLOR, c, zero);
+      if (!layout_.drawn[size_t(f)]) continue;
       glClear(GL_DEPTH_BUFFER_BIT);
       glUniform3fv(glGetUniformLocation(prog, "uEye"), 1, &face.eyeOrtho.x);
       glUniform3fv(glGetUniformLocation(prog, "uAxis"), 1, &face.axisTexel.x);
@@ -151,8 +161,10 @@ void LightMaps::bind() const {
 nlohmann::json LightMaps::describe() const {
   int single = 0, cube = 0;
   for (auto& r : layout_.ranges) (r.y == 6 ? cube : single)++;
-  return {{"faces", faceCount()}, {"cube", cube}, {"single_face", single}, {"resolution", resolution_},
-          {"reflective", reflective_}};
+  int drawn = 0;
+  for (bool d : layout_.drawn) drawn += d ? 1 : 0;
+  return {{"faces", faceCount()}, {"faces_drawn", drawn}, {"cube", cube}, {"single_face", single},
+          {"resolution", resolution_}, {"reflective", reflective_}};
 }
 
 }  // namespace vgi

@@ -21,6 +21,10 @@ class ShaderLibrary;
 struct LightFaceLayout {
   std::vector<shared::LightFace> faces;
   std::vector<glm::ivec4> ranges;  // per light: x first face, y count
+  // Per face: false where no direction of the face's frustum lies in a spot
+  // light's cone (e.g. the up face of a downward 90° spot): it is cleared
+  // (unoccluded, no reflected light — the light sends nothing there), not drawn.
+  std::vector<bool> drawn;
 };
 // Spot lights with a cone half-angle up to this get one perspective face.
 constexpr float kSingleFaceSpotDeg = 60.0f;

@@ -69,6 +69,46 @@ TEST(LightMaps, EveryVisiblePointProjectsIntoTheFaceTheLookupPicks) {
   for (int c : checked) EXPECT_GT(c, 500);
 }
 
+// Cube faces a spot cannot light are not drawn: every direction of such a
+// face (a 33×33 lattice, edges and corners included) lies outside the cone;
+// the up face of a downward 90° spot (the Cornell box's light) is one.
+TEST(LightMaps, CubeFacesOutsideASpotConeAreNotDrawn) {
+  Bounds b;
+  b.extend(glm::vec3(-2.0f));
+  b.extend(glm::vec3(2.0f));
+  const glm::vec3 tilted = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+  struct Case {
+    Light light;
+    int drawn;
+  };
+  const Case cases[] = {{makeLight(LightType::Spot, {0, -1, 0}, 90), 5}, {makeLight(LightType::Spot, {1, 0, 0}, 61), 5},
+                        {makeLight(LightType::Spot, tilted, 70), 5},     {makeLight(LightType::Spot, tilted, 135), 6},
+                        {makeLight(LightType::Point, {0, -1, 0}, 90), 6}};
+  for (const Case& c : cases) {
+    LightFaceLayout layout = layoutLightFaces({c.light}, b, 64);
+    ASSERT_EQ(layout.faces.size(), 6u);
+    ASSERT_EQ(layout.drawn.size(), 6u);
+    int drawn = 0;
+    const float cosCone = std::cos(glm::radians(c.light.coneHalfAngleDeg));
+    for (int f = 0; f < 6; ++f) {
+      drawn += layout.drawn[size_t(f)] ? 1 : 0;
+      if (layout.drawn[size_t(f)]) continue;
+      const glm::vec3 axis = glm::vec3(layout.faces[size_t(f)].axisTexel);
+      const glm::vec3 u = std::abs(axis.x) > 0.5f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0), v = glm::cross(axis, u);
+      for (int i = 0; i <= 32; ++i)
+        for (int j = 0; j <= 32; ++j) {
+          glm::vec3 d = glm::normalize(axis + (i / 16.0f - 1.0f) * u + (j / 16.0f - 1.0f) * v);
+          if (i % 32 && j % 32) {  // (edges are shared with a neighbour)
+            ASSERT_EQ(cubeFaceIndex(d), f);
+          }
+          EXPECT_LT(glm::dot(d, glm::normalize(c.light.direction)), cosCone) << "face " << f;
+        }
+    }
+    EXPECT_EQ(drawn, c.drawn) << "cone " << c.light.coneHalfAngleDeg;
+  }
+  EXPECT_FALSE(layoutLightFaces({cases[0].light}, b, 64).drawn[2]);  // +y, GL's face order
+}
+
 TEST(LightMaps, BackProjectionEpsilonFollowsTheRule) {
   EXPECT_FLOAT_EQ(backProjectionEpsilon(0.1f, 0.01f, 1.0f), 0.1f);     // voxel-bound
   EXPECT_FLOAT_EQ(backProjectionEpsilon(0.01f, 0.05f, 0.5f), 0.1f);    // texel / cos α
