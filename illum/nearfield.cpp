@@ -89,7 +89,7 @@ class NearFieldMethod : public Method {
     std::vector<std::string> voxelizers;
     for (auto& v : voxelizerRegistry()) voxelizers.push_back(v.name);
     q.voxelizer = p.getString("voxelizer", "atlas", "binary voxelizer (see vgi voxelize --help)", voxelizers);
-    checkGridMemory(q.voxels, 2);
+    checkGridMemory(q.voxels, 4);  // static + frame grid (atlas), the pyramid (≈ 4/3 of a grid)
     readShadowParams(p, q.shadow);
   }
   std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
