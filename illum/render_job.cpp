@@ -173,6 +173,8 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
     profiler.resolve(true);
     checkGl();
     interrupted = out.result.interrupted || interruptRequested();
+    // Stopped before every pixel of this frame had a sample: the frames so far stand, this one is not written.
+    if (out.result.sppCompleted == 0) break;
     nlohmann::json fs;
     fs["frame"] = f;
     fs["time"] = req.time;
