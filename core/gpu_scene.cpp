@@ -31,13 +31,17 @@ static_assert(sizeof(shared::PackedLight) == 48, "std430 layout of PackedLight")
 static_assert(sizeof(shared::PackedMaterial) == 48, "std430 layout of PackedMaterial");
 
 namespace {
-// Interleaved position, normal, uv: 8 floats per vertex.
+// Interleaved position, shading normal, uv, geometric (face) normal: 11 floats per vertex.
+constexpr int kVertexFloats = 11;
 void interleave(const FlatScene& f, std::vector<float>& verts) {
-  verts.reserve(f.positions.size() * 8);
+  verts.reserve(f.positions.size() * kVertexFloats);
   for (size_t i = 0; i < f.positions.size(); ++i) {
     const glm::vec3 &p = f.positions[i], &n = f.normals[i];
     const glm::vec2& uv = f.uvs[i];
-    verts.insert(verts.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y});
+    const size_t t = i - i % 3;
+    glm::vec3 g = glm::cross(f.positions[t + 1] - f.positions[t], f.positions[t + 2] - f.positions[t]);
+    g = glm::length(g) > 0.0f ? glm::normalize(g) : n;
+    verts.insert(verts.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y, g.x, g.y, g.z});
   }
 }
 
@@ -59,12 +63,13 @@ GpuScene::GpuScene(const Scene& scene, float time) {
   interleave(f, verts);
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
-  glNamedBufferStorage(vbo_, GLsizeiptr(std::max<size_t>(verts.size(), 8) * sizeof(float)),
+  glNamedBufferStorage(vbo_, GLsizeiptr(std::max<size_t>(verts.size(), kVertexFloats) * sizeof(float)),
                        verts.empty() ? nullptr : verts.data(), GL_DYNAMIC_STORAGE_BIT);
-  glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, 8 * sizeof(float));
-  for (unsigned a = 0; a < 3; ++a) {
+  glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, kVertexFloats * sizeof(float));
+  const unsigned offsets[4] = {0, 3, 6, 8}, sizes[4] = {3, 3, 2, 3};
+  for (unsigned a = 0; a < 4; ++a) {
     glEnableVertexArrayAttrib(vao_, a);
-    glVertexArrayAttribFormat(vao_, a, a == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, a * 3 * sizeof(float));
+    glVertexArrayAttribFormat(vao_, a, int(sizes[a]), GL_FLOAT, GL_FALSE, offsets[a] * sizeof(float));
     glVertexArrayAttribBinding(vao_, a, 0);
   }
 

@@ -12,6 +12,7 @@
 #include "core/gpu_scene.h"
 #include "core/shader_library.h"
 #include "illum/light_maps.h"
+#include "shaders/shared/gbuffer.glsl"
 
 namespace vgi {
 
@@ -25,9 +26,19 @@ float halton(int index, int base) {
 }
 
 FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int frame, int frames) {
-  float camFar = glm::length(glm::max(glm::abs(b.lo - cam.position), glm::abs(b.hi - cam.position))) * 1.01f + 1e-6f;
-  glm::mat4 proj = glm::perspective(glm::radians(cam.fovYDeg), float(W) / float(H),
-                                    std::max(camFar * 1e-5f, 1e-7f), camFar);
+  // Reversed-Z with an infinite far plane (GBuffer::render sets depth [0, 1]
+  // and GL_GREATER): depth = near / distance, whose float precision is
+  // relative at every distance. The usual [−1, 1] mapping with this near
+  // plane resolved only ~3 mm at 1 m: a back face beside a silhouette tied
+  // with the front face and won a 1-pixel column (seen on the Cornell box).
+  const float camFar = glm::length(glm::max(glm::abs(b.lo - cam.position), glm::abs(b.hi - cam.position))) * 1.01f + 1e-6f;
+  const float nearP = std::max(camFar * 1e-5f, 1e-7f), f = 1.0f / std::tan(0.5f * glm::radians(cam.fovYDeg));
+  glm::mat4 proj(0.0f);
+  proj[0][0] = f * float(H) / float(W);
+  proj[1][1] = f;
+  proj[2][3] = -1.0f;  // w_clip = distance along the view axis
+  proj[3][2] = nearP;  // z_clip = near
+
   glm::mat4 view = glm::lookAt(cam.position, cam.target, cam.up);
   glm::vec2 j = frames == 1 ? glm::vec2(0.0f) : glm::vec2(halton(frame + 1, 2), halton(frame + 1, 3)) - 0.5f;
   glm::vec2 jNdc = 2.0f * j / glm::vec2(W, H);
@@ -44,7 +55,7 @@ GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H) {
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
   if (W > maxTex || H > maxTex) fail("--size ", W, "x", H, " exceeds this GL's largest texture (", maxTex, ")");
   prog_ = shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/gbuffer.frag.glsl"});
-  glCreateTextures(GL_TEXTURE_2D, 3, tex_);
+  glCreateTextures(GL_TEXTURE_2D, 4, tex_);
   for (unsigned t : tex_) {
     glTextureStorage2D(t, 1, GL_RGBA32F, W, H);
     glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -53,10 +64,10 @@ GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H) {
   glCreateRenderbuffers(1, &depth_);
   glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, W, H);
   glCreateFramebuffers(1, &fbo_);
-  for (int i = 0; i < 3; ++i) glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + i, tex_[i], 0);
+  for (int i = 0; i < 4; ++i) glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + i, tex_[i], 0);
   glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-  const GLenum bufs[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-  glNamedFramebufferDrawBuffers(fbo_, 3, bufs);
+  const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+  glNamedFramebufferDrawBuffers(fbo_, 4, bufs);
   if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     fail("the G-buffer framebuffer is incomplete on this GL");
 }
@@ -64,7 +75,7 @@ GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H) {
 GBuffer::~GBuffer() {
   glDeleteFramebuffers(1, &fbo_);
   glDeleteRenderbuffers(1, &depth_);
-  glDeleteTextures(3, tex_);
+  glDeleteTextures(4, tex_);
 }
 
 void GBuffer::render(const GpuScene& gpu, const FrameCamera& camera) {
@@ -73,17 +84,25 @@ void GBuffer::render(const GpuScene& gpu, const FrameCamera& camera) {
   glViewport(0, 0, w_, h_);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  for (int i = 0; i < 3; ++i) glClearBufferfv(GL_COLOR, i, zero);
-  glClear(GL_DEPTH_BUFFER_BIT);
+  // Reversed-Z (see frameCamera); the other passes keep GL's defaults.
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glDepthFunc(GL_GREATER);
+  for (int i = 0; i < 4; ++i) glClearBufferfv(GL_COLOR, i, zero);
+  const float clearDepth = 0.0f;
+  glClearBufferfv(GL_DEPTH, 0, &clearDepth);
   glUseProgram(prog_);
   gpu.bind(prog_);
   glUniformMatrix4fv(glGetUniformLocation(prog_, "uViewProj"), 1, GL_FALSE, glm::value_ptr(camera.viewProj));
   gpu.draw();
+  glDepthFunc(GL_LESS);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void GBuffer::bind(unsigned firstUnit) const {
-  for (unsigned i = 0; i < 3; ++i) glBindTextureUnit(firstUnit + i, tex_[i]);
+void GBuffer::bind() const {
+  const unsigned units[4] = {TEXUNIT_GBUFFER_POSITION, TEXUNIT_GBUFFER_NORMAL, TEXUNIT_GBUFFER_ALBEDO,
+                            TEXUNIT_GBUFFER_GEOMETRIC_NORMAL};
+  for (unsigned i = 0; i < 4; ++i) glBindTextureUnit(units[i], tex_[i]);
 }
 
 Accumulator::Accumulator(int W, int H) : w_(W), h_(H) {
@@ -124,7 +143,7 @@ void DirectPass::shade(const GBuffer& g, const LightMaps& maps, const FrameCamer
   gpu_.bind(prog_);  // other passes may have used the same binding points
   glUniform3fv(glGetUniformLocation(prog_, "uCameraPosition"), 1, &cam.position.x);
   glUniformMatrix4fv(glGetUniformLocation(prog_, "uInvViewProj"), 1, GL_FALSE, glm::value_ptr(cam.invViewProj));
-  g.bind(0);
+  g.bind();
   maps.bind();
   glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   glDispatchCompute(unsigned(g.width() + 7) / 8, unsigned(g.height() + 7) / 8, 1);

@@ -25,7 +25,8 @@ struct FrameCamera {
 FrameCamera frameCamera(const Camera& camera, const Bounds& bounds, int width, int height, int frame, int frames);
 
 // Position (w = 1 where a surface was seen), normal facing the viewer (w =
-// material index) and albedo, at texture units 0..2 when bound.
+// material index), albedo and the geometric normal, at the texture units of
+// shaders/shared/gbuffer.glsl when bound.
 class GBuffer {
  public:
   GBuffer(int width, int height, ShaderLibrary& shaders);
@@ -33,13 +34,13 @@ class GBuffer {
   GBuffer(const GBuffer&) = delete;
   GBuffer& operator=(const GBuffer&) = delete;
   void render(const GpuScene& gpu, const FrameCamera& camera);
-  void bind(unsigned firstUnit = 0) const;
+  void bind() const;  // at the units of shaders/shared/gbuffer.glsl
   int width() const { return w_; }
   int height() const { return h_; }
 
  private:
   int w_, h_;
-  unsigned tex_[3] = {0, 0, 0}, depth_ = 0, fbo_ = 0, prog_ = 0;
+  unsigned tex_[4] = {0, 0, 0, 0}, depth_ = 0, fbo_ = 0, prog_ = 0;
 };
 
 // An RGBA32F image that frames are added into (w counts the frames).

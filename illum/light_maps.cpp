@@ -16,9 +16,13 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
   LightFaceLayout out;
   const float diag = std::max(b.diagonal(), 1e-6f);
   const glm::vec3 center = 0.5f * (b.lo + b.hi);
-  auto add = [&](const glm::mat4& vp, glm::vec3 eye, bool ortho, glm::vec3 axis, float texel) {
+  // rays: a matrix with the face's x, y mapping whose inverse is well
+  // conditioned (the face's own, with its near plane at 1e-5 of the range,
+  // loses the rays' directions to cancellation).
+  auto add = [&](const glm::mat4& vp, const glm::mat4& rays, glm::vec3 eye, bool ortho, glm::vec3 axis, float texel) {
     shared::LightFace f;
     f.viewProj = vp;
+    f.rayUnproject = glm::inverse(rays);
     f.eyeOrtho = glm::vec4(eye, ortho ? 1.0f : 0.0f);
     f.axisTexel = glm::vec4(axis, texel);
     out.faces.push_back(f);
@@ -32,7 +36,7 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
       float r = 0.5f * diag * 1.01f;
       glm::vec3 origin = center - d * r;
       glm::mat4 vp = glm::ortho(-r, r, -r, r, 0.0f, 2.0f * r) * glm::lookAt(origin, center, up);
-      add(vp, origin, true, d, 2.0f * r / float(resolution));
+      add(vp, vp, origin, true, d, 2.0f * r / float(resolution));
     } else {
       float maxDist = glm::length(glm::max(glm::abs(b.lo - l.position), glm::abs(b.hi - l.position))) * 1.01f + 1e-6f;
       float nearP = std::max(maxDist * 1e-5f, 1e-7f);
@@ -41,16 +45,18 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
         float fov = 2.0f * glm::radians(l.coneHalfAngleDeg) * 1.02f;
         glm::vec3 axis = glm::normalize(l.direction);
         glm::vec3 up = std::abs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-        glm::mat4 vp = glm::perspective(fov, 1.0f, nearP, maxDist) * glm::lookAt(l.position, l.position + axis, up);
-        add(vp, l.position, false, axis, 2.0f * std::tan(0.5f * fov) / float(resolution));
+        glm::mat4 view = glm::lookAt(l.position, l.position + axis, up);
+        add(glm::perspective(fov, 1.0f, nearP, maxDist) * view, glm::perspective(fov, 1.0f, 1.0f, 2.0f) * view,
+            l.position, false, axis, 2.0f * std::tan(0.5f * fov) / float(resolution));
       } else {
         // Cube faces in GL's order with their conventional up vectors.
         const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-        glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, nearP, maxDist);
+        glm::mat4 proj = glm::perspective(glm::radians(90.0f), 1.0f, nearP, maxDist),
+                  unit = glm::perspective(glm::radians(90.0f), 1.0f, 1.0f, 2.0f);
         for (int f = 0; f < 6; ++f) {
-          add(proj * glm::lookAt(l.position, l.position + dirs[f], ups[f]), l.position, false, dirs[f],
-              2.0f / float(resolution));
+          glm::mat4 view = glm::lookAt(l.position, l.position + dirs[f], ups[f]);
+          add(proj * view, unit * view, l.position, false, dirs[f], 2.0f / float(resolution));
           // A face's frustum lies within atan(√2) of its axis: wholly outside
           // a spot's cone when its axis is farther than that from the cone
           // (a small margin keeps faces that merely touch the cone).

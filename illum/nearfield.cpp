@@ -216,7 +216,7 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
       gpu->bind(indirectProg);
       rsm.bind();
       glPyramid->bind(indirectProg);
-      gbuffer.bind(0);
+      gbuffer.bind();
       uniform1i(indirectProg, "uScale", scale);
       uniform1i(indirectProg, "uRays", p_.rays);
       uniform1i(indirectProg, "uInterleave", p_.interleave);
@@ -243,7 +243,7 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
       glUseProgram(blurProg);
       geometryUniforms(blurProg);
       uniform1i(blurProg, "uInterleave", p_.interleave);
-      gbuffer.bind(0);
+      gbuffer.bind();
       glBindTextureUnit(3, lowTex[0]);
       glBindImageTexture(0, lowTex[1], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
       glDispatchCompute(unsigned(lw + 7) / 8, unsigned(lh + 7) / 8, 1);
@@ -255,7 +255,7 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
       glUseProgram(upProg);
       geometryUniforms(upProg);
       uniform1i(upProg, "uWriteAov", indirectAov ? 1 : 0);
-      gbuffer.bind(0);
+      gbuffer.bind();
       glBindTextureUnit(3, lowTex[current]);
       glBindImageTexture(0, accum.texture(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
       glBindImageTexture(1, indirectAov ? indirectAov->texture() : accum.texture(), 0, GL_FALSE, 0, GL_READ_WRITE,

@@ -26,6 +26,7 @@ SHARED_BEGIN
 
 struct LightFace {
   mat4 viewProj;
+  mat4 rayUnproject;    // NDC (x, y, −1) → a point on the texel's ray (perspective: 1 unit from the eye; ortho: the near plane)
   vec4 eyeOrtho;        // xyz eye (light position, or the plane origin); w = 1 for orthographic
   vec4 axisTexel;       // xyz view axis; w = texel size per unit distance (perspective) or in world units
 };
@@ -63,6 +64,32 @@ SHARED_FN vec2 lightMapUv(SHARED_IN(LightFace) f, vec3 p) {
   return vec2(c.x / c.w * 0.5f + 0.5f, c.y / c.w * 0.5f + 0.5f);
 }
 
+// The centre of the texel of an n×n map that uv falls in (GL_NEAREST's texel).
+SHARED_FN vec2 lightMapTexelCentre(vec2 uv, float n) {
+  return vec2((floor(uv.x * n) + 0.5f) / n, (floor(uv.y * n) + 0.5f) / n);
+}
+
+// What the map would store at texel centre uvCentre if the plane through q
+// with normal ng were the surface there: the map's distance (as
+// lightMapDistance) to where the ray through that texel centre meets the
+// plane — exactly what rasterising that plane writes, since fragments are
+// evaluated at texel centres. Negative when the ray runs within ~3° of the
+// plane (no stable answer) or meets it behind the light.
+SHARED_FN float lightMapPlaneDistance(SHARED_IN(LightFace) f, vec2 uvCentre, vec3 q, vec3 ng) {
+  bool ortho = f.eyeOrtho.w > 0.5f;
+  // Orthographic: from the texel centre on the near plane along the axis;
+  // perspective: from the light through the texel centre.
+  vec4 a = f.rayUnproject * vec4(uvCentre.x * 2.0f - 1.0f, uvCentre.y * 2.0f - 1.0f, -1.0f, 1.0f);
+  vec3 onRay = vec3(a.x, a.y, a.z) / a.w;
+  vec3 o = ortho ? onRay : lightFaceEye(f);
+  vec3 d = ortho ? vec3(f.axisTexel.x, f.axisTexel.y, f.axisTexel.z) : normalize(onRay - o);
+  float c = dot(d, ng);
+  if (abs(c) < 0.01f) return -1.0f;
+  float t = dot(q - o, ng) / c;
+  if (!ortho && t <= 0.0f) return -1.0f;
+  return lightMapDistance(f, o + d * t);
+}
+
 // VGI §5.1: a hit point y back-projected into a reflective shadow map receives
 // the stored radiance when |y − p_rsm| < ε, ε = max(v, s/cos α · z/z_near):
 // v the voxel discretisation (here the voxel diagonal, as a voxel-entry hit can
@@ -89,16 +116,25 @@ int lightFaceOf(int light, vec3 p) {
   return lightMapFace(lightFaces[r.x], r.x, r.y, p);
 }
 
-// Shadow test of a surface point p (normal n, cos θ to the light) against the
-// light's distance map: the lookup is moved `normalOffset` texels along n and
-// the comparison biased by `bias` texels, slope-scaled by 1/cos θ.
-bool lightMapLit(int light, vec3 p, vec3 n, float cosI, float bias, float normalOffset) {
+// Shadow test of a surface point p (shading normal n, cos θ to the light;
+// geometric normal ng) against the light's distance map. The lookup is moved
+// `normalOffset` texels along n. The receiver's distance is taken where the
+// stored one was: at the texel's centre, on the receiver's plane
+// (lightMapPlaneDistance) — so a plane never shadows itself at any angle
+// (no acne at grazing light) and `bias` (texels) only absorbs rounding and
+// the neighbour surface of a concave corner, without the large slope-scaled
+// bias that lets light leak under thin occluders. Within ~3° of grazing it
+// falls back to p's own distance with a bias slope-scaled by 1/cos θ (≤ 5×).
+bool lightMapLit(int light, vec3 p, vec3 n, vec3 ng, float cosI, float bias, float normalOffset) {
   LightFace face = lightFaces[lightFaceOf(light, p)];
   float texel = lightMapTexelWorld(face, lightMapDistance(face, p));
   vec3 q = p + n * (normalOffset * texel);
   int f = lightFaceOf(light, q);
   face = lightFaces[f];
-  float stored = texture(lightDistance, vec3(lightMapUv(face, q), float(f))).x;
+  vec2 uv = lightMapUv(face, q);
+  float stored = texture(lightDistance, vec3(uv, float(f))).x;
+  float onPlane = lightMapPlaneDistance(face, lightMapTexelCentre(uv, float(textureSize(lightDistance, 0).x)), q, ng);
+  if (onPlane >= 0.0f) return onPlane - bias * texel <= stored;
   return lightMapDistance(face, q) - bias * texel / max(cosI, 0.2f) <= stored;
 }
 #endif

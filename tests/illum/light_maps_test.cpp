@@ -109,6 +109,54 @@ TEST(LightMaps, CubeFacesOutsideASpotConeAreNotDrawn) {
   EXPECT_FALSE(layoutLightFaces({cases[0].light}, b, 64).drawn[2]);  // +y, GL's face order
 }
 
+// The receiver-plane distance at a texel centre equals the exact (double)
+// distance along the ray through that centre to the plane, for points on
+// planes lit from steep to grazing (down to cos 0.02), on perspective (cube,
+// single) and orthographic faces.
+TEST(LightMaps, PlaneDistanceAtTexelCentreIsExact) {
+  Bounds b;
+  b.extend(glm::vec3(-1.0f));
+  b.extend(glm::vec3(1.0f));
+  const glm::vec3 down = glm::normalize(glm::vec3(0.1f, -1.0f, 0.05f));
+  std::vector<Light> lights = {makeLight(LightType::Point, down, 90), makeLight(LightType::Spot, down, 40),
+                               makeLight(LightType::Directional, down, 90)};
+  lights[0].position = lights[1].position = glm::vec3(0.1f, 0.9f, 0.05f);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-0.8f, 0.8f);
+  int checked = 0;
+  for (size_t l = 0; l < lights.size(); ++l) {
+    LightFaceLayout layout = layoutLightFaces({lights[l]}, b, 1024);
+    for (int i = 0; i < 3000; ++i) {
+      glm::vec3 p(u(rng), u(rng) - 0.2f, u(rng));
+      glm::vec3 toLight = l == 2 ? -down : glm::normalize(lights[l].position - p);
+      // A plane through p whose normal makes cos = c with the light direction.
+      float c = std::pow(10.0f, -1.7f + 1.7f * float(i % 100) / 99.0f);
+      glm::vec3 side = glm::normalize(glm::cross(toLight, glm::vec3(0.3f, 0.5f, 0.8f)));
+      glm::vec3 ng = c * toLight + std::sqrt(1.0f - c * c) * side;
+      const int f = layout.faces.size() == 6 ? cubeFaceIndex(p - lights[l].position) : 0;
+      const LightFace& face = layout.faces[size_t(f)];
+      glm::vec2 uv = lightMapUv(face, p);
+      if (uv.x < 0 || uv.y < 0 || uv.x >= 1 || uv.y >= 1) continue;
+      glm::vec2 centre = lightMapTexelCentre(uv, 1024.0f);
+      float got = lightMapPlaneDistance(face, centre, p, ng);
+      glm::dmat4 inv = glm::inverse(glm::dmat4(face.viewProj));
+      glm::dvec4 nearP = inv * glm::dvec4(centre.x * 2.0 - 1.0, centre.y * 2.0 - 1.0, -1.0, 1.0);
+      glm::dvec4 farP = inv * glm::dvec4(centre.x * 2.0 - 1.0, centre.y * 2.0 - 1.0, 1.0, 1.0);
+      glm::dvec3 o = glm::dvec3(nearP) / nearP.w, d = glm::normalize(glm::dvec3(farP) / farP.w - o);
+      double t = glm::dot(glm::dvec3(p) - o, glm::dvec3(ng)) / glm::dot(d, glm::dvec3(ng));
+      glm::dvec3 x = o + d * t;
+      double expect = l == 2 ? glm::dot(x - glm::dvec3(lightFaceEye(face)), glm::dvec3(down))
+                             : glm::length(x - glm::dvec3(lights[l].position));
+      const float texel = lightMapTexelWorld(face, lightMapDistance(face, p));
+      // It is never farther than the point itself by more than the texel's
+      // footprint on the plane, and equals the exact value to 1e-4 texel / cos.
+      ASSERT_NEAR(got, expect, 1e-3 * texel / c + 1e-6) << "light " << l << " cos " << c;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 6000);
+}
+
 TEST(LightMaps, BackProjectionEpsilonFollowsTheRule) {
   EXPECT_FLOAT_EQ(backProjectionEpsilon(0.1f, 0.01f, 1.0f), 0.1f);     // voxel-bound
   EXPECT_FLOAT_EQ(backProjectionEpsilon(0.01f, 0.05f, 0.5f), 0.1f);    // texel / cos α

@@ -7,11 +7,13 @@
 #include "../../shared/environment.glsl"
 #include "../../shared/gpu_scene.glsl"
 #include "../../shared/light_maps.glsl"
+#include "../../shared/gbuffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0) uniform sampler2D gPosition;
-layout(binding = 1) uniform sampler2D gNormal;
-layout(binding = 2) uniform sampler2D gAlbedo;
+layout(binding = TEXUNIT_GBUFFER_POSITION) uniform sampler2D gPosition;
+layout(binding = TEXUNIT_GBUFFER_NORMAL) uniform sampler2D gNormal;
+layout(binding = TEXUNIT_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
+layout(binding = TEXUNIT_GBUFFER_GEOMETRIC_NORMAL) uniform sampler2D gGeometricNormal;
 layout(rgba32f, binding = 0) uniform image2D uAccum;
 
 uniform vec3 uCameraPosition;
@@ -27,12 +29,13 @@ void main() {
   vec3 L = vec3(0.0f);
   if (P.w == 0.0f) {
     vec2 ndc = (vec2(px) + 0.5f) / vec2(size) * 2.0f - 1.0f;  // inverse of the jittered matrix
-    vec4 far = uInvViewProj * vec4(ndc, 1.0f, 1.0f);
-    L = gpuEnvironmentRadiance(normalize(far.xyz / far.w - uCameraPosition));
+    vec4 q = uInvViewProj * vec4(ndc, 1.0f, 1.0f);  // a point on the pixel's ray (reversed-Z: the near plane)
+    L = gpuEnvironmentRadiance(normalize(q.xyz / q.w - uCameraPosition));
   } else {
     vec3 p = P.xyz;
     vec4 N = texelFetch(gNormal, px, 0);
     vec3 n = normalize(N.xyz);
+    vec3 ng = texelFetch(gGeometricNormal, px, 0).xyz;
     int m = int(N.w + 0.5f);
     BrdfParams brdf = gpuMaterialBrdf(m, texelFetch(gAlbedo, px, 0).xyz);
     vec3 wo = normalize(uCameraPosition - p);
@@ -41,7 +44,7 @@ void main() {
       LightSample ls = sampleDeltaLight(lights[i], p);
       float cosI = dot(ls.wi, n);
       bool lit = cosI > 0.0f && (ls.radiance.x + ls.radiance.y + ls.radiance.z) > 0.0f;
-      if (lit) lit = lightMapLit(i, p, n, cosI, uShadowBias, uNormalOffset);
+      if (lit) lit = lightMapLit(i, p, n, ng, cosI, uShadowBias, uNormalOffset);
       if (lit) L += evalBrdf(brdf, n, wo, ls.wi) * ls.radiance * cosI;
     }
   }

@@ -1,6 +1,7 @@
 // G-buffer: world position (w = 1 where a surface was seen), shading normal
 // turned towards the viewer (surfaces are two-sided, as in the reference) with
-// the material index in w, and textured albedo.
+// the material index in w, textured albedo, and the triangle's geometric
+// normal (the receiver plane of the shadow test, shaders/shared/light_maps.glsl).
 #include "../../shared/constants.glsl"
 #include "../../shared/sampling.glsl"
 #include "../../shared/brdf.glsl"
@@ -9,9 +10,11 @@
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
+flat in vec3 vGeometricNormal;
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outAlbedo;
+layout(location = 3) out vec4 outGeometricNormal;
 void main() {
   int m = triMaterial[gl_PrimitiveID];
   vec3 n = normalize(vNormal);
@@ -22,4 +25,5 @@ void main() {
   outPosition = vec4(vPosition, 1.0f);
   outNormal = vec4(n, float(m));
   outAlbedo = vec4(albedo, 1.0f);
+  outGeometricNormal = vec4(vGeometricNormal, 0.0f);
 }

@@ -10,6 +10,7 @@
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;
+flat in vec3 vGeometricNormal;
 uniform vec3 uEye;
 uniform vec3 uAxis;
 uniform int uOrthographic;

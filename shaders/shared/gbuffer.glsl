@@ -1,0 +1,12 @@
+// Texture units of the G-buffer (illum/deferred.h) as the deferred passes read
+// it: world position (w = 1 where a surface was seen), shading normal towards
+// the viewer (w = material), albedo, and the triangle's geometric normal (the
+// receiver plane of the shadow test). Unit 3 is left to the passes' own input.
+#ifdef __cplusplus
+#pragma once
+#endif
+
+#define TEXUNIT_GBUFFER_POSITION 0
+#define TEXUNIT_GBUFFER_NORMAL 1
+#define TEXUNIT_GBUFFER_ALBEDO 2
+#define TEXUNIT_GBUFFER_GEOMETRIC_NORMAL 4
