@@ -5,7 +5,10 @@
 // for directional lights), then a compute pass that evaluates every delta
 // light with the shared kernels (shaders/shared/lights, brdf) — the same code
 // the Embree reference (`reference --set integrator=direct`) runs, so their
-// difference is the shadow-map error. `--spp N` accumulates N frames with
+// difference is the shadow-map error. The shadow test compares, at the
+// centre of the map's texel, the stored distance with the receiver's plane
+// (its geometric normal is in the G-buffer), so planes do not shadow
+// themselves at grazing light and the bias stays small. `--spp N` accumulates N frames with
 // sub-pixel jitter (Halton 2,3) so edges converge to the same box-filtered
 // pixel as the reference.
 //
@@ -13,7 +16,8 @@
 // | key           | type  | default | meaning                                            |
 // |---------------|-------|---------|----------------------------------------------------|
 // | shadow_res    | int   | 1024    | shadow map size (per face)                         |
-// | shadow_bias   | float | 1.0     | depth bias in shadow-map texels (slope-scaled)     |
+// | shadow_bias   | float | 1.0     | depth bias in shadow-map texels, at the texel      |
+// |               |       |         | centre on the receiver's plane (shared/light_maps) |
 // | normal_offset | float | 0.25    | lookup offset along the normal, in texels          |
 #include "illum/direct.h"
 
@@ -27,7 +31,7 @@ namespace vgi {
 
 void readShadowParams(ParamSet& p, ShadowParams& s) {
   s.resolution = p.getInt("shadow_res", 1024, "shadow map size (per face)", 16, 8192);
-  s.bias = p.getFloat("shadow_bias", 1.0f, "depth bias in shadow-map texels (slope-scaled)", 0.0f, 100.0f);
+  s.bias = p.getFloat("shadow_bias", 1.0f, "depth bias in shadow-map texels (receiver plane at the texel centre; slope-scaled within 0.6 deg of grazing)", 0.0f, 100.0f);
   s.normalOffset = p.getFloat("normal_offset", 0.25f, "lookup offset along the normal, in texels", 0.0f, 100.0f);
 }
 

@@ -73,7 +73,7 @@ SHARED_FN vec2 lightMapTexelCentre(vec2 uv, float n) {
 // with normal ng were the surface there: the map's distance (as
 // lightMapDistance) to where the ray through that texel centre meets the
 // plane — exactly what rasterising that plane writes, since fragments are
-// evaluated at texel centres. Negative when the ray runs within ~3° of the
+// evaluated at texel centres. Negative when the ray runs within ~0.6° of the
 // plane (no stable answer) or meets it behind the light.
 SHARED_FN float lightMapPlaneDistance(SHARED_IN(LightFace) f, vec2 uvCentre, vec3 q, vec3 ng) {
   bool ortho = f.eyeOrtho.w > 0.5f;
@@ -123,7 +123,7 @@ int lightFaceOf(int light, vec3 p) {
 // (lightMapPlaneDistance) — so a plane never shadows itself at any angle
 // (no acne at grazing light) and `bias` (texels) only absorbs rounding and
 // the neighbour surface of a concave corner, without the large slope-scaled
-// bias that lets light leak under thin occluders. Within ~3° of grazing it
+// bias that lets light leak under thin occluders. Within ~0.6° of grazing it
 // falls back to p's own distance with a bias slope-scaled by 1/cos θ (≤ 5×).
 bool lightMapLit(int light, vec3 p, vec3 n, vec3 ng, float cosI, float bias, float normalOffset) {
   LightFace face = lightFaces[lightFaceOf(light, p)];
