@@ -18,7 +18,7 @@
 // | shadow_res    | int   | 1024    | shadow map size (per face)                         |
 // | shadow_bias   | float | 1.0     | depth bias in shadow-map texels, at the texel      |
 // |               |       |         | centre on the receiver's plane (shared/light_maps) |
-// | normal_offset | float | 0.25    | lookup offset along the normal, in texels          |
+// | normal_offset | float | 0       | lookup offset along the normal, in texels          |
 #include "illum/direct.h"
 
 #include "core/error.h"
@@ -32,7 +32,7 @@ namespace vgi {
 void readShadowParams(ParamSet& p, ShadowParams& s) {
   s.resolution = p.getInt("shadow_res", 1024, "shadow map size (per face)", 16, 8192);
   s.bias = p.getFloat("shadow_bias", 1.0f, "depth bias in shadow-map texels (receiver plane at the texel centre; slope-scaled within 0.6 deg of grazing)", 0.0f, 100.0f);
-  s.normalOffset = p.getFloat("normal_offset", 0.25f, "lookup offset along the normal, in texels", 0.0f, 100.0f);
+  s.normalOffset = p.getFloat("normal_offset", 0.0f, "lookup offset along the normal, in texels", 0.0f, 100.0f);
 }
 
 namespace {

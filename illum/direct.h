@@ -8,7 +8,7 @@ namespace vgi {
 // The shadow-map parameters every GL module with direct light reads.
 struct ShadowParams {
   int resolution = 1024;
-  float bias = 1.0f, normalOffset = 0.25f;
+  float bias = 1.0f, normalOffset = 0.0f;
 };
 void readShadowParams(ParamSet& params, ShadowParams& shadow);
 
