@@ -28,6 +28,20 @@ SHARED_FN Basis makeBasis(vec3 n) {
 
 SHARED_FN vec3 basisToWorld(Basis f, vec3 v) { return f.t * v.x + f.b * v.y + f.n * v.z; }
 
+// Base-2 radical inverse (van der Corput) of i, to 24 bits.
+SHARED_FN float radicalInverse2(uint i) { return float(bitfieldReverse(i) >> 8u) * (1.0f / 16777216.0f); }
+
+// Sample r of set s when `sets` sets of n samples share one stratified
+// pattern (interleaved sampling, Keller and Heidrich 2001): u.x is point
+// r·sets + s of a sets·n-stratification, u.y the radical inverse of s·n + r.
+// Each set alone then covers both coordinates in n strata — so an average
+// over only some sets (a blur window cut at an edge) is unbiased — and all
+// sets together stratify u.x in sets·n strata. (The radical inverse of
+// r·sets + s would give each set a 1/sets slice of u.y.)
+SHARED_FN vec2 interleavedSample(uint r, uint s, uint n, uint sets) {
+  return vec2((float(r * sets + s) + 0.5f) / float(n * sets), radicalInverse2(s * n + r));
+}
+
 // Cosine-distributed direction around +z from u in [0,1)²; pdf = cos θ / π.
 // Malley's method; z is clamped so u.x → 1 (the horizon) never gives NaN.
 SHARED_FN vec3 cosineSampleHemisphere(vec2 u) {

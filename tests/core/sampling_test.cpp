@@ -1,6 +1,7 @@
 // The shared kernels (shaders/shared/) on their hard cases: bases near ±z,
 // sampling at the pole and horizon, hash-to-float range, light cones, BRDF
 // normalisation.
+#include <algorithm>
 #include <random>
 
 #include "shaders/shared/brdf.glsl"
@@ -50,6 +51,38 @@ TEST(SharedSampling, CosineSamplingAtPoleAndHorizon) {
   const int n = 200000;
   for (int i = 0; i < n; ++i) sum += cosineSampleHemisphere({uintToUnitFloat(pcgHash(2u * i)), uintToUnitFloat(pcgHash(2u * i + 1u))}).z;
   EXPECT_NEAR(sum / n, 2.0 / 3.0, 2e-3);
+}
+
+// Interleaved sampling as `nearfield` runs it (k = 4: 16 sets of N = 16):
+// each set alone has one sample in each of N strata of u.x and of u.y (so a
+// blur window that keeps only some sets stays unbiased in azimuth, u.y), and
+// all sets together fill the k²·N strata of u.x and of u.y exactly once.
+TEST(SharedSampling, EveryInterleavedSetCoversBothCoordinates) {
+  for (uint32_t n : {4u, 16u, 12u}) {
+    const uint32_t sets = 16;
+    std::vector<int> allX(sets * n, 0), allY(sets * n, 0);
+    for (uint32_t s = 0; s < sets; ++s) {
+      std::vector<int> x(n, 0), y(n, 0);
+      for (uint32_t r = 0; r < n; ++r) {
+        glm::vec2 u = shared::interleavedSample(r, s, n, sets);
+        ASSERT_TRUE(u.x >= 0.0f && u.x < 1.0f && u.y >= 0.0f && u.y < 1.0f);
+        ++x[size_t(u.x * float(n))];
+        ++y[size_t(u.y * float(n))];
+        ++allX[size_t(u.x * float(sets * n))];
+        ++allY[size_t(u.y * float(sets * n))];
+      }
+      if ((n & (n - 1)) == 0) {  // strata are exact for powers of two (radical inverse)
+        EXPECT_EQ(*std::min_element(y.begin(), y.end()), 1) << "set " << s << " of " << n;
+      } else {
+        EXPECT_LE(*std::max_element(y.begin(), y.end()), 2) << "set " << s << " of " << n;
+      }
+      EXPECT_EQ(*std::min_element(x.begin(), x.end()), 1) << "set " << s << " of " << n;
+    }
+    EXPECT_EQ(*std::min_element(allX.begin(), allX.end()), 1);
+    if ((n & (n - 1)) == 0) {
+      EXPECT_EQ(*std::min_element(allY.begin(), allY.end()), 1);
+    }
+  }
 }
 
 TEST(SharedSampling, HashToFloatStaysInUnitInterval) {

@@ -81,16 +81,17 @@ TEST(NearField, CornellBoxMatchesTheExactNearFieldIntegral) {
 
 // The shipped configuration (¼ resolution, interleaving, blur, upsampling)
 // stays close to the full-resolution image. The blur window is k indirect
-// pixels = 16 image pixels here, large against a 128² image: truncated at
-// corners it carries bright corner light inwards (+17 % indirect energy
-// measured at this size, less at 512²; docs/BENCHMARKS.md).
+// pixels = 16 image pixels here, large against a 128² image. Indirect energy
+// measured at this size: +7 / +8 / +15 % (r, g, b); it was +17 / +16 / +26 %
+// while each direction set was a wedge of azimuths (windows cut at an edge
+// then kept only some azimuths; SharedSampling.EveryInterleavedSetCovers…).
 TEST(NearField, ReducedResolutionStaysCloseToFullResolution) {
   RenderOutput full = render("builtin:cornell", "nearfield", {"resolution=1", "interleave=1", "blur=false"}, 128, 8,
                              {"indirect"});
   RenderOutput quarter = render("builtin:cornell", "nearfield", {}, 128, 4, {"indirect"});
   EXPECT_LT(compareImages(quarter.result.image, full.result.image).relMse, 0.003);
   glm::dvec3 a = mean(quarter.result.aovs.at("indirect")), b = mean(full.result.aovs.at("indirect"));
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], 1.0, 0.3) << "channel " << k;
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], 1.0, 0.2) << "channel " << k;
 }
 
 // hierarchical == dda on every ray (tests/traverse), so the images are equal bit for bit.

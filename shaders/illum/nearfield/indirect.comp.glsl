@@ -37,7 +37,6 @@ uniform int uEnv;
 uniform vec2 uRotation;      // per-frame Cranley–Patterson rotation
 uniform int uRsmRes;
 
-float radicalInverse(uint i) { return float(bitfieldReverse(i) >> 8u) * (1.0f / 16777216.0f); }
 
 // Direct radiance leaving the hit point y, read back from every RSM.
 vec3 backProject(vec3 y) {
@@ -73,11 +72,11 @@ void main() {
   Basis frame = makeBasis(n);
   vec3 origin = P.xyz + n * uOffset;
   uint set = uint(q.x % uInterleave + uInterleave * (q.y % uInterleave));
-  uint total = uint(uRays * uInterleave * uInterleave);
   vec3 sum = vec3(0.0f);
   for (int r = 0; r < uRays; ++r) {
-    uint g = uint(r) * uint(uInterleave * uInterleave) + set;
-    vec2 u = fract(vec2((float(g) + 0.5f) / float(total), radicalInverse(g)) + uRotation);
+    // Every set alone spans the hemisphere (shared/sampling.glsl), so a blur
+    // window that loses some sets at an edge loses samples, not azimuths.
+    vec2 u = fract(interleavedSample(uint(r), set, uint(uRays), uint(uInterleave * uInterleave)) + uRotation);
     vec3 d = basisToWorld(frame, cosineSampleHemisphere(u));
     TraceHit h = traceRay(origin, d, uRadius);
     if (h.hit != 0u) sum += backProject(origin + h.t * d);
