@@ -12,6 +12,13 @@ namespace vgi {
 using namespace vgi::shared;
 
 namespace {
+Bounds cube(float half) {
+  Bounds b;
+  b.extend(glm::vec3(-half));
+  b.extend(glm::vec3(half));
+  return b;
+}
+
 Light makeLight(LightType type, glm::vec3 dir, float coneDeg) {
   Light l;
   l.type = type;
@@ -23,9 +30,7 @@ Light makeLight(LightType type, glm::vec3 dir, float coneDeg) {
 }  // namespace
 
 TEST(LightMaps, EveryVisiblePointProjectsIntoTheFaceTheLookupPicks) {
-  Bounds b;
-  b.extend(glm::vec3(-2.0f));
-  b.extend(glm::vec3(2.0f));
+  const Bounds b = cube(2.0f);
   const glm::vec3 down = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
   std::vector<Light> lights = {makeLight(LightType::Point, down, 90), makeLight(LightType::Spot, down, 40),
                                makeLight(LightType::Spot, down, 80), makeLight(LightType::Directional, down, 90)};
@@ -73,9 +78,7 @@ TEST(LightMaps, EveryVisiblePointProjectsIntoTheFaceTheLookupPicks) {
 // face (a 33×33 lattice, edges and corners included) lies outside the cone;
 // the up face of a downward 90° spot (the Cornell box's light) is one.
 TEST(LightMaps, CubeFacesOutsideASpotConeAreNotDrawn) {
-  Bounds b;
-  b.extend(glm::vec3(-2.0f));
-  b.extend(glm::vec3(2.0f));
+  const Bounds b = cube(2.0f);
   const glm::vec3 tilted = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
   struct Case {
     Light light;
@@ -114,9 +117,7 @@ TEST(LightMaps, CubeFacesOutsideASpotConeAreNotDrawn) {
 // planes lit from steep to grazing (down to cos 0.02), on perspective (cube,
 // single) and orthographic faces.
 TEST(LightMaps, PlaneDistanceAtTexelCentreIsExact) {
-  Bounds b;
-  b.extend(glm::vec3(-1.0f));
-  b.extend(glm::vec3(1.0f));
+  const Bounds b = cube(1.0f);
   const glm::vec3 down = glm::normalize(glm::vec3(0.1f, -1.0f, 0.05f));
   std::vector<Light> lights = {makeLight(LightType::Point, down, 90), makeLight(LightType::Spot, down, 40),
                                makeLight(LightType::Directional, down, 90)};
