@@ -21,4 +21,5 @@ void addInfoCommand(CLI::App& app);
 void addDiffCommand(CLI::App& app);
 void addVoxelizeCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addCompareCommand(CLI::App& app);
 }  // namespace vgi::app

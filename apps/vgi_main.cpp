@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   vgi::app::addRenderCommand(app);
   vgi::app::addInfoCommand(app);
   vgi::app::addDiffCommand(app);
+  vgi::app::addCompareCommand(app);
   vgi::app::addVoxelizeCommand(app);
   vgi::app::addBenchCommand(app);
   try {

@@ -80,6 +80,7 @@ RenderResult DirectMethod::render(const RenderRequest& req, Profiler& prof) {
     auto s = prof.scope("readback");
     result.image = accum.read();
   }
+  result.samplePasses = {"gbuffer", "shade"};
   result.sppCompleted = done;
   result.interrupted = done < req.spp;
   result.extra["light_maps"] = maps.describe();

@@ -50,6 +50,9 @@ struct RenderResult {
   nlohmann::json extra = nlohmann::json::object();  // method-specific stats
   std::map<std::string, Image> aovs;                 // the extra outputs asked for
   std::vector<std::string> built;                    // the resources this render built
+  // The timed passes that run once per sample (frame of the spp loop); the
+  // others are set-up (voxelization, light maps, uploads). Empty: not split.
+  std::vector<std::string> samplePasses;
 };
 
 class Method {
@@ -60,6 +63,15 @@ class Method {
   virtual std::vector<std::string> outputs() const { return {}; }
 };
 
+// The exact computation of the integral an approximate method estimates
+// (`vgi compare` renders both): a method, its parameters, and the extra
+// outputs both write (compared too).
+struct Counterpart {
+  std::string method;
+  std::vector<std::string> set;   // key=value
+  std::vector<std::string> aovs;
+};
+
 struct MethodInfo {
   std::string name;
   std::string description;
@@ -68,6 +80,8 @@ struct MethodInfo {
   // "light_maps", "rsm", "binary_grid", "or_mip_pyramid", "bvh", ….
   std::vector<std::string> needs;
   std::function<std::unique_ptr<Method>(ParamSet& params, const Scene& scene)> create;
+  // From the method's resolved parameters; empty for a method that is exact itself.
+  std::function<Counterpart(const nlohmann::json& params)> counterpart = {};
 };
 
 const std::vector<MethodInfo>& methodRegistry();

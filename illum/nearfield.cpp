@@ -284,6 +284,7 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
   result.sppCompleted = done;
   result.interrupted = done < req.spp;
   result.built = {"binary_grid", "or_mip_pyramid", "rsm", "gbuffer"};
+  result.samplePasses = {"gbuffer", "direct", "indirect", "blur", "upsample_composite", "composite"};
   extra["radius"] = p_.radius;
   extra["voxel_diagonal"] = voxelDiagonal;
   extra["offset_world"] = p_.offset * voxelDiagonal;

@@ -1,5 +1,7 @@
 // The explicit table of rendering methods (no static self-registration: a
 // static library would drop unreferenced registrars).
+#include <cstdio>
+
 #include "core/error.h"
 #include "illum/direct.h"
 #include "illum/method.h"
@@ -8,13 +10,29 @@
 
 namespace vgi {
 
+namespace {
+// A float parameter as text that parses back to the same float.
+std::string exactText(const nlohmann::json& v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v.get<double>());
+  return buf;
+}
+}  // namespace
+
 const std::vector<MethodInfo>& methodRegistry() {
   static const std::vector<MethodInfo> table = {
       {"direct", "GL deferred direct lighting with shadow maps (delta lights, emission)", true,
-       {"gbuffer", "light_maps"}, [](ParamSet& p, const Scene& s) { return createDirectMethod(p, s); }},
+       {"gbuffer", "light_maps"}, [](ParamSet& p, const Scene& s) { return createDirectMethod(p, s); },
+       [](const nlohmann::json&) { return Counterpart{"reference", {"integrator=direct"}, {}}; }},
       {"nearfield", "GL near-field one-bounce GI: voxel visibility + RSM back-projection (VGI 5.1)", true,
        {"binary_grid", "or_mip_pyramid", "rsm", "gbuffer"},
-       [](ParamSet& p, const Scene& s) { return createNearFieldMethod(p, s); }},
+       [](ParamSet& p, const Scene& s) { return createNearFieldMethod(p, s); },
+       [](const nlohmann::json& p) {
+         return Counterpart{"reference",
+                            {"integrator=nearfield", "radius=" + exactText(p.at("radius")),
+                             std::string("env=") + (p.at("env").get<bool>() ? "true" : "false")},
+                            {"direct", "indirect"}};
+       }},
       {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false, {"bvh"},
        [](ParamSet& p, const Scene& s) { return createReferenceMethod(p, s); }},
   };

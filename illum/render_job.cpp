@@ -50,18 +50,10 @@ void checkOutputFolder(const std::string& path, const std::string& option) {
     fail(option, " '", path, "': folder '", dir.string(), "' does not exist");
 }
 
-RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
-  if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
-  if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
-    fail("--size ", opt.width, "x", opt.height, ": each side must be in [1, 16384]");
-  if (opt.threads < 0 || opt.threads > 1024) fail("--threads ", opt.threads, ": must be in [0, 1024]");
-  if (opt.frames < 1 || opt.frames > 100000) fail("--frames ", opt.frames, ": must be in [1, 100000]");
-  if (!std::isfinite(opt.time) || !std::isfinite(opt.timeStep))
-    fail("--time ", opt.time, " / --time-step ", opt.timeStep, ": must be finite numbers");
-  const MethodInfo& info = findMethod(opt.method);
-  Scene scene = loadScene(opt.scene);
-
-  ParamSet params;
+namespace {
+// The scene preset, then --set, then the method (unknown keys are errors).
+std::unique_ptr<Method> createMethod(const RenderOptions& opt, const MethodInfo& info, const Scene& scene,
+                                     ParamSet& params) {
   if (!opt.preset.empty()) {
     auto it = scene.presets.find(opt.preset);
     if (it == scene.presets.end()) {
@@ -75,6 +67,29 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
   for (auto& kv : opt.set) params.setFromString(kv, "--set");
   std::unique_ptr<Method> method = info.create(params, scene);
   params.checkAllUsed("method '" + opt.method + "'");
+  return method;
+}
+}  // namespace
+
+nlohmann::json resolveParameters(const RenderOptions& opt) {
+  Scene scene = loadScene(opt.scene);
+  ParamSet params;
+  createMethod(opt, findMethod(opt.method), scene, params);
+  return params.resolved();
+}
+
+RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
+  if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
+  if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
+    fail("--size ", opt.width, "x", opt.height, ": each side must be in [1, 16384]");
+  if (opt.threads < 0 || opt.threads > 1024) fail("--threads ", opt.threads, ": must be in [0, 1024]");
+  if (opt.frames < 1 || opt.frames > 100000) fail("--frames ", opt.frames, ": must be in [1, 100000]");
+  if (!std::isfinite(opt.time) || !std::isfinite(opt.timeStep))
+    fail("--time ", opt.time, " / --time-step ", opt.timeStep, ": must be finite numbers");
+  const MethodInfo& info = findMethod(opt.method);
+  Scene scene = loadScene(opt.scene);
+  ParamSet params;
+  std::unique_ptr<Method> method = createMethod(opt, info, scene, params);
   const std::vector<std::string> outputs = method->outputs();
   for (auto& a : opt.aovs)
     if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) {
@@ -148,6 +163,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
     s["total_ms"] = profiler.totalMs();
     s["extra"] = out.result.extra;
     s["built"] = out.result.built;
+    s["sample_passes"] = out.result.samplePasses;
     out.stats["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     checkGl();
     return out;
@@ -184,6 +200,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
     fs["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tf).count();
     fs["extra"] = out.result.extra;
     fs["built"] = out.result.built;
+    fs["sample_passes"] = out.result.samplePasses;
     addInto(timings, fs["timings_ms"]);
     addInto(cpuTimings, profiler.cpuTimingsMs());
     addInto(calls, profiler.callCounts());

@@ -47,6 +47,10 @@ void parseSize(const std::string& text, int& width, int& height);
 using FrameSink = std::function<void(int frame, const RenderOutput& output)>;
 RenderOutput runRender(const RenderOptions& options, const FrameSink& onFrame = {});
 
+// The method's parameters as a render with these options would resolve them
+// (scene-dependent defaults included), without rendering.
+nlohmann::json resolveParameters(const RenderOptions& options);
+
 // Writes <stem>.exr, <stem>.png and <stem>.json (stats) for output path `path`
 // (.exr or .png), and <stem>.<aov>.exr/.png per extra output; returns the files written.
 std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path, float exposure);

@@ -60,6 +60,35 @@ TEST(Cli, RenderFramesWritesNumberedImagesAndOneStatsFile) {
   EXPECT_NE(nan.output.find("--time-step"), std::string::npos) << nan.output;
 }
 
+// Speed against error in one command: nearfield against reference
+// integrator=nearfield with the same (resolved) radius and env.
+TEST(Cli, CompareRendersTheExactCounterpartWithTheSameParameters) {
+  CliRun r = vgi("compare --scene builtin:cornell --method nearfield --set env=false --size 24x24 --spp 2 "
+                 "--ref-spp 16 --quiet -o " + tmp("cmp.exr"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("cmp.json")));
+  const std::vector<std::string> set = s["exact"]["set"];
+  ASSERT_EQ(set.size(), 3u);
+  EXPECT_EQ(set[0], "integrator=nearfield");
+  EXPECT_FLOAT_EQ(std::stof(set[1].substr(7)), s["method_params"]["radius"].get<float>());
+  EXPECT_EQ(set[2], "env=false");
+  for (const char* k : {"image", "direct", "indirect"}) EXPECT_TRUE(s["error"].contains(k)) << k;
+  EXPECT_LT(s["error"]["image"]["relmse"].get<double>(), 0.01);
+  EXPECT_GT(s["time"]["method_ms_per_frame"].get<double>(), 0.0);
+  EXPECT_GT(s["time"]["method_setup_ms"].get<double>(), 0.0);  // voxelization, RSMs: not per frame
+  for (const char* f : {"cmp.nearfield.exr", "cmp.nearfield.indirect.exr", "cmp.exact.exr", "cmp.exact.json"})
+    EXPECT_TRUE(std::filesystem::exists(tmp(f))) << f;
+  nlohmann::json ex = nlohmann::json::parse(std::ifstream(tmp("cmp.exact.json")));
+  EXPECT_EQ(ex["spp"], 16);
+  EXPECT_EQ(ex["params"]["env"], false);
+  CliRun exact = vgi("compare --method reference --size 8x8 -o " + tmp("x.exr"));
+  EXPECT_EQ(exact.code, 2);
+  EXPECT_NE(exact.output.find("exactly"), std::string::npos) << exact.output;
+  CliRun spp = vgi("compare --ref-spp 0 --size 8x8 -o " + tmp("x.exr"));
+  EXPECT_EQ(spp.code, 2);
+  EXPECT_NE(spp.output.find("--ref-spp 0"), std::string::npos) << spp.output;
+}
+
 TEST(Cli, BadArgumentsFailWithClearMessages) {
   CliRun a = vgi("render --set nosuch=1 --size 8x8 -o " + tmp("x.exr"));
   EXPECT_EQ(a.code, 2);
