@@ -133,8 +133,13 @@ bool lightMapLit(int light, vec3 p, vec3 n, vec3 ng, float cosI, float bias, flo
   face = lightFaces[f];
   vec2 uv = lightMapUv(face, q);
   float stored = texture(lightDistance, vec3(uv, float(f))).x;
+  float own = lightMapDistance(face, q);
   float onPlane = lightMapPlaneDistance(face, lightMapTexelCentre(uv, float(textureSize(lightDistance, 0).x)), q, ng);
-  if (onPlane >= 0.0f) return onPlane - bias * texel <= stored;
-  return lightMapDistance(face, q) - bias * texel / max(cosI, 0.2f) <= stored;
+  // Past q the plane is trusted for one texel only: at grazing light the
+  // texel centre's ray meets it up to texel / cos θ away, beyond where the
+  // face may end (a box's foot: the floor in front of that point would shadow
+  // it). Taking the nearer never shadows a plane by itself.
+  if (onPlane >= 0.0f) return min(onPlane, own + texel) - bias * texel <= stored;
+  return own - bias * texel / max(cosI, 0.2f) <= stored;
 }
 #endif
