@@ -26,33 +26,21 @@ std::string joined(const std::vector<std::string>& v) {
 void addCompareCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("compare", "Render a method and its exact counterpart; report speed against error");
   auto opt = std::make_shared<RenderOptions>();
-  auto size = std::make_shared<std::string>("256x256");
+  auto args = std::make_shared<RenderArgs>();
   auto out = std::make_shared<std::string>("compare.exr");
-  auto gl = std::make_shared<std::string>("auto");
   auto refSpp = std::make_shared<int>(256);
-  auto quiet = std::make_shared<bool>(false);
   opt->method = "nearfield";
-  cmd->add_option("--scene", opt->scene, "builtin:cornell, a scene .json, or a model file")->capture_default_str();
-  cmd->add_option("--method", opt->method, "the approximate method (see vgi render --help-module NAME)")
-      ->capture_default_str();
-  cmd->add_option("--set", opt->set, "method parameter key=value (repeatable); the counterpart gets the shared ones");
-  cmd->add_option("--preset", opt->preset, "apply a named parameter preset from the scene file first");
-  cmd->add_option("--size", *size, "image size WxH")->capture_default_str();
-  cmd->add_option("--spp", opt->spp, "the method's samples per pixel (GL: jittered frames)")->capture_default_str();
+  args->size = "256x256";
+  // (--spp and --set are the method's; the counterpart gets --ref-spp and the
+  // parameters the registry derives from the method's.)
+  addRenderOptions(cmd, *opt, *args);
   cmd->add_option("--ref-spp", *refSpp, "the exact counterpart's samples per pixel")->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "random seed (both)")->capture_default_str();
-  cmd->add_option("--threads", opt->threads, "CPU threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--time", opt->time, "animation time for dynamic meshes")->capture_default_str();
-  cmd->add_option("--gl", *gl, "GL backend: auto|egl|osmesa")->capture_default_str();
   cmd->add_option("-o,--output", *out,
                   "stem.exr: writes stem.<method>.*, stem.exact.* (images, AOVs, stats) and stem.json (the comparison)")
       ->capture_default_str();
-  cmd->add_flag("--quiet", *quiet, "no progress bars");
   cmd->callback([=] {
-    parseSize(*size, opt->width, opt->height);
+    applyRenderArgs(*args, *opt);
     if (*refSpp < 1 || *refSpp > 1 << 20) fail("--ref-spp ", *refSpp, ": must be in [1, 1048576]");
-    opt->gl = parseGlBackend(*gl);
-    opt->progress = !*quiet;
     checkOutputPath(*out);
     const MethodInfo& info = findMethod(opt->method);
     if (!info.counterpart)

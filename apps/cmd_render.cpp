@@ -8,38 +8,48 @@
 
 namespace vgi::app {
 
+void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args) {
+  cmd->add_option("--scene", opt.scene, "builtin:cornell, a scene .json, or an .obj/.gltf/.glb/.ply file")
+      ->capture_default_str();
+  cmd->add_option("--method", opt.method, "rendering method (see vgi render --help-module NAME)")
+      ->capture_default_str();
+  cmd->add_option("--set", opt.set, "method parameter key=value (repeatable)");
+  cmd->add_option("--preset", opt.preset, "apply a named parameter preset from the scene file first");
+  cmd->add_option("--size", args.size, "image size WxH")->capture_default_str();
+  cmd->add_option("--spp", opt.spp, "samples per pixel (GL methods: jittered frames)")->capture_default_str();
+  cmd->add_option("--seed", opt.seed, "random seed")->capture_default_str();
+  cmd->add_option("--threads", opt.threads, "CPU threads (0 = all cores)")->capture_default_str();
+  cmd->add_option("--time", opt.time, "animation time for dynamic meshes (of the first frame)")->capture_default_str();
+  cmd->add_option("--gl", args.gl, "GL backend: auto|egl|osmesa")->capture_default_str();
+  cmd->add_flag("--quiet", args.quiet, "no progress bars");
+}
+
+void applyRenderArgs(const RenderArgs& args, RenderOptions& opt) {
+  parseSize(args.size, opt.width, opt.height);
+  opt.gl = parseGlBackend(args.gl);
+  opt.progress = !args.quiet;
+}
+
 void addRenderCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a scene with a method to EXR + PNG + JSON stats");
   auto opt = std::make_shared<RenderOptions>();
-  auto size = std::make_shared<std::string>("512x512");
+  auto args = std::make_shared<RenderArgs>();
   auto out = std::make_shared<std::string>("out.exr");
   auto stats = std::make_shared<std::string>();
-  auto gl = std::make_shared<std::string>("auto");
   auto helpModule = std::make_shared<std::string>();
   auto exposure = std::make_shared<float>(1.0f);
-  auto quiet = std::make_shared<bool>(false);
   opt->method = defaultMethodName();
-  cmd->add_option("--scene", opt->scene, "builtin:cornell, a scene .json, or an .obj/.gltf/.glb/.ply file")
-      ->capture_default_str();
-  cmd->add_option("--method", opt->method, "rendering method (see --help-module NAME)")->capture_default_str();
-  cmd->add_option("--set", opt->set, "method parameter key=value (repeatable)");
-  cmd->add_option("--preset", opt->preset, "apply a named parameter preset from the scene file first");
-  cmd->add_option("--size", *size, "image size WxH")->capture_default_str();
-  cmd->add_option("--spp", opt->spp, "samples per pixel (GL methods: jittered frames)")->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "random seed")->capture_default_str();
-  cmd->add_option("--threads", opt->threads, "CPU threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--time", opt->time, "animation time for dynamic meshes (of the first frame)")->capture_default_str();
+  args->size = "512x512";
+  addRenderOptions(cmd, *opt, *args);
   cmd->add_option("--frames", opt->frames,
                   "render an animation of N frames from --time: <stem>_NNNN.exr/.png per frame, one <stem>.json "
                   "with per-frame stats")
       ->capture_default_str();
   cmd->add_option("--time-step", opt->timeStep, "time between frames")->capture_default_str();
-  cmd->add_option("--gl", *gl, "GL backend: auto|egl|osmesa")->capture_default_str();
   cmd->add_option("-o,--output", *out, "output image (.exr or .png; both are written, plus .json)")
       ->capture_default_str();
   cmd->add_option("--stats", *stats, "also write the stats JSON here");
   cmd->add_option("--exposure", *exposure, "PNG exposure multiplier")->capture_default_str();
-  cmd->add_flag("--quiet", *quiet, "no progress bar");
   auto aovs = std::make_shared<std::string>();
   cmd->add_option("--aov", *aovs, "extra outputs, comma-separated (e.g. indirect,direct): <stem>.<aov>.exr/.png");
   cmd->add_option("--help-module", *helpModule, "print a method's parameters and exit");
@@ -49,9 +59,7 @@ void addRenderCommand(CLI::App& app) {
       return;
     }
     if (!(*exposure > 0.0f) || *exposure > 1e6f) fail("--exposure ", *exposure, ": must be in (0, 1e6]");
-    parseSize(*size, opt->width, opt->height);
-    opt->gl = parseGlBackend(*gl);
-    opt->progress = !*quiet;
+    applyRenderArgs(*args, *opt);
     opt->aovs = splitList(*aovs);
     checkOutputPath(*out);
     if (!stats->empty()) checkOutputFolder(*stats, "--stats");

@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "illum/render_job.h"
+
 namespace vgi::app {
 // "a,b,,c" → {a, b, c}.
 inline std::vector<std::string> splitList(const std::string& s) {
@@ -14,6 +16,16 @@ inline std::vector<std::string> splitList(const std::string& s) {
     if (!item.empty()) out.push_back(item);
   return out;
 }
+
+// The options `render` and `compare` share (scene, method, set, preset, size,
+// spp, seed, threads, time, gl, quiet), read into `opt` and the raw texts of
+// `args`; applyRenderArgs() parses the texts (size, GL backend) into `opt`.
+struct RenderArgs {
+  std::string size, gl = "auto";
+  bool quiet = false;
+};
+void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args);
+void applyRenderArgs(const RenderArgs& args, RenderOptions& opt);
 
 // Each adds its subcommand to the app; the callback runs it.
 void addRenderCommand(CLI::App& app);

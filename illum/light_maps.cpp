@@ -101,27 +101,25 @@ LightMaps::LightMaps(const Scene& scene, const GpuScene& gpu, ShaderLibrary& sha
   glNamedBufferStorage(rangeBuffer_, GLsizeiptr(std::max<size_t>(1, layout_.ranges.size()) * sizeof(glm::ivec4)),
                        layout_.ranges.empty() ? nullptr : layout_.ranges.data(), 0);
 
+  glCreateFramebuffers(1, &fbo_);
+  glCreateRenderbuffers(1, &depth_);
+  glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, resolution, resolution);
+  glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+  glNamedFramebufferDrawBuffers(fbo_, channels, bufs);
   render(gpu, shaders, profiler);
 }
 
 void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler) {
-  const bool reflective = reflective_;
-  const int resolution = resolution_, channels = reflective ? 4 : 1;
+  const int channels = reflective_ ? 4 : 1;
   ShaderDefines defs;
-  if (reflective) defs["REFLECTIVE"] = "1";
+  if (reflective_) defs["REFLECTIVE"] = "1";
   unsigned prog = shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/light_map.frag.glsl"}, defs);
-  auto s = profiler.scope(reflective ? "rsm" : "shadow_maps");
-  unsigned fbo = 0, depth = 0;
-  glCreateFramebuffers(1, &fbo);
-  glCreateRenderbuffers(1, &depth);
-  glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT32F, resolution, resolution);
-  glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-  const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-  glNamedFramebufferDrawBuffers(fbo, channels, bufs);
+  auto s = profiler.scope(reflective_ ? "rsm" : "shadow_maps");
   glUseProgram(prog);
   gpu.bind(prog);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-  glViewport(0, 0, resolution, resolution);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, resolution_, resolution_);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   const float far = 1e30f, zero[4] = {0, 0, 0, 0}, farv[4] = {far, far, far, far};
@@ -131,8 +129,8 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
     for (int f = r.x; f < r.x + r.y; ++f) {
       const shared::LightFace& face = layout_.faces[size_t(f)];
       for (int c = 0; c < channels; ++c)
-        glNamedFramebufferTextureLayer(fbo, GL_COLOR_ATTACHMENT0 + c, textures_[c], 0, f);
-      if (f == r.x && glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        glNamedFramebufferTextureLayer(fbo_, GL_COLOR_ATTACHMENT0 + c, textures_[c], 0, f);
+      if (f == r.x && glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         fail("light maps: the framebuffer is incomplete on this GL");
       glClearBufferfv(GL_COLOR, 0, farv);
       for (int c = 1; c < channels; ++c) glClearBufferfv(GL_COLOR, c, zero);
@@ -146,11 +144,11 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
     }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glDeleteFramebuffers(1, &fbo);
-  glDeleteRenderbuffers(1, &depth);
 }
 
 LightMaps::~LightMaps() {
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteRenderbuffers(1, &depth_);
   glDeleteTextures(4, textures_);
   unsigned b[2] = {faceBuffer_, rangeBuffer_};
   glDeleteBuffers(2, b);

@@ -53,7 +53,7 @@ class LightMaps {
   LightFaceLayout layout_;
   int resolution_;
   bool reflective_;
-  unsigned faceBuffer_ = 0, rangeBuffer_ = 0;
+  unsigned faceBuffer_ = 0, rangeBuffer_ = 0, fbo_ = 0, depth_ = 0;
   unsigned textures_[4] = {0, 0, 0, 0};  // distance, position, normal, radiance
 };
 

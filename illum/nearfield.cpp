@@ -50,6 +50,7 @@
 #include "illum/deferred.h"
 #include "illum/direct.h"
 #include "illum/light_maps.h"
+#include "shaders/shared/gbuffer.glsl"
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/or_mip_pyramid.h"
 #include "voxelize/atlas.h"
@@ -103,10 +104,36 @@ class NearFieldMethod : public Method {
     std::unique_ptr<GlPyramid> pyramid;
     std::unique_ptr<GpuScene> gpu;
     std::unique_ptr<LightMaps> rsm;
+    uint64_t voxelsSet = 0;                 // of the grid as last built
+    nlohmann::json voxelizerStats;          // idem
+  };
+  // The render targets of one image size, kept between frames (cleared per render).
+  struct Targets {
+    Targets(int w, int h, int lowW, int lowH, bool withAov, ShaderLibrary& shaders);
+    ~Targets() { glDeleteTextures(2, low); }
+    Targets(const Targets&) = delete;
+    Targets& operator=(const Targets&) = delete;
+    int width, height;
+    GBuffer gbuffer;
+    Accumulator accum;
+    std::unique_ptr<Accumulator> indirectAov;  // when the direct or indirect AOV is asked for
+    unsigned low[2] = {0, 0};                  // indirect at its resolution: gathered, blurred
   };
   NearFieldParams p_;
   std::unique_ptr<SceneState> state_;
+  std::unique_ptr<Targets> targets_;
 };
+
+NearFieldMethod::Targets::Targets(int w, int h, int lowW, int lowH, bool withAov, ShaderLibrary& shaders)
+    : width(w), height(h), gbuffer(w, h, shaders), accum(w, h) {
+  if (withAov) indirectAov = std::make_unique<Accumulator>(w, h);
+  glCreateTextures(GL_TEXTURE_2D, 2, low);
+  for (unsigned t : low) {
+    glTextureStorage2D(t, 1, GL_RGBA32F, lowW, lowH);
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+}
 
 void uniform1i(unsigned prog, const char* name, int v) { glUniform1i(glGetUniformLocation(prog, name), v); }
 void uniform1f(unsigned prog, const char* name, float v) { glUniform1f(glGetUniformLocation(prog, name), v); }
@@ -158,7 +185,6 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
     state_->rsm->render(*state_->gpu, shaders, prof);
   }
   SceneState& st = *state_;
-  nlohmann::json voxStats;
   if (first || dynamic) {
     st.vreq.time = req.time;
     if (st.atlas) {
@@ -166,45 +192,47 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
       auto s = prof.scope("pyramid");
       st.pyramid->build(st.atlas->frameGrid(), shaders);
     } else {
-      BinaryGrid grid = findVoxelizer(p_.voxelizer).run(st.vreq, prof, voxStats);
+      BinaryGrid grid = findVoxelizer(p_.voxelizer).run(st.vreq, prof, st.voxelizerStats);
       auto s = prof.scope("pyramid");
       st.pyramid->build(grid, shaders);
     }
   }
-  if (st.atlas) voxStats = st.atlas->stats();
-  GlPyramid* glPyramid = st.pyramid.get();
-  GpuScene* gpu = st.gpu.get();
-  LightMaps& rsm = *st.rsm;
+  const GlPyramid& glPyramid = *st.pyramid;
+  const GpuScene& gpu = *st.gpu;
+  const LightMaps& rsm = *st.rsm;
   const float voxelDiagonal = glm::length(st.vreq.box.voxelSize());
-  GBuffer gbuffer(W, H, shaders);
-  Accumulator accum(W, H);
-  std::unique_ptr<Accumulator> indirectAov;
+
+  // ---- render targets: kept while the size and the AOVs asked for stay the same.
   const bool wantIndirect = req.wants("indirect"), wantDirect = req.wants("direct");
-  if (wantIndirect || wantDirect) indirectAov = std::make_unique<Accumulator>(W, H);
-  DirectPass direct(shaders, *gpu, p_.shadow.bias, p_.shadow.normalOffset);
+  const bool withAov = wantIndirect || wantDirect;
+  if (!targets_ || targets_->width != W || targets_->height != H || bool(targets_->indirectAov) != withAov) {
+    targets_.reset();
+    targets_ = std::make_unique<Targets>(W, H, lw, lh, withAov, shaders);
+  } else {
+    targets_->accum.clear();
+    if (withAov) targets_->indirectAov->clear();
+  }
+  GBuffer& gbuffer = targets_->gbuffer;
+  const Accumulator& accum = targets_->accum;
+  const Accumulator* indirectAov = targets_->indirectAov.get();
+  const unsigned* lowTex = targets_->low;
+  DirectPass direct(shaders, gpu, p_.shadow.bias, p_.shadow.normalOffset);
 
   ShaderDefines defs;
   addTracerDefine(defs, p_.tracer);
   unsigned indirectProg = shaders.program({"illum/nearfield/indirect.comp.glsl"}, defs);
   unsigned blurProg = shaders.program({"illum/nearfield/blur.comp.glsl"});
   unsigned upProg = shaders.program({"illum/nearfield/upsample.comp.glsl"});
-  unsigned lowTex[2];
-  glCreateTextures(GL_TEXTURE_2D, 2, lowTex);
-  for (unsigned t : lowTex) {
-    glTextureStorage2D(t, 1, GL_RGBA32F, lw, lh);
-    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  }
   const float pixelAngle = 2.0f * std::tan(glm::radians(scene.camera.fovYDeg) * 0.5f) / float(H);
   const bool blur = p_.blur && p_.interleave > 1;
 
   ProgressBar bar("nearfield", req.spp);
   int done = 0;
   for (; done < req.spp && !interruptRequested(); ++done) {
-    FrameCamera cam = frameCamera(scene.camera, gpu->bounds(), W, H, done, req.spp);
+    FrameCamera cam = frameCamera(scene.camera, gpu.bounds(), W, H, done, req.spp);
     {
       auto s = prof.scope("gbuffer");
-      gbuffer.render(*gpu, cam);
+      gbuffer.render(gpu, cam);
     }
     {
       auto s = prof.scope("direct");
@@ -213,9 +241,9 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
     {
       auto s = prof.scope("indirect");
       glUseProgram(indirectProg);
-      gpu->bind(indirectProg);
+      gpu.bind(indirectProg);
       rsm.bind();
-      glPyramid->bind(indirectProg);
+      glPyramid.bind(indirectProg);
       gbuffer.bind();
       uniform1i(indirectProg, "uScale", scale);
       uniform1i(indirectProg, "uRays", p_.rays);
@@ -244,7 +272,7 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
       geometryUniforms(blurProg);
       uniform1i(blurProg, "uInterleave", p_.interleave);
       gbuffer.bind();
-      glBindTextureUnit(3, lowTex[0]);
+      glBindTextureUnit(TEXUNIT_PASS_INPUT, lowTex[0]);
       glBindImageTexture(0, lowTex[1], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
       glDispatchCompute(unsigned(lw + 7) / 8, unsigned(lh + 7) / 8, 1);
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -256,7 +284,7 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
       geometryUniforms(upProg);
       uniform1i(upProg, "uWriteAov", indirectAov ? 1 : 0);
       gbuffer.bind();
-      glBindTextureUnit(3, lowTex[current]);
+      glBindTextureUnit(TEXUNIT_PASS_INPUT, lowTex[current]);
       glBindImageTexture(0, accum.texture(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
       glBindImageTexture(1, indirectAov ? indirectAov->texture() : accum.texture(), 0, GL_FALSE, 0, GL_READ_WRITE,
                          GL_RGBA32F);
@@ -280,7 +308,6 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
       if (wantIndirect) result.aovs["indirect"] = std::move(indirect);
     }
   }
-  glDeleteTextures(2, lowTex);
   result.sppCompleted = done;
   result.interrupted = done < req.spp;
   result.built = {"binary_grid", "or_mip_pyramid", "rsm", "gbuffer"};
@@ -291,9 +318,13 @@ RenderResult NearFieldMethod::render(const RenderRequest& req, Profiler& prof) {
   extra["indirect_size"] = {lw, lh};
   extra["blur_window_px"] = blur ? p_.interleave : 0;
   extra["rays_per_frame"] = uint64_t(lw) * lh * p_.rays;
-  // (After the image's read-back: counting the voxels adds no wait to the frame.)
+  if (first || dynamic) {
+    // Read back after the image (no wait inside the frame), once per built grid.
+    if (st.atlas) st.voxelizerStats = st.atlas->stats();
+    st.voxelsSet = glPyramid.countLevel0();
+  }
   extra["grid"] = {{"resolution", {p_.voxels.x, p_.voxels.y, p_.voxels.z}}, {"voxelizer", p_.voxelizer},
-                   {"voxels_set", glPyramid->countLevel0()}, {"stats", voxStats},
+                   {"voxels_set", st.voxelsSet}, {"stats", st.voxelizerStats},
                    {"rebuilt_this_frame", first || dynamic}};
   extra["light_maps"] = rsm.describe();
   return result;

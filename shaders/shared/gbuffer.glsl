@@ -1,7 +1,7 @@
 // Texture units of the G-buffer (illum/deferred.h) as the deferred passes read
 // it: world position (w = 1 where a surface was seen), shading normal towards
 // the viewer (w = material), albedo, and the triangle's geometric normal (the
-// receiver plane of the shadow test). Unit 3 is left to the passes' own input.
+// receiver plane of the shadow test); unit 3 is a pass's own input texture.
 #ifdef __cplusplus
 #pragma once
 #endif
@@ -10,3 +10,4 @@
 #define TEXUNIT_GBUFFER_NORMAL 1
 #define TEXUNIT_GBUFFER_ALBEDO 2
 #define TEXUNIT_GBUFFER_GEOMETRIC_NORMAL 4
+#define TEXUNIT_PASS_INPUT 3

@@ -4,7 +4,7 @@
 // normal, normal similarity), which keeps indirect shadows and corners sharp.
 #include "indirect_buffer.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 3) uniform sampler2D uInput;
+layout(binding = TEXUNIT_PASS_INPUT) uniform sampler2D uInput;
 layout(rgba32f, binding = 0) uniform writeonly image2D uOutput;
 uniform int uInterleave;
 

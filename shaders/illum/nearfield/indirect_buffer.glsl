@@ -4,8 +4,9 @@
 // weights of the blur and the upsampling — a neighbour counts when its surface
 // lies on the receiver's tangent plane (distance along the receiver's normal,
 // relative to the world size of a pixel there) and faces the same way.
-layout(binding = 0) uniform sampler2D gPosition;
-layout(binding = 1) uniform sampler2D gNormal;
+#include "../../shared/gbuffer.glsl"
+layout(binding = TEXUNIT_GBUFFER_POSITION) uniform sampler2D gPosition;
+layout(binding = TEXUNIT_GBUFFER_NORMAL) uniform sampler2D gNormal;
 uniform int uScale;  // 1, 2 or 4
 
 // The image texel an indirect pixel stands for.

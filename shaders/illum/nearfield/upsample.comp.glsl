@@ -8,8 +8,8 @@
 // uIndirectAov when uWriteAov is set.
 #include "indirect_buffer.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 2) uniform sampler2D gAlbedo;
-layout(binding = 3) uniform sampler2D uInput;
+layout(binding = TEXUNIT_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
+layout(binding = TEXUNIT_PASS_INPUT) uniform sampler2D uInput;
 layout(rgba32f, binding = 0) uniform image2D uAccum;
 layout(rgba32f, binding = 1) uniform image2D uIndirectAov;
 uniform int uWriteAov;
