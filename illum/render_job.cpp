@@ -69,6 +69,18 @@ std::unique_ptr<Method> createMethod(const RenderOptions& opt, const MethodInfo&
   params.checkAllUsed("method '" + opt.method + "'");
   return method;
 }
+
+// What one render() reports: samples, per-pass timings, the method's stats.
+nlohmann::json renderStats(const RenderResult& r, const Profiler& profiler) {
+  return {{"spp_completed", r.sppCompleted},
+          {"timings_ms", profiler.timingsMs()},
+          {"cpu_timings_ms", profiler.cpuTimingsMs()},
+          {"pass_calls", profiler.callCounts()},
+          {"total_ms", profiler.totalMs()},
+          {"extra", r.extra},
+          {"built", r.built},
+          {"sample_passes", r.samplePasses}};
+}
 }  // namespace
 
 nlohmann::json resolveParameters(const RenderOptions& opt) {
@@ -154,16 +166,9 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
     profiler.resolve(true);
     nlohmann::json& s = out.stats;
     s = run;
-    s["spp_completed"] = out.result.sppCompleted;
+    s.update(renderStats(out.result, profiler));
     s["interrupted"] = out.result.interrupted;
     s["gl_errors"] = gl ? gl->errorCount() : 0;
-    s["timings_ms"] = profiler.timingsMs();
-    s["cpu_timings_ms"] = profiler.cpuTimingsMs();
-    s["pass_calls"] = profiler.callCounts();
-    s["total_ms"] = profiler.totalMs();
-    s["extra"] = out.result.extra;
-    s["built"] = out.result.built;
-    s["sample_passes"] = out.result.samplePasses;
     out.stats["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     checkGl();
     return out;
@@ -191,19 +196,13 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
     interrupted = out.result.interrupted || interruptRequested();
     // Stopped before every pixel of this frame had a sample: the frames so far stand, this one is not written.
     if (out.result.sppCompleted == 0) break;
-    nlohmann::json fs;
+    nlohmann::json fs = renderStats(out.result, profiler);
     fs["frame"] = f;
     fs["time"] = req.time;
-    fs["spp_completed"] = out.result.sppCompleted;
-    fs["timings_ms"] = profiler.timingsMs();
-    fs["total_ms"] = profiler.totalMs();
     fs["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tf).count();
-    fs["extra"] = out.result.extra;
-    fs["built"] = out.result.built;
-    fs["sample_passes"] = out.result.samplePasses;
     addInto(timings, fs["timings_ms"]);
-    addInto(cpuTimings, profiler.cpuTimingsMs());
-    addInto(calls, profiler.callCounts());
+    addInto(cpuTimings, fs["cpu_timings_ms"]);
+    addInto(calls, fs["pass_calls"]);
     out.stats = run;
     out.stats.update(fs);
     if (onFrame) onFrame(f, out);
