@@ -34,6 +34,7 @@ namespace {
 // Interleaved position, shading normal, uv, geometric (face) normal: 11 floats per vertex.
 constexpr int kVertexFloats = 11;
 void interleave(const FlatScene& f, std::vector<float>& verts) {
+  verts.clear();
   verts.reserve(f.positions.size() * kVertexFloats);
   for (size_t i = 0; i < f.positions.size(); ++i) {
     const glm::vec3 &p = f.positions[i], &n = f.normals[i];
@@ -130,12 +131,23 @@ GpuScene::GpuScene(const Scene& scene, float time) {
 }
 
 void GpuScene::setTime(const Scene& scene, float time) {
-  FlatScene f = flatten(scene, time);
-  if (f.triangleCount() != triangles_) fail("GpuScene::setTime: the scene has ", f.triangleCount(), " triangles, not ", triangles_);
+  if (scene.triangleCount() != triangles_)
+    fail("GpuScene::setTime: the scene has ", scene.triangleCount(), " triangles, not ", triangles_);
   bounds_ = scene.bounds(time);
+  // Only the dynamic meshes move: re-upload their vertex ranges.
+  size_t first = 0;  // the mesh's first triangle
   std::vector<float> verts;
-  interleave(f, verts);
-  if (!verts.empty()) glNamedBufferSubData(vbo_, 0, GLsizeiptr(verts.size() * sizeof(float)), verts.data());
+  for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+    const Mesh& m = scene.meshes[mi];
+    if (m.dynamic && !m.triangles.empty()) {
+      FlatScene f;
+      flattenMesh(scene, int(mi), time, f);
+      interleave(f, verts);
+      glNamedBufferSubData(vbo_, GLintptr(first * 3 * kVertexFloats * sizeof(float)),
+                           GLsizeiptr(verts.size() * sizeof(float)), verts.data());
+    }
+    first += m.triangles.size();
+  }
 }
 
 GpuScene::~GpuScene() {

@@ -81,26 +81,28 @@ FlatScene flatten(const Scene& scene, float time) {
   f.uvs.reserve(3 * n);
   f.material.reserve(n);
   f.meshOfTriangle.reserve(n);
-  for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
-    const Mesh& m = scene.meshes[mi];
-    glm::mat4 M = m.objectToWorld(time);
-    glm::mat3 N = glm::transpose(glm::inverse(glm::mat3(M)));
-    for (auto& t : m.triangles) {
-      glm::vec3 p[3];
-      for (int k = 0; k < 3; ++k) p[k] = glm::vec3(M * glm::vec4(m.positions[t[k]], 1.0f));
-      glm::vec3 ng = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
-      for (int k = 0; k < 3; ++k) {
-        f.positions.push_back(p[k]);
-        glm::vec3 n = m.normals.empty() ? ng : glm::normalize(N * m.normals[t[k]]);
-        if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) n = ng;
-        f.normals.push_back(n);
-        f.uvs.push_back(m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[t[k]]);
-      }
-      f.material.push_back(m.material);
-      f.meshOfTriangle.push_back(int(mi));
-    }
-  }
+  for (size_t mi = 0; mi < scene.meshes.size(); ++mi) flattenMesh(scene, int(mi), time, f);
   return f;
+}
+
+void flattenMesh(const Scene& scene, int mi, float time, FlatScene& f) {
+  const Mesh& m = scene.meshes[size_t(mi)];
+  glm::mat4 M = m.objectToWorld(time);
+  glm::mat3 N = glm::transpose(glm::inverse(glm::mat3(M)));
+  for (auto& t : m.triangles) {
+    glm::vec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = glm::vec3(M * glm::vec4(m.positions[t[k]], 1.0f));
+    glm::vec3 ng = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
+    for (int k = 0; k < 3; ++k) {
+      f.positions.push_back(p[k]);
+      glm::vec3 n = m.normals.empty() ? ng : glm::normalize(N * m.normals[t[k]]);
+      if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) n = ng;
+      f.normals.push_back(n);
+      f.uvs.push_back(m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[t[k]]);
+    }
+    f.material.push_back(m.material);
+    f.meshOfTriangle.push_back(mi);
+  }
 }
 
 }  // namespace vgi

@@ -120,5 +120,7 @@ struct FlatScene {
   size_t triangleCount() const { return material.size(); }
 };
 FlatScene flatten(const Scene& scene, float time = 0);
+// Appends mesh `mesh` at `time` (flatten() is this over every mesh, in order).
+void flattenMesh(const Scene& scene, int mesh, float time, FlatScene& out);
 
 }  // namespace vgi
