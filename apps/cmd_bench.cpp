@@ -14,6 +14,8 @@
 #include "core/build_info.h"
 #include "core/error.h"
 #include "core/gl_context.h"
+#include "core/json_text.h"
+#include "core/output_files.h"
 #include "core/parallel.h"
 #include "core/profiler.h"
 #include "core/scene_loader.h"
@@ -111,6 +113,7 @@ void addTraverseBench(CLI::App& bench) {
   cmd->add_flag("--json", o->json, "print the results as JSON instead of a table");
   cmd->add_option("--stats", o->stats, "also write the JSON here");
   cmd->callback([o] {
+    if (!o->stats.empty()) checkOutputFile(o->stats, "--stats");
     if (o->threads < 0 || o->threads > 1024) fail("--threads ", o->threads, ": must be in [0, 1024]");
     if (o->rays < 1 || o->rays > 100000000) fail("--rays ", o->rays, ": must be in [1, 100000000]");
     if (o->repeat < 1 || o->repeat > 100) fail("--repeat ", o->repeat, ": must be in [1, 100]");
@@ -247,12 +250,10 @@ void addTraverseBench(CLI::App& bench) {
     }
     s["tracers"] = per;
     if (!o->stats.empty()) {
-      std::ofstream f(o->stats);
-      f << s.dump(2) << "\n";
-      if (!f) fail("--stats: cannot write '", o->stats, "'");
+      writeJsonFile(s, o->stats);
     }
     if (o->json) {
-      std::printf("%s\n", s.dump(2).c_str());
+      std::printf("%s\n", jsonText(s, 2).c_str());
       return;
     }
     std::printf("%s, %ux%ux%u (%s), %zu rays, max-dist %s (%.4g world), %d threads, %s\n", o->scene.c_str(), res.x,

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "apps/commands.h"
 #include "core/error.h"
@@ -29,12 +30,14 @@ void addCompareCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   auto out = std::make_shared<std::string>("compare.exr");
   auto refSpp = std::make_shared<int>(256);
+  auto diffOptions = std::make_shared<DiffOptions>();
   opt->method = "nearfield";
   args->size = "256x256";
   // (--spp and --set are the method's; the counterpart gets --ref-spp and the
   // parameters the registry derives from the method's.)
   addRenderOptions(cmd, *opt, *args);
   cmd->add_option("--ref-spp", *refSpp, "the exact counterpart's samples per pixel")->capture_default_str();
+  addDiffOptions(cmd, *diffOptions);
   cmd->add_option("-o,--output", *out,
                   "stem.exr: writes stem.<method>.*, stem.exact.* (images, AOVs, stats) and stem.json (the comparison)")
       ->capture_default_str();
@@ -59,11 +62,25 @@ void addCompareCommand(CLI::App& app) {
     r.preset.clear();
     r.spp = *refSpp;
     r.aovs = c.aovs;
-    RenderOutput exact = runRender(r);
+    RenderOutput exact = interruptRequested() ? RenderOutput{} : runRender(r);
+    if (approx.result.sppCompleted == 0 || exact.result.sppCompleted == 0) {
+      std::fprintf(stderr, "interrupted before both renders had a full sample: nothing written\n");
+      throw Interrupted{};
+    }
 
     const std::string stem = std::filesystem::path(*out).replace_extension("").string();
     std::vector<std::string> files = writeRenderOutputs(approx, stem + "." + opt->method + ".exr", 1.0f);
     for (auto& f : writeRenderOutputs(exact, stem + ".exact.exr", 1.0f)) files.push_back(f);
+    // Signed error images (method − exact) per channel: where it is too bright (red) or too dark (blue).
+    auto writeError = [&](const Image& a, const Image& b, const std::string& channel) {
+      const Image e = signedDifference(a, b);
+      for (const char* ext : {".exr", ".png"}) {
+        files.push_back(stem + ".error" + (channel == "image" ? "" : "." + channel) + ext);
+        writeSignedError(e, files.back());
+      }
+    };
+    writeError(approx.result.image, exact.result.image, "image");
+    for (auto& a : c.aovs) writeError(approx.result.aovs.at(a), exact.result.aovs.at(a), a);
 
     nlohmann::json s;
     s["scene"] = opt->scene;
@@ -74,12 +91,12 @@ void addCompareCommand(CLI::App& app) {
     s["seed"] = opt->seed;
     s["gl_renderer"] = approx.stats["gl_renderer"];
     s["git_revision"] = approx.stats["git_revision"];
-    ImageDiff d = compareImages(approx.result.image, exact.result.image, opt->method, "exact");
-    s["error"] = {{"image", d.toJson()}};
+    std::map<std::string, ImageDiff> errors;
+    errors["image"] = compareImages(approx.result.image, exact.result.image, opt->method, "exact", *diffOptions);
     for (auto& a : c.aovs)
-      s["error"][a] = compareImages(approx.result.aovs.at(a), exact.result.aovs.at(a), opt->method + "." + a,
-                                    "exact." + a)
-                          .toJson();
+      errors[a] = compareImages(approx.result.aovs.at(a), exact.result.aovs.at(a), opt->method + "." + a,
+                                "exact." + a, *diffOptions);
+    for (auto& [name, d] : errors) s["error"][name] = d.toJson();
     // Per frame: the passes the method runs per sample; the rest
     // (voxelization, light maps, uploads) is set-up, paid once per scene (or
     // per animation frame). A method that does not split: all per frame.
@@ -99,21 +116,16 @@ void addCompareCommand(CLI::App& app) {
                  {"exact_total_ms", exact.stats["total_ms"]},
                  {"exact_wall_ms", exact.stats["wall_ms"]}};
     s["outputs"] = files;
+    s["interrupted"] = approx.result.interrupted || exact.result.interrupted;
     const std::string json = stem + ".json";
-    std::ofstream js(json);
-    js << s.dump(2) << "\n";
-    if (!js) fail("cannot write '", json, "'");
+    writeJsonFile(s, json);
 
     std::printf("%s vs exact (%s %s, %d spp) on %s, %dx%d\n", opt->method.c_str(), c.method.c_str(),
                 joined(c.set).c_str(), *refSpp, opt->scene.c_str(), opt->width, opt->height);
-    std::printf("  %-10s %12s %12s %10s\n", "channel", "relMSE", "rel. MAE", "SSIM");
+    std::printf("  %-10s%s\n", "channel", diffHeader());
     std::vector<std::string> channels = {"image"};
     channels.insert(channels.end(), c.aovs.begin(), c.aovs.end());
-    for (auto& name : channels) {
-      const nlohmann::json& e = s["error"][name];
-      std::printf("  %-10s %12.6f %12.5f %10.4f\n", name.c_str(), e["relmse"].get<double>(),
-                  e["rel_mae"].get<double>(), e["ssim"].get<double>());
-    }
+    for (auto& name : channels) std::printf("  %-10s%s\n", name.c_str(), diffLine(errors.at(name)).c_str());
     std::printf("  time: %s %.1f ms per frame + %.0f ms set-up (%d frames, timed passes; wall %.0f ms) on %s\n",
                 opt->method.c_str(), perFrame, setup, frames, approx.stats["wall_ms"].get<double>(),
                 approx.stats["gl_renderer"].get<std::string>().c_str());
@@ -121,6 +133,7 @@ void addCompareCommand(CLI::App& app) {
                 exact.stats["wall_ms"].get<double>());
     std::fflush(stdout);
     std::fprintf(stderr, "wrote %s and %zu image/stat files\n", json.c_str(), files.size());
+    if (s["interrupted"].get<bool>()) throw Interrupted{};
   });
 }
 

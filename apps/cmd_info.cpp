@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "core/json_text.h"
 #include "core/scene_loader.h"
 
 namespace vgi::app {
@@ -43,10 +44,19 @@ void addInfoCommand(CLI::App& app) {
                                 {"exponent", m.exponent}, {"emission", vec(m.emission)},
                                 {"texture", m.albedoTexture >= 0 ? s.textures[size_t(m.albedoTexture)].path : ""}});
     j["lights"] = nlohmann::json::array();
-    for (auto& l : s.lights)
-      j["lights"].push_back({{"type", lightTypeName(l.type)}, {"position", vec(l.position)},
-                             {"direction", vec(l.direction)}, {"intensity", vec(l.intensity)},
-                             {"cone_deg", l.coneHalfAngleDeg}, {"falloff", l.falloff}});
+    // Each light with the fields its type has: a point light has no direction
+    // or cone, a directional light no position (and irradiance, not intensity).
+    for (auto& l : s.lights) {
+      nlohmann::json lj = {{"type", lightTypeName(l.type)}};
+      if (l.type != LightType::Directional) lj["position"] = vec(l.position);
+      if (l.type != LightType::Point) lj["direction"] = vec(l.direction);
+      lj[l.type == LightType::Directional ? "irradiance" : "intensity"] = vec(l.intensity);
+      if (l.type == LightType::Spot) {
+        lj["cone_deg"] = l.coneHalfAngleDeg;
+        lj["falloff"] = l.falloff;
+      }
+      j["lights"].push_back(lj);
+    }
     j["bounds"] = {{"min", vec(b.lo)}, {"max", vec(b.hi)}, {"diagonal", b.diagonal()}};
     j["camera"] = {{"position", vec(s.camera.position)}, {"target", vec(s.camera.target)},
                    {"up", vec(s.camera.up)}, {"fov_deg", s.camera.fovYDeg}};
@@ -54,7 +64,7 @@ void addInfoCommand(CLI::App& app) {
     j["degenerate_triangles_dropped"] = s.report.degenerateTrianglesDropped;
     j["warnings"] = s.report.warnings;
     if (*json) {
-      std::printf("%s\n", j.dump(2).c_str());
+      std::printf("%s\n", jsonText(j, 2).c_str());
       return;
     }
     std::printf("scene      %s\n", scene->c_str());
@@ -66,10 +76,14 @@ void addInfoCommand(CLI::App& app) {
                   str(m.ks).c_str(), m.exponent, str(m.emission).c_str(),
                   m.albedoTexture >= 0 ? s.textures[size_t(m.albedoTexture)].path.c_str() : "");
     std::printf("lights     %zu\n", s.lights.size());
-    for (auto& l : s.lights)
-      std::printf("  %-11s position %s direction %s intensity %s cone %g deg falloff %g\n", lightTypeName(l.type),
-                  str(l.position).c_str(), str(l.direction).c_str(), str(l.intensity).c_str(), l.coneHalfAngleDeg,
-                  l.falloff);
+    for (auto& l : s.lights) {
+      std::printf("  %-11s", lightTypeName(l.type));
+      if (l.type != LightType::Directional) std::printf(" position %s", str(l.position).c_str());
+      if (l.type != LightType::Point) std::printf(" direction %s", str(l.direction).c_str());
+      std::printf(" %s %s", l.type == LightType::Directional ? "irradiance" : "intensity", str(l.intensity).c_str());
+      if (l.type == LightType::Spot) std::printf(" cone %g deg falloff %g", l.coneHalfAngleDeg, l.falloff);
+      std::printf("\n");
+    }
     std::printf("bounds     %s .. %s (diagonal %g)\n", str(b.lo).c_str(), str(b.hi).c_str(), b.diagonal());
     std::printf("camera     position %s target %s up %s fov %g deg\n", str(s.camera.position).c_str(),
                 str(s.camera.target).c_str(), str(s.camera.up).c_str(), s.camera.fovYDeg);

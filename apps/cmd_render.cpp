@@ -55,19 +55,24 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--help-module", *helpModule, "print a method's parameters and exit");
   cmd->callback([=] {
     if (!helpModule->empty()) {
-      std::printf("%s", describeMethod(*helpModule).c_str());
+      std::printf("%s", describeMethod(*helpModule, opt->scene).c_str());
       return;
     }
     if (!(*exposure > 0.0f) || *exposure > 1e6f) fail("--exposure ", *exposure, ": must be in (0, 1e6]");
     applyRenderArgs(*args, *opt);
     opt->aovs = splitList(*aovs);
     checkOutputPath(*out);
-    if (!stats->empty()) checkOutputFolder(*stats, "--stats");
+    if (!stats->empty()) checkOutputFile(*stats, "--stats");
+    opt->methodGiven = cmd->count("--method") > 0;
     installInterruptHandler();
     std::vector<std::string> files;
     RenderOutput result;
     if (opt->frames == 1) {
       result = runRender(*opt);
+      if (result.result.sppCompleted == 0) {
+        std::fprintf(stderr, "interrupted before the first sample of every pixel was done: nothing written\n");
+        throw Interrupted{};
+      }
       files = writeRenderOutputs(result, *out, *exposure);
     } else {
       // Each frame is written as soon as it is done: an interrupted animation keeps its frames.
@@ -76,13 +81,7 @@ void addRenderCommand(CLI::App& app) {
       });
       files.insert(files.begin(), writeAnimationStats(result, *out, files, *exposure));
     }
-    if (!stats->empty()) {
-      FILE* f = std::fopen(stats->c_str(), "w");
-      if (!f) fail("--stats: cannot write '", *stats, "'");
-      std::string text = result.stats.dump(2) + "\n";
-      std::fwrite(text.data(), 1, text.size(), f);
-      std::fclose(f);
-    }
+    if (!stats->empty()) writeJsonFile(result.stats, *stats);
     if (opt->frames > 1) {
       if (result.stats["interrupted"].get<bool>())
         std::fprintf(stderr, "interrupted: wrote %d of %d frames\n", result.stats["frames_completed"].get<int>(),
@@ -91,6 +90,7 @@ void addRenderCommand(CLI::App& app) {
                    opt->width, opt->height, opt->spp, result.stats["frames_completed"].get<int>(),
                    result.stats["wall_ms"].get<double>(), result.stats["gl_renderer"].get<std::string>().c_str());
       std::fprintf(stderr, "wrote %s and %zu frame files\n", files[0].c_str(), files.size() - 1);
+      if (result.stats["interrupted"].get<bool>()) throw Interrupted{};
       return;
     }
     if (result.result.interrupted)
@@ -99,6 +99,7 @@ void addRenderCommand(CLI::App& app) {
                  opt->width, opt->height, result.result.sppCompleted, result.stats["wall_ms"].get<double>(),
                  result.stats["gl_renderer"].get<std::string>().c_str());
     for (auto& f : files) std::fprintf(stderr, "wrote %s\n", f.c_str());
+    if (result.result.interrupted) throw Interrupted{};
   });
 }
 

@@ -8,6 +8,8 @@
 #include "core/build_info.h"
 #include "core/error.h"
 #include "core/gl_context.h"
+#include "core/json_text.h"
+#include "core/output_files.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
 #include "voxelize/atlas.h"
@@ -58,6 +60,8 @@ void addVoxelizeCommand(CLI::App& app) {
   cmd->add_option("--dump", o->dump, "write a picture of the grid (.png/.exr)");
   cmd->callback([o] {
     if (o->threads < 0 || o->threads > 1024) fail("--threads ", o->threads, ": must be in [0, 1024]");
+    if (!o->stats.empty()) checkOutputFile(o->stats, "--stats");
+    if (!o->dump.empty()) checkOutputFile(o->dump, "--dump");
     const VoxelizerInfo& info = findVoxelizer(o->voxelizer);
     glm::uvec3 res = parseResolution(o->voxels);
     checkGridMemory(res, info.name == "exact" ? 1 : 2);
@@ -168,9 +172,7 @@ void addVoxelizeCommand(CLI::App& app) {
       for (auto& ch : req.valueGrids) writeValuePicture(values, ch, stem + "_" + ch + ext);
     }
     if (!o->stats.empty()) {
-      std::ofstream f(o->stats);
-      f << s.dump(2) << "\n";
-      if (!f) fail("--stats: cannot write '", o->stats, "'");
+      writeJsonFile(s, o->stats);
     }
     std::printf("%s %ux%ux%u: %llu voxels set, recall %.5f (interior %.5f), precision %.5f, %.1f ms\n",
                 info.name.c_str(), res.x, res.y, res.z, (unsigned long long)grid.count(), cmp.recall(),

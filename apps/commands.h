@@ -5,9 +5,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/image_metrics.h"
 #include "illum/render_job.h"
 
 namespace vgi::app {
+// Thrown after a Ctrl-C'd command has written what it completed: vgi exits 130.
+struct Interrupted {};
+
 // "a,b,,c" → {a, b, c}.
 inline std::vector<std::string> splitList(const std::string& s) {
   std::vector<std::string> out;
@@ -26,6 +30,12 @@ struct RenderArgs {
 };
 void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args);
 void applyRenderArgs(const RenderArgs& args, RenderOptions& opt);
+
+// relMSE's --epsilon / --relative-epsilon (diff and compare); one line of a
+// diff for a table, and the table's header.
+void addDiffOptions(CLI::App* cmd, DiffOptions& options);
+std::string diffLine(const ImageDiff& d);
+const char* diffHeader();
 
 // Each adds its subcommand to the app; the callback runs it.
 void addRenderCommand(CLI::App& app);

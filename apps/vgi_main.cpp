@@ -1,9 +1,83 @@
 // vgi — the command line of the voxel GI framework.
+//
+// Exit status (the same for every subcommand):
+//   0    done: every output was written
+//   2    usage or input error (bad option, parameter, scene, image or path);
+//        the message names the option/file and the value; nothing was written
+//   3    internal error (a bug: please report it with the command line)
+//   130  interrupted (Ctrl-C): what was complete was written and the stats say
+//        how far it got (`interrupted`, `spp_completed`); a still interrupted
+//        before its first full sample writes nothing
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 
 #include "apps/commands.h"
 #include "core/error.h"
+
+namespace {
+
+// Levenshtein distance, for "did you mean".
+size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string closest(const std::string& word, const std::vector<std::string>& known) {
+  std::string best;
+  size_t bestD = std::max<size_t>(2, word.size() / 3) + 1;
+  for (auto& k : known) {
+    size_t d = editDistance(word, k);
+    if (d < bestD) {
+      bestD = d;
+      best = k;
+    }
+  }
+  return best;
+}
+
+// The word a parse error is about, and the closest known option or command.
+std::string suggestion(CLI::App& app, int argc, char** argv) {
+  std::vector<std::string> commands;
+  CLI::App* sub = nullptr;
+  for (CLI::App* s : app.get_subcommands([](CLI::App*) { return true; })) {
+    commands.push_back(s->get_name());
+    if (argc > 1 && s->get_name() == argv[1]) sub = s;
+  }
+  if (!sub) {
+    if (argc < 2) return "";
+    std::string c = closest(argv[1], commands);
+    return c.empty() ? "" : " (did you mean 'vgi " + c + "'?)";
+  }
+  std::vector<std::string> options;
+  for (const CLI::Option* o : sub->get_options()) {
+    for (auto& l : o->get_lnames()) options.push_back("--" + l);
+    for (auto& s : o->get_snames()) options.push_back("-" + s);
+  }
+  for (int i = 2; i < argc; ++i) {
+    std::string w = argv[i];
+    if (w.size() < 2 || w[0] != '-') continue;
+    w = w.substr(0, w.find('='));
+    if (std::find(options.begin(), options.end(), w) != options.end()) continue;
+    std::string c = closest(w, options);
+    return " ('" + w + "' is not an option of 'vgi " + sub->get_name() + "'" +
+           (c.empty() ? "" : "; did you mean '" + c + "'?") + " see vgi " + sub->get_name() + " --help)";
+  }
+  return "";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"vgi: atlas-voxelized hierarchical ray-voxel global illumination framework"};
@@ -17,9 +91,17 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::fprintf(stderr, "vgi: error: %s%s\n", e.what(), suggestion(app, argc, argv).c_str());
+    return 2;
+  } catch (const vgi::app::Interrupted&) {
+    return 130;
   } catch (const vgi::Error& e) {
     std::fprintf(stderr, "vgi: error: %s\n", e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path the checks did not foresee (the operating system refused it): still the user's path.
+    std::fprintf(stderr, "vgi: error: '%s': %s\n", e.path1().string().c_str(), e.code().message().c_str());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "vgi: internal error: %s\n", e.what());

@@ -47,7 +47,7 @@ void writeImage(const Image& img, const std::string& path, float exposure) {
 }
 
 Image readImage(const std::string& path) {
-  Texture t = loadTexture(path);
+  Texture t = loadTexture(path, "image");
   Image img(t.width, t.height);
   img.pixels = std::move(t.texels);
   return img;

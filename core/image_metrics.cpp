@@ -1,13 +1,19 @@
 #include "core/image_metrics.h"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <vector>
 
 #include "core/error.h"
 
 namespace vgi {
 
 nlohmann::json ImageDiff::toJson() const {
-  return {{"rmse", rmse}, {"relmse", relMse}, {"mae", mae}, {"rel_mae", relMae}, {"ssim", ssim}};
+  auto rgb = [](const double* v) { return nlohmann::json{v[0], v[1], v[2]}; };
+  return {{"rmse", rmse},       {"relmse", relMse},           {"relmse_epsilon", epsilon},
+          {"mae", mae},         {"rel_mae", relMae},          {"rel_mae_rgb", rgb(relMaeRgb)},
+          {"energy_rgb", rgb(energyRgb)}, {"ssim", ssim}};
 }
 
 namespace {
@@ -52,33 +58,88 @@ double meanSsim(const Image& a, const Image& b) {
 }
 }  // namespace
 
-ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA,
-                        const std::string& nameB) {
+namespace {
+void checkComparable(const Image& a, const Image& b, const std::string& nameA, const std::string& nameB) {
   if (a.width != b.width || a.height != b.height)
     fail("cannot compare images of different sizes: ", nameA, " is ", a.width, "x", a.height,
          ", ", nameB, " is ", b.width, "x", b.height);
   if (a.pixels.empty()) fail("cannot compare empty images (", nameA, ")");
-  ImageDiff d;
-  double se = 0, rel = 0, ae = 0, level = 0;
+}
+}  // namespace
+
+ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA,
+                        const std::string& nameB, const DiffOptions& options) {
+  checkComparable(a, b, nameA, nameB);
+  if (!(options.epsilon > 0) || !(options.relativeEpsilon >= 0) || !std::isfinite(options.relativeEpsilon))
+    fail("relMSE epsilon ", options.epsilon, " / relative ", options.relativeEpsilon,
+         ": epsilon must be > 0, the relative factor >= 0");
+  double sumA[3] = {0, 0, 0}, sumB[3] = {0, 0, 0}, absErr[3] = {0, 0, 0};
   for (size_t i = 0; i < a.pixels.size(); ++i)
     for (int k = 0; k < 3; ++k) {
       double x = a.pixels[i][k], r = b.pixels[i][k];
       if (!std::isfinite(x) || !std::isfinite(r))
         fail("image ", std::isfinite(x) ? nameB : nameA, " has a non-finite value at pixel (",
              i % a.width, ", ", i / a.width, ")");
-      double e = x - r;
-      se += e * e;
-      rel += e * e / (r * r + 0.01);
-      ae += std::abs(e);
-      level += std::abs(r);
+      sumA[k] += x;
+      sumB[k] += std::abs(r);
+      absErr[k] += std::abs(x - r);
     }
   const double n = double(a.pixels.size()) * 3;
+  ImageDiff d;
+  d.epsilon = options.epsilon;
+  if (options.relativeEpsilon > 0) {
+    const double mean = (sumB[0] + sumB[1] + sumB[2]) / n;
+    d.epsilon = std::max(1e-30, options.relativeEpsilon * options.relativeEpsilon * mean * mean);
+  }
+  double se = 0, rel = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      double r = b.pixels[i][k], e = a.pixels[i][k] - r;
+      se += e * e;
+      rel += e * e / (r * r + d.epsilon);
+    }
+  const double ae = absErr[0] + absErr[1] + absErr[2], level = sumB[0] + sumB[1] + sumB[2];
+  auto ratio = [](double num, double den) { return den > 0 ? num / den : (num > 0 ? INFINITY : 0.0); };
   d.rmse = std::sqrt(se / n);
   d.relMse = rel / n;
   d.mae = ae / n;
-  d.relMae = level > 0 ? ae / level : (ae > 0 ? INFINITY : 0.0);
+  d.relMae = ratio(ae, level);
+  for (int k = 0; k < 3; ++k) {
+    d.relMaeRgb[k] = ratio(absErr[k], sumB[k]);
+    d.energyRgb[k] = sumB[k] > 0 ? sumA[k] / sumB[k] : (sumA[k] == 0 ? 1.0 : INFINITY);
+  }
   d.ssim = meanSsim(a, b);
   return d;
+}
+
+Image signedDifference(const Image& a, const Image& b) {
+  checkComparable(a, b, "A", "B");
+  Image d(a.width, a.height);
+  for (size_t i = 0; i < d.pixels.size(); ++i) d.pixels[i] = a.pixels[i] - b.pixels[i];
+  return d;
+}
+
+void writeSignedError(const Image& difference, const std::string& path, float fullScale) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (auto& c : ext) c = char(std::tolower(c));
+  if (ext == ".exr") return writeImage(difference, path);
+  if (!(fullScale > 0)) {
+    std::vector<float> mags;
+    mags.reserve(difference.pixels.size());
+    for (auto& p : difference.pixels) mags.push_back(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+    const size_t k = std::min(mags.size() - 1, size_t(0.99 * double(mags.size())));
+    std::nth_element(mags.begin(), mags.begin() + long(k), mags.end());
+    fullScale = mags.empty() || mags[k] <= 0 ? 1.0f : mags[k];
+  }
+  // Luminance of the signed error, shown red (positive) or blue (negative) at
+  // display values (writeImage's sRGB encoding applies).
+  Image shown(difference.width, difference.height);
+  for (size_t i = 0; i < shown.pixels.size(); ++i) {
+    const glm::vec3 e = difference.pixels[i];
+    const float v = std::clamp((e.x + e.y + e.z) / (3.0f * fullScale), -1.0f, 1.0f);
+    shown.pixels[i] = v >= 0 ? glm::vec3(v, 0.1f * v, 0.0f) : glm::vec3(0.0f, 0.3f * -v, -v);
+  }
+  writeImage(shown, path);
 }
 
 }  // namespace vgi

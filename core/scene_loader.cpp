@@ -1,6 +1,7 @@
 #include "core/scene_loader.h"
 
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -15,6 +16,7 @@
 
 #include "core/builtin_scenes.h"
 #include "core/error.h"
+#include "core/json_text.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -54,7 +56,7 @@ struct JsonCtx {
     fail(file, ": ", where, ": ", what);
   }
   void checkKeys(const json& j, const std::string& where, std::set<std::string> allowed) const {
-    if (!j.is_object()) error(where, "expected an object, got " + j.dump());
+    if (!j.is_object()) error(where, "expected an object, got " + jsonExcerpt(j));
     for (auto& [k, v] : j.items())
       if (!allowed.count(k)) {
         std::string list;
@@ -62,33 +64,36 @@ struct JsonCtx {
         error(where, "unknown key '" + k + "' (allowed: " + list + ")");
       }
   }
+  // Checked in float, the type it is stored in: 1e39 is a finite double but
+  // an infinite float.
   float number(const json& j, const std::string& where) const {
-    if (!j.is_number()) error(where, "expected a number, got " + j.dump());
+    if (!j.is_number()) error(where, "expected a number, got " + jsonExcerpt(j));
     double v = j.get<double>();
-    if (!std::isfinite(v)) error(where, "expected a finite number, got " + j.dump());
+    if (!std::isfinite(v) || std::abs(v) > double(std::numeric_limits<float>::max()))
+      error(where, "expected a finite number within float range (|x| <= 3.4e38), got " + jsonExcerpt(j));
     return float(v);
   }
   glm::vec3 vec3(const json& j, const std::string& where) const {
-    if (!j.is_array() || j.size() != 3) error(where, "expected an array of 3 numbers, got " + j.dump());
+    if (!j.is_array() || j.size() != 3) error(where, "expected an array of 3 numbers, got " + jsonExcerpt(j));
     return {number(j[0], where + "[0]"), number(j[1], where + "[1]"), number(j[2], where + "[2]")};
   }
   // A colour: [r,g,b] or one number for grey; never negative.
   glm::vec3 color(const json& j, const std::string& where) const {
     glm::vec3 c = j.is_number() ? glm::vec3(number(j, where)) : vec3(j, where);
-    if (c.x < 0 || c.y < 0 || c.z < 0) error(where, "must not be negative, got " + j.dump());
+    if (c.x < 0 || c.y < 0 || c.z < 0) error(where, "must not be negative, got " + jsonExcerpt(j));
     return c;
   }
   glm::vec3 direction(const json& j, const std::string& where) const {
     glm::vec3 d = vec3(j, where);
-    if (glm::length(d) < 1e-12f) error(where, "direction must not be zero, got " + j.dump());
+    if (glm::length(d) < 1e-12f) error(where, "direction must not be zero, got " + jsonExcerpt(j));
     return glm::normalize(d);
   }
   std::string string(const json& j, const std::string& where) const {
-    if (!j.is_string()) error(where, "expected a string, got " + j.dump());
+    if (!j.is_string()) error(where, "expected a string, got " + jsonExcerpt(j));
     return j.get<std::string>();
   }
   bool boolean(const json& j, const std::string& where) const {
-    if (!j.is_boolean()) error(where, "expected true or false, got " + j.dump());
+    if (!j.is_boolean()) error(where, "expected true or false, got " + jsonExcerpt(j));
     return j.get<bool>();
   }
 };
@@ -100,7 +105,7 @@ Keyframe readTrs(const JsonCtx& c, const json& j, const std::string& where) {
   if (j.contains("rotate")) {
     const json& r = j["rotate"];
     if (!r.is_array() || r.size() != 4)
-      c.error(where + ".rotate", "expected [angle_deg, axis_x, axis_y, axis_z], got " + r.dump());
+      c.error(where + ".rotate", "expected [angle_deg, axis_x, axis_y, axis_z], got " + jsonExcerpt(r));
     float deg = c.number(r[0], where + ".rotate[0]");
     glm::vec3 axis = c.direction(json::array({r[1], r[2], r[3]}), where + ".rotate axis");
     k.rotation = glm::angleAxis(glm::radians(deg), axis);
@@ -109,7 +114,7 @@ Keyframe readTrs(const JsonCtx& c, const json& j, const std::string& where) {
     const json& s = j["scale"];
     k.scale = s.is_number() ? glm::vec3(c.number(s, where + ".scale")) : c.vec3(s, where + ".scale");
     if (k.scale.x == 0 || k.scale.y == 0 || k.scale.z == 0)
-      c.error(where + ".scale", "must not be zero, got " + s.dump());
+      c.error(where + ".scale", "must not be zero, got " + jsonExcerpt(s));
   }
   return k;
 }
@@ -125,7 +130,7 @@ glm::mat4 readTransform(const JsonCtx& c, const json& j, const std::string& wher
     if (j.size() != 1) c.error(where, "'matrix' cannot be combined with translate/rotate/scale");
     const json& m = j["matrix"];
     if (!m.is_array() || m.size() != 16)
-      c.error(where + ".matrix", "expected 16 numbers (row-major), got " + m.dump());
+      c.error(where + ".matrix", "expected 16 numbers (row-major), got " + jsonExcerpt(m));
     glm::mat4 r;
     for (int row = 0; row < 4; ++row)
       for (int col = 0; col < 4; ++col)
@@ -145,7 +150,7 @@ void readMaterialOverride(const JsonCtx& c, const json& j, const std::string& wh
   if (j.contains("exponent")) {
     m.exponent = c.number(j["exponent"], where + ".exponent");
     if (m.exponent < 0 || m.exponent > 1e5f)
-      c.error(where + ".exponent", "must be in [0, 100000], got " + j["exponent"].dump());
+      c.error(where + ".exponent", "must be in [0, 100000], got " + jsonExcerpt(j["exponent"]));
   }
   if (j.contains("texture")) {
     std::string p = (dir / c.string(j["texture"], where + ".texture")).string();
@@ -185,12 +190,12 @@ Light readLight(const JsonCtx& c, const json& j, const std::string& where) {
     if (j.contains("cone_deg")) {
       l.coneHalfAngleDeg = c.number(j["cone_deg"], where + ".cone_deg");
       if (l.coneHalfAngleDeg <= 0 || l.coneHalfAngleDeg > 90)
-        c.error(where + ".cone_deg", "half-angle must be in (0, 90], got " + j["cone_deg"].dump());
+        c.error(where + ".cone_deg", "half-angle must be in (0, 90], got " + jsonExcerpt(j["cone_deg"]));
     }
     if (j.contains("falloff")) {
       l.falloff = c.number(j["falloff"], where + ".falloff");
       if (l.falloff < 0 || l.falloff > 1000)
-        c.error(where + ".falloff", "must be in [0, 1000], got " + j["falloff"].dump());
+        c.error(where + ".falloff", "must be in [0, 1000], got " + jsonExcerpt(j["falloff"]));
     }
   } else if (type == "directional") {
     c.checkKeys(j, where, {"type", "direction", "irradiance"});
@@ -214,8 +219,41 @@ Camera defaultCamera(const Bounds& b) {
   return cam;
 }
 
+// Where a scene's numbers must lie so that every method computes finite
+// values with them: coordinates well inside Embree's valid ray range (|x| <
+// 1.8e18) and far from float overflow in squared distances; light and
+// emitted power such that sums over 10⁶ samples stay finite in float.
+constexpr float kMaxCoordinate = 1e12f, kMaxRadiometric = 1e20f;
+
+void checkSceneRanges(const Scene& scene, const std::string& origin) {
+  auto coordinate = [&](glm::vec3 v, const std::string& what) {
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(v[k]) <= kMaxCoordinate))
+        fail(origin, ": ", what, " (", v.x, ", ", v.y, ", ", v.z, ") lies beyond ±", kMaxCoordinate,
+             " scene units (coordinates that large lose all precision in float)");
+  };
+  auto power = [&](glm::vec3 v, const std::string& what) {
+    for (int k = 0; k < 3; ++k)
+      if (!(v[k] <= kMaxRadiometric))
+        fail(origin, ": ", what, " (", v.x, ", ", v.y, ", ", v.z, ") exceeds ", kMaxRadiometric);
+  };
+  Bounds b = scene.bounds();
+  coordinate(b.lo, "the geometry's bounding-box corner");
+  coordinate(b.hi, "the geometry's bounding-box corner");
+  coordinate(scene.camera.position, "camera.position");
+  coordinate(scene.camera.target, "camera.target");
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const std::string where = "lights[" + std::to_string(i) + "]";
+    coordinate(scene.lights[i].position, where + ".position");
+    power(scene.lights[i].intensity, where + " intensity");
+  }
+  for (auto& m : scene.materials) power(m.emission, "material '" + m.name + "' emission");
+  power(scene.environment.color * scene.environment.scale, "environment colour x scale");
+}
+
 void finishScene(Scene& scene, const std::string& origin, bool haveLights, bool haveCamera) {
   if (scene.triangleCount() == 0) fail(origin, ": the scene has no triangles");
+  checkSceneRanges(scene, origin);
   Bounds b = scene.bounds();
   if (!haveCamera) scene.camera = defaultCamera(b);
   if (!haveLights && scene.lights.empty()) {
@@ -237,14 +275,11 @@ void finishScene(Scene& scene, const std::string& origin, bool haveLights, bool 
 }
 
 Scene loadSceneJson(const std::string& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) fail("cannot open scene file '", path, "'");
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const json::parse_error& e) {
-    fail(path, ": malformed JSON: ", e.what());
-  }
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail("cannot read scene file '", path, "'");
+  const json root = parseJsonText(text, path);
   JsonCtx c{path};
   c.checkKeys(root, "top level", {"meshes", "materials", "lights", "environment", "camera", "presets"});
   fs::path dir = fs::path(path).parent_path();
@@ -256,7 +291,8 @@ Scene loadSceneJson(const std::string& path) {
 
   if (!root.contains("meshes") || !root["meshes"].is_array() || root["meshes"].empty())
     c.error("meshes", "expected a non-empty array of meshes");
-  const json& materialsJson = root.contains("materials") ? root["materials"] : json::object();
+  static const json noMaterials = json::object();  // a reference either way: never a copy of the scene's
+  const json& materialsJson = root.contains("materials") ? root["materials"] : noMaterials;
   if (!materialsJson.is_object()) c.error("materials", "expected an object of name → material");
 
   for (size_t i = 0; i < root["meshes"].size(); ++i) {
@@ -355,7 +391,7 @@ Scene loadSceneJson(const std::string& path) {
     if (ej.contains("map")) {
       std::string p = (dir / c.string(ej["map"], "environment.map")).string();
       try {
-        scene.textures.push_back(loadTexture(p));
+        scene.textures.push_back(loadTexture(p, "environment map"));
         scene.environment.mapTexture = int(scene.textures.size()) - 1;
       } catch (const Error& e) {
         scene.report.warnings.push_back(std::string(e.what()) + " (environment uses its constant colour)");
@@ -377,7 +413,7 @@ Scene loadSceneJson(const std::string& path) {
     if (cj.contains("fov_deg")) {
       cam.fovYDeg = c.number(cj["fov_deg"], "camera.fov_deg");
       if (cam.fovYDeg <= 0 || cam.fovYDeg >= 180)
-        c.error("camera.fov_deg", "must be in (0, 180), got " + cj["fov_deg"].dump());
+        c.error("camera.fov_deg", "must be in (0, 180), got " + jsonExcerpt(cj["fov_deg"]));
     }
     scene.camera = cam;
     haveCamera = true;
@@ -390,8 +426,8 @@ Scene loadSceneJson(const std::string& path) {
       if (!kv.is_object()) c.error("presets." + name, "expected an object of key → value");
       for (auto& [k, v] : kv.items()) {
         if (v.is_string()) scene.presets[name][k] = v.get<std::string>();
-        else if (v.is_number() || v.is_boolean()) scene.presets[name][k] = v.dump();
-        else c.error("presets." + name + "." + k, "expected a string, number or boolean, got " + v.dump());
+        else if (v.is_number() || v.is_boolean()) scene.presets[name][k] = jsonText(v);
+        else c.error("presets." + name + "." + k, "expected a string, number or boolean, got " + jsonExcerpt(v));
       }
     }
   }
@@ -544,19 +580,30 @@ void validateMesh(Mesh& m, LoadReport& report) {
   m.triangles.swap(kept);
 }
 
-Texture loadTexture(const std::string& path) {
+void requireRegularFile(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    fail(what, " '", path, "': ", ec.message());
+  if (!fs::exists(st)) fail(what, " '", path, "' does not exist");
+  if (fs::is_directory(st)) fail(what, " '", path, "' is a directory");
+  if (!fs::is_regular_file(st))
+    fail(what, " '", path, "' is not a regular file (a device, FIFO or socket cannot be read as one)");
+}
+
+Texture loadTexture(const std::string& path, const std::string& what) {
   using namespace OIIO;
-  if (!fs::exists(path)) fail("texture '", path, "' does not exist");
+  requireRegularFile(path, what);
   auto in = ImageInput::open(path);
-  if (!in) fail("cannot read texture '", path, "': ", OIIO::geterror());
+  if (!in) fail("cannot read ", what, " '", path, "': ", OIIO::geterror());
   const ImageSpec& spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    fail("texture '", path, "' has no pixels");
+    fail(what, " '", path, "' has no pixels");
   if (size_t(spec.width) * spec.height > (size_t(1) << 28))
-    fail("texture '", path, "' is too large (", spec.width, "x", spec.height, ")");
+    fail(what, " '", path, "' is too large (", spec.width, "x", spec.height, ")");
   std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px.data()))
-    fail("cannot decode texture '", path, "': ", in->geterror());
+    fail("cannot decode ", what, " '", path, "': ", in->geterror());
   bool srgb = spec.format.basetype == TypeDesc::UINT8 || spec.format.basetype == TypeDesc::UINT16;
   Texture t;
   t.path = path;
@@ -577,8 +624,7 @@ Texture loadTexture(const std::string& path) {
 }
 
 size_t appendModelFile(const std::string& path, Scene& scene) {
-  if (!fs::exists(path)) fail("model file '", path, "' does not exist");
-  if (fs::is_directory(path)) fail("model file '", path, "' is a directory");
+  requireRegularFile(path, "model file");
   std::string ext = lower(fs::path(path).extension().string());
   if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".ply")
     fail("model file '", path, "': unsupported format '", ext, "' (obj, gltf, glb, ply)");
@@ -619,7 +665,7 @@ Scene loadScene(const std::string& spec) {
     finishScene(s, spec, true, true);
     return s;
   }
-  if (!fs::exists(spec)) fail("scene '", spec, "' does not exist");
+  requireRegularFile(spec, "scene");
   if (lower(fs::path(spec).extension().string()) == ".json") return loadSceneJson(spec);
   Scene s;
   s.name = fs::path(spec).stem().string();

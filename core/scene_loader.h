@@ -21,7 +21,8 @@
 //             | {"type":"directional", "direction":[…], "irradiance":…} ],
 //   "environment": {"color":[r,g,b]} | {"map":"latlong.exr", "scale": s},
 //   "camera": {"position":[…], "target":[…], "up":[…], "fov_deg": f},
-//   "presets": { "name": { "key": "value", … } }
+//   "presets": { "name": { "key": "value", … } }   (a preset for one method names it:
+//              "method": "reference"; --preset then selects that method)
 // }
 #pragma once
 #include <string>
@@ -36,8 +37,16 @@ Scene loadScene(const std::string& spec);
 // Returns the number of meshes appended.
 size_t appendModelFile(const std::string& path, Scene& scene);
 
-// Loads an image as linear RGB (8/16-bit files are treated as sRGB).
-Texture loadTexture(const std::string& path);
+// Loads an image as linear RGB (8/16-bit files are treated as sRGB); `what`
+// names it in errors ("texture", "image", "environment map").
+Texture loadTexture(const std::string& path, const std::string& what = "texture");
+
+// Throws unless `path` names a regular file (or a link to one) that can be
+// looked at: a device (/dev/zero), FIFO or socket would hang or stream
+// forever in a reader, a folder is not a file, a name component longer than
+// the file system allows is an error about this path (not an exception
+// from std::filesystem). `what` names the file's role in the message.
+void requireRegularFile(const std::string& path, const std::string& what);
 
 // Checks finiteness, index ranges and drops degenerate triangles (counted).
 void validateMesh(Mesh& mesh, LoadReport& report);

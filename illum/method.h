@@ -85,7 +85,8 @@ struct MethodInfo {
 };
 
 const std::vector<MethodInfo>& methodRegistry();
-const MethodInfo& findMethod(const std::string& name);  // throws listing the known names
+// Throws naming `option` and listing the known names.
+const MethodInfo& findMethod(const std::string& name, const std::string& option = "--method");
 std::string defaultMethodName();
 
 }  // namespace vgi

@@ -39,15 +39,16 @@ const std::vector<MethodInfo>& methodRegistry() {
   return table;
 }
 
-const MethodInfo& findMethod(const std::string& name) {
+const MethodInfo& findMethod(const std::string& name, const std::string& option) {
   std::string known;
   for (auto& m : methodRegistry()) {
     if (m.name == name) return m;
     known += (known.empty() ? "" : ", ") + m.name;
   }
-  fail("--method: unknown method '", name, "' (known: ", known, ")");
+  fail(option, ": unknown method '", name, "' (known: ", known, ")");
 }
 
-std::string defaultMethodName() { return "direct"; }
+// The framework's headline method: near-field GI is what a first render should show.
+std::string defaultMethodName() { return "nearfield"; }
 
 }  // namespace vgi

@@ -12,6 +12,8 @@
 #include "core/build_info.h"
 #include "core/error.h"
 #include "core/image.h"
+#include "core/json_text.h"
+#include "core/output_files.h"
 #include "core/progress.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
@@ -22,13 +24,18 @@ namespace vgi {
 
 void parseSize(const std::string& text, int& w, int& h) {
   auto x = text.find('x');
-  char* end = nullptr;
+  // Each side parsed from a string that outlives the check of `end` (a
+  // substr() temporary would be destroyed before *end is read).
+  auto side = [](const std::string& digits) {
+    if (digits.empty() || digits.size() > 9) return -1L;
+    char* end = nullptr;
+    long v = std::strtol(digits.c_str(), &end, 10);
+    return *end ? -1L : v;
+  };
   long a = -1, b = -1;
   if (x != std::string::npos) {
-    a = std::strtol(text.substr(0, x).c_str(), &end, 10);
-    if (*end) a = -1;
-    b = std::strtol(text.substr(x + 1).c_str(), &end, 10);
-    if (*end) b = -1;
+    a = side(text.substr(0, x));
+    b = side(text.substr(x + 1));
   }
   if (a < 1 || b < 1 || a > 16384 || b > 16384)
     fail("--size '", text, "': expected WxH with 1 <= W, H <= 16384 (e.g. 512x512)");
@@ -41,13 +48,7 @@ void checkOutputPath(const std::string& path) {
   std::string ext = p.extension().string();
   if (ext != ".exr" && ext != ".png")
     fail("-o '", path, "': the output must end in .exr or .png (both are written, plus a .json sidecar)");
-  checkOutputFolder(path, "-o");
-}
-
-void checkOutputFolder(const std::string& path, const std::string& option) {
-  fs::path dir = fs::path(path).parent_path();
-  if (!dir.empty() && !fs::is_directory(dir))
-    fail(option, " '", path, "': folder '", dir.string(), "' does not exist");
+  checkOutputFile(path, "-o");
 }
 
 namespace {
@@ -62,31 +63,72 @@ std::unique_ptr<Method> createMethod(const RenderOptions& opt, const MethodInfo&
       fail("--preset '", opt.preset, "': scene '", opt.scene, "' has no such preset (",
            known.empty() ? "it has none" : "known: " + known, ")");
     }
-    for (auto& [k, v] : it->second) params.set(k, v, "preset '" + opt.preset + "'");
+    for (auto& [k, v] : it->second)
+      if (k != "method") params.set(k, v, "preset '" + opt.preset + "'");
   }
   for (auto& kv : opt.set) params.setFromString(kv, "--set");
   std::unique_ptr<Method> method = info.create(params, scene);
-  params.checkAllUsed("method '" + opt.method + "'");
+  params.checkAllUsed("method '" + info.name + "'");
   return method;
+}
+
+// The sample passes the method declares that this render actually timed (a
+// method lists every pass it may run; `blur`, say, runs only with interleaving).
+std::vector<std::string> timedSamplePasses(const RenderResult& r, const nlohmann::json& timings) {
+  std::vector<std::string> passes;
+  for (auto& p : r.samplePasses)
+    if (timings.contains(p)) passes.push_back(p);
+  return passes;
 }
 
 // What one render() reports: samples, per-pass timings, the method's stats.
 nlohmann::json renderStats(const RenderResult& r, const Profiler& profiler) {
+  const nlohmann::json timings = profiler.timingsMs();
   return {{"spp_completed", r.sppCompleted},
-          {"timings_ms", profiler.timingsMs()},
+          {"timings_ms", timings},
           {"cpu_timings_ms", profiler.cpuTimingsMs()},
           {"pass_calls", profiler.callCounts()},
           {"total_ms", profiler.totalMs()},
           {"extra", r.extra},
           {"built", r.built},
-          {"sample_passes", r.samplePasses}};
+          {"sample_passes", timedSamplePasses(r, timings)}};
+}
+
+// A method that returns a non-finite pixel must never have it written as if
+// it were an image (a NaN turns black in the PNG and poisons every metric).
+void checkFinite(const RenderResult& r, const std::string& method) {
+  auto check = [&](const Image& img, const std::string& what) {
+    for (size_t i = 0; i < img.pixels.size(); ++i) {
+      const glm::vec3 c = img.pixels[i];
+      if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
+        fail("method '", method, "' computed a non-finite value in its ", what, " at pixel (", i % size_t(img.width),
+             ", ", i / size_t(img.width), "): (", c.x, ", ", c.y, ", ", c.z,
+             "); the scene's values overflow float there. Nothing was written");
+    }
+  };
+  check(r.image, "image");
+  for (auto& [name, image] : r.aovs) check(image, "output '" + name + "'");
+}
+
+// The method a render uses: --method, or the one the preset names (a preset
+// written for one method says so with the key "method").
+std::string methodFor(const RenderOptions& opt, const Scene& scene) {
+  if (opt.preset.empty()) return opt.method;
+  auto it = scene.presets.find(opt.preset);
+  if (it == scene.presets.end()) return opt.method;  // createMethod names the error
+  auto m = it->second.find("method");
+  if (m == it->second.end()) return opt.method;
+  if (opt.methodGiven && opt.method != m->second)
+    fail("--preset '", opt.preset, "' is written for method '", m->second, "', not --method '", opt.method,
+         "' (drop --method, or give --method ", m->second, ")");
+  return m->second;
 }
 }  // namespace
 
 nlohmann::json resolveParameters(const RenderOptions& opt) {
   Scene scene = loadScene(opt.scene);
   ParamSet params;
-  createMethod(opt, findMethod(opt.method), scene, params);
+  createMethod(opt, findMethod(methodFor(opt, scene)), scene, params);
   return params.resolved();
 }
 
@@ -98,8 +140,9 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
   if (opt.frames < 1 || opt.frames > 100000) fail("--frames ", opt.frames, ": must be in [1, 100000]");
   if (!std::isfinite(opt.time) || !std::isfinite(opt.timeStep))
     fail("--time ", opt.time, " / --time-step ", opt.timeStep, ": must be finite numbers");
-  const MethodInfo& info = findMethod(opt.method);
+  findMethod(opt.method);  // a misspelt --method is named before the scene is loaded
   Scene scene = loadScene(opt.scene);
+  const MethodInfo& info = findMethod(methodFor(opt, scene));
   ParamSet params;
   std::unique_ptr<Method> method = createMethod(opt, info, scene, params);
   const std::vector<std::string> outputs = method->outputs();
@@ -107,7 +150,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
     if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) {
       std::string known;
       for (auto& o : outputs) known += (known.empty() ? "" : ", ") + o;
-      fail("--aov '", a, "': method '", opt.method, "' has no such output (",
+      fail("--aov '", a, "': method '", info.name, "' has no such output (",
            known.empty() ? "it has none besides the image" : "known: " + known, ")");
     }
 
@@ -132,7 +175,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
 
   // What describes the run (the same for every frame).
   nlohmann::json run;
-  run["method"] = opt.method;
+  run["method"] = info.name;
   run["scene"] = opt.scene;
   run["width"] = opt.width;
   run["height"] = opt.height;
@@ -153,7 +196,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
   run["aovs"] = opt.aovs;
   auto checkGl = [&] {
     if (gl && gl->errorCount() > 0)
-      fail("method '", opt.method, "' raised ", gl->errorCount(), " GL error(s) on ", gl->renderer(),
+      fail("method '", info.name, "' raised ", gl->errorCount(), " GL error(s) on ", gl->renderer(),
            "; the image is not trustworthy and was not written");
   };
 
@@ -164,6 +207,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
     Profiler profiler(gl != nullptr);
     out.result = method->render(req, profiler);
     profiler.resolve(true);
+    checkFinite(out.result, info.name);
     nlohmann::json& s = out.stats;
     s = run;
     s.update(renderStats(out.result, profiler));
@@ -193,6 +237,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
     out.result = method->render(req, profiler);
     profiler.resolve(true);
     checkGl();
+    checkFinite(out.result, info.name);
     interrupted = out.result.interrupted || interruptRequested();
     // Stopped before every pixel of this frame had a sample: the frames so far stand, this one is not written.
     if (out.result.sppCompleted == 0) break;
@@ -248,9 +293,7 @@ std::vector<std::string> writeImages(const RenderResult& r, const std::string& s
 void writeStats(nlohmann::json s, const std::string& json, const std::vector<std::string>& files, float exposure) {
   s["outputs"] = files;
   s["exposure_png"] = exposure;
-  std::ofstream js(json);
-  js << s.dump(2) << "\n";
-  if (!js) fail("cannot write '", json, "'");
+  writeJsonFile(s, json);
 }
 
 std::string stemOf(const std::string& path) {
@@ -281,9 +324,9 @@ std::string writeAnimationStats(const RenderOutput& out, const std::string& path
   return json;
 }
 
-std::string describeMethod(const std::string& name) {
-  const MethodInfo& info = findMethod(name);
-  Scene scene = loadScene("builtin:cornell");  // defaults that depend on the scene use the Cornell box
+std::string describeMethod(const std::string& name, const std::string& sceneSpec) {
+  const MethodInfo& info = findMethod(name, "--help-module");
+  Scene scene = loadScene(sceneSpec);  // defaults that depend on the scene (the radius) are this scene's
   ParamSet params;
   std::unique_ptr<Method> method = info.create(params, scene);
   std::ostringstream os;
@@ -295,7 +338,7 @@ std::string describeMethod(const std::string& name) {
   };
   os << "needs: " << list(info.needs) << "\n";
   os << "outputs: image" << (method->outputs().empty() ? "" : ", " + list(method->outputs())) << " (--aov NAME,...)\n";
-  os << "parameters (--set key=value; scene-dependent defaults shown for builtin:cornell):\n";
+  os << "parameters (--set key=value; scene-dependent defaults shown for " << sceneSpec << "):\n";
   for (auto& d : params.docs())
     os << "  " << d.key << " (" << d.type << ", default " << d.defaultValue << "): " << d.doc << "\n";
   return os.str();

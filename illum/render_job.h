@@ -10,13 +10,15 @@
 #include <nlohmann/json.hpp>
 
 #include "core/gl_context.h"
+#include "core/output_files.h"
 #include "illum/method.h"
 
 namespace vgi {
 
 struct RenderOptions {
   std::string scene = "builtin:cornell";
-  std::string method = "direct";
+  std::string method = "nearfield";
+  bool methodGiven = false;      // --method was on the command line (a preset may name its method otherwise)
   std::vector<std::string> set;  // key=value
   std::string preset;            // scene preset name, applied before `set`
   int width = 512, height = 512;
@@ -61,13 +63,11 @@ std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::st
 std::string writeAnimationStats(const RenderOutput& out, const std::string& path, const std::vector<std::string>& files,
                                 float exposure);
 
-// Throws if `path` cannot be written (missing folder, bad extension) — checked
-// before a long render, so nothing is lost at the end.
+// Throws if `path` cannot be written (bad extension, see core/output_files.h) —
+// checked before a long render, so nothing is lost at the end.
 void checkOutputPath(const std::string& path);
-// Throws if the folder `path` would be written into does not exist (`option` names it).
-void checkOutputFolder(const std::string& path, const std::string& option);
-
-// The parameter table of a method, for --help-module.
-std::string describeMethod(const std::string& name);
+// The parameter table of a method, for --help-module, with the defaults
+// that depend on the scene (e.g. the radius) resolved for `scene`.
+std::string describeMethod(const std::string& name, const std::string& scene);
 
 }  // namespace vgi

@@ -43,8 +43,11 @@ Segmentation segmentCharts(const std::vector<glm::vec3>& positions, const std::v
     OMesh::FaceHandle fh;
     if (f[0] != f[1] && f[1] != f[2] && f[0] != f[2]) fh = mesh.add_face(vh[f[0]], vh[f[1]], vh[f[2]]);
     if (!fh.is_valid()) {  // non-manifold or degenerate: its own vertices
-      OMesh::VertexHandle a = mesh.add_vertex(mesh.point(vh[f[0]])), b = mesh.add_vertex(mesh.point(vh[f[1]])),
-                          c = mesh.add_vertex(mesh.point(vh[f[2]]));
+      // From `positions`, not mesh.point(): that is a reference into the
+      // vertex array, which add_vertex may reallocate before it copies.
+      auto point = [&](uint32_t i) { return OMesh::Point(positions[i].x, positions[i].y, positions[i].z); };
+      OMesh::VertexHandle a = mesh.add_vertex(point(f[0])), b = mesh.add_vertex(point(f[1])),
+                          c = mesh.add_vertex(point(f[2]));
       fh = mesh.add_face(a, b, c);
       ++seg.facesSplitOff;
     }

@@ -198,7 +198,7 @@ TEST(Modules, EachBuildsExactlyWhatItNeeds) {
 }
 
 TEST(Modules, HelpListsParametersNeedsAndOutputs) {
-  std::string help = describeMethod("nearfield");
+  std::string help = describeMethod("nearfield", "builtin:cornell");
   for (const char* s : {"rays", "radius", "resolution", "tracer", "env", "interleave", "blur", "offset", "voxels",
                         "shadow_res", "needs: binary_grid, or_mip_pyramid, rsm, gbuffer",
                         "outputs: image, direct, indirect"})

@@ -1,0 +1,53 @@
+#include "core/json_text.h"
+
+#include "core/error.h"
+
+namespace vgi {
+
+namespace {
+struct TooDeep {};
+
+void excerptInto(const nlohmann::json& j, size_t limit, std::string& out) {
+  if (out.size() >= limit) return;
+  if (j.is_array() || j.is_object()) {
+    const bool array = j.is_array();
+    out += array ? "[" : "{";
+    bool firstItem = true;
+    for (auto it = j.begin(); it != j.end() && out.size() < limit; ++it) {
+      if (!firstItem) out += ", ";
+      firstItem = false;
+      if (!array) out += jsonText(it.key()) + ": ";
+      excerptInto(*it, limit, out);
+    }
+    if (out.size() < limit) out += array ? "]" : "}";
+    return;
+  }
+  out += jsonText(j);
+}
+}  // namespace
+
+std::string jsonExcerpt(const nlohmann::json& j, size_t limit) {
+  std::string out;
+  excerptInto(j, limit, out);
+  if (out.size() < limit) return out;  // whole: every container was closed before the limit
+  out.resize(limit);
+  // Do not cut a UTF-8 sequence in two.
+  while (!out.empty() && (static_cast<unsigned char>(out.back()) & 0xC0) == 0x80) out.pop_back();
+  if (!out.empty() && static_cast<unsigned char>(out.back()) >= 0xC0) out.pop_back();
+  return out + "…";
+}
+
+nlohmann::json parseJsonText(const std::string& text, const std::string& origin) {
+  try {
+    return nlohmann::json::parse(text, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+      if (depth > kMaxJsonDepth) throw TooDeep{};
+      return true;
+    });
+  } catch (const TooDeep&) {
+    fail(origin, ": JSON nested deeper than ", kMaxJsonDepth, " levels");
+  } catch (const nlohmann::json::parse_error& e) {
+    fail(origin, ": malformed JSON: ", e.what());
+  }
+}
+
+}  // namespace vgi

@@ -1,0 +1,30 @@
+// JSON as text for files and messages. Strings from user input (material and
+// group names, paths) may hold bytes that are not UTF-8; nlohmann's dump()
+// throws on those (type error 316) — here they become U+FFFD instead, so a
+// stats file is never left half-written by a name. Values quoted in error
+// messages are cut short: a 10⁶-element array must not become a 2 MB line.
+#pragma once
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace vgi {
+
+inline std::string jsonText(const nlohmann::json& j, int indent = -1) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+// At most `limit` characters of the value, "…" marking a cut. Containers are
+// summarised by their first elements (never dumped whole: a deep or long value
+// costs only what is shown).
+std::string jsonExcerpt(const nlohmann::json& j, size_t limit = 80);
+
+// How deeply a scene file may nest arrays and objects (a scene needs 5).
+constexpr int kMaxJsonDepth = 64;
+
+// Parses `text`, refusing nesting deeper than kMaxJsonDepth before it is
+// built (deep values overflow the stack in copies and messages). Throws
+// vgi::Error naming `origin`.
+nlohmann::json parseJsonText(const std::string& text, const std::string& origin);
+
+}  // namespace vgi

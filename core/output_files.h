@@ -1,0 +1,18 @@
+// Files a command writes: checked (and their folder made) before the work
+// that fills them, so a long render is never lost to a bad path at its end.
+#pragma once
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace vgi {
+
+// Makes the folder `path` goes into (like mkdir -p) and throws, naming
+// `option` and the path, if it cannot be made, if `path` is a folder, or if a
+// name component is longer than the file system allows.
+void checkOutputFile(const std::string& path, const std::string& option);
+// Writes `j` (indented; bytes that are not UTF-8 become U+FFFD) to `path`.
+void writeJsonFile(const nlohmann::json& j, const std::string& path);
+
+
+}  // namespace vgi
