@@ -3,6 +3,9 @@
 #include <glad/gl.h>
 
 #include <cstdio>
+#ifdef VGI_SANITIZE_BUILD
+#include <dlfcn.h>
+#endif
 
 #include "core/error.h"
 
@@ -15,7 +18,28 @@ GlBackend parseGlBackend(const std::string& name) {
   fail("--gl: unknown backend '", name, "' (auto, egl, osmesa)");
 }
 
+#ifdef VGI_SANITIZE_BUILD
+namespace {
+// Sanitizer builds only: Mesa unloads its driver at eglTerminate, and the
+// allocations it leaks there then have stacks in "<unknown module>", which no
+// LeakSanitizer suppression can name. Kept loaded (RTLD_NODELETE), their
+// stacks name the driver, and scripts/lsan.supp suppresses exactly Mesa's.
+void keepMesaLoaded() {
+  static const bool once = [] {
+    for (const char* lib : {"libEGL_mesa.so.0", "swrast_dri.so", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so",
+                            "libOSMesa.so.8", "libglapi.so.0"})
+      dlopen(lib, RTLD_NOW | RTLD_GLOBAL | RTLD_NODELETE);
+    return true;
+  }();
+  (void)once;
+}
+}  // namespace
+#endif
+
 std::unique_ptr<GlContext> GlContext::create(GlBackend backend) {
+#ifdef VGI_SANITIZE_BUILD
+  keepMesaLoaded();
+#endif
   if (backend == GlBackend::Egl) return createEglContext();
   if (backend == GlBackend::Osmesa) return createOsmesaContext();
   std::string eglError;

@@ -13,7 +13,8 @@ nlohmann::json ImageDiff::toJson() const {
   auto rgb = [](const double* v) { return nlohmann::json{v[0], v[1], v[2]}; };
   return {{"rmse", rmse},       {"relmse", relMse},           {"relmse_epsilon", epsilon},
           {"mae", mae},         {"rel_mae", relMae},          {"rel_mae_rgb", rgb(relMaeRgb)},
-          {"energy_rgb", rgb(energyRgb)}, {"ssim", ssim}};
+          {"energy_rgb", rgb(energyRgb)}, {"mean_a_rgb", rgb(meanA)}, {"mean_b_rgb", rgb(meanB)},
+          {"ssim", ssim}};
 }
 
 namespace {
@@ -107,6 +108,8 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
   for (int k = 0; k < 3; ++k) {
     d.relMaeRgb[k] = ratio(absErr[k], sumB[k]);
     d.energyRgb[k] = sumB[k] > 0 ? sumA[k] / sumB[k] : (sumA[k] == 0 ? 1.0 : INFINITY);
+    d.meanA[k] = sumA[k] / double(a.pixels.size());
+    d.meanB[k] = sumB[k] / double(a.pixels.size());
   }
   d.ssim = meanSsim(a, b);
   return d;

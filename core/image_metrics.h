@@ -29,6 +29,7 @@ struct ImageDiff {
   double epsilon = 0.01;        // the ε relMSE used
   double relMaeRgb[3] = {0, 0, 0};
   double energyRgb[3] = {1, 1, 1};
+  double meanA[3] = {0, 0, 0}, meanB[3] = {0, 0, 0};  // per colour channel
   nlohmann::json toJson() const;
 };
 

@@ -122,7 +122,8 @@ class ReferenceRenderer : public Method {
     const char* depthDoc = "path: maximum number of bounces";
     const char* rrDoc = "path: bounces before Russian roulette";
     const char* radiusDoc = "nearfield/ao: ray length in world units (default 0.1 x scene diagonal)";
-    const char* envDoc = "nearfield: rays that leave the radius read the environment";
+    const char* envDoc =
+        "nearfield: rays that leave the radius read the environment (black where the scene has none)";
     if (check(usesDepth, "maxdepth")) maxDepth_ = params.getInt("maxdepth", 8, depthDoc, 1, 10000);
     else params.declare("maxdepth", "int", "8", depthDoc);
     if (check(usesDepth, "rr_depth")) rrDepth_ = params.getInt("rr_depth", 3, rrDoc, 0, 10000);

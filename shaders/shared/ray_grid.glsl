@@ -154,6 +154,19 @@ SHARED_FN float cellEntryT(SHARED_IN(GridRay) r, int a, int c) {
   return planeT(r, a, r.stepDir[a] > 0 ? c : c + 1);
 }
 
+// The world distance from the ray's origin at which it leaves voxel v (the
+// first plane of v's far faces that it crosses): where a trace resumes past v.
+SHARED_FN float voxelExitT(SHARED_IN(GridRay) r, uvec3 v) {
+  uint c[3];
+  c[0] = v.x;
+  c[1] = v.y;
+  c[2] = v.z;
+  float t = kTraceInfinity;
+  for (int a = 0; a < 3; ++a)
+    if (r.stepDir[a] != 0) t = min(t, planeT(r, a, r.stepDir[a] > 0 ? int(c[a]) + 1 : int(c[a])));
+  return r.tBase + t;
+}
+
 // What a tracer returns. t is world distance from the ray's origin to where the
 // ray enters the hit voxel (or its start, if it starts inside).
 struct TraceHit {

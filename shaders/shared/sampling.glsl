@@ -68,4 +68,14 @@ SHARED_FN uint pcgHash(uint v) {
 // Uniform float in [0, 1) from the top 24 bits (exactly representable).
 SHARED_FN float uintToUnitFloat(uint x) { return float(x >> 8u) * (1.0f / 16777216.0f); }
 
+// A Cranley–Patterson rotation for block (bx, by) of frame f: every k×k
+// interleave block turns its k²·N directions by its own offset, so that one
+// frame's pattern does not repeat with the block period (at 1 spp a repeated
+// pattern shows through the blur as k×k patches); each block's sets still
+// stratify the hemisphere together.
+SHARED_FN vec2 blockRotation(uint bx, uint by, uint f) {
+  uint h = pcgHash(bx * 0x8da6b343u ^ by * 0xd8163841u ^ f * 0xcb1ab31fu);
+  return vec2(uintToUnitFloat(h), uintToUnitFloat(pcgHash(h)));
+}
+
 SHARED_END

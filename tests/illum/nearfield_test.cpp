@@ -64,34 +64,34 @@ TEST(NearField, CornellBoxMatchesTheExactNearFieldIntegral) {
   EXPECT_EQ(nf.stats["gl_errors"], 0);
   EXPECT_FLOAT_EQ(nf.stats["extra"]["radius"].get<float>(), nf.stats["params"]["radius"].get<float>());
   ImageDiff d = compareImages(nf.result.image, ref.result.image);
-  EXPECT_LT(d.relMse, 0.005);
-  // The indirect light: its energy (back-projection, ε rule) and pixels. Voxel
-  // hits count from the hit voxel's entry, so surfaces up to a voxel diagonal
-  // beyond r still count: at 128³ the module gathers up to ~14 % more (measured;
-  // see docs/BENCHMARKS.md, near-field accuracy).
+  EXPECT_LT(d.relMse, 0.0005);  // measured 5.4e-5
+  // The indirect light: its energy and pixels. Measured at this size: rel.
+  // MAE 0.131, energy +5.2 / +3.4 / +3.4 % (r, g, b), against a reference
+  // whose own noise is ≈ 0.07 (two seeds differ by 0.096). VGI's voxel-entry
+  // back-projection (backprojection=entry) gives 0.306 and +17 / +8 / +18 %:
+  // it fails both bounds.
   glm::dvec3 a = mean(nf.result.aovs.at("indirect")), b = mean(ref.result.aovs.at("indirect"));
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], 1.0, 0.2) << "channel " << k;
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], 1.0, 0.08) << "channel " << k;
   ImageDiff di = compareImages(nf.result.aovs.at("indirect"), ref.result.aovs.at("indirect"));
-  EXPECT_LT(di.relMae, 0.45);
+  EXPECT_LT(di.relMae, 0.18);
   // The red wall bleeds onto the floor near it: the indirect there is reddish.
   const Image& ind = nf.result.aovs.at("indirect");
   glm::vec3 nearRed = ind.at(6, 58);
   EXPECT_GT(nearRed.x, 2.0f * nearRed.y) << nearRed.x << " " << nearRed.y;
 }
 
-// The shipped configuration (¼ resolution, interleaving, blur, upsampling)
-// stays close to the full-resolution image. The blur window is k indirect
-// pixels = 16 image pixels here, large against a 128² image. Indirect energy
-// measured at this size: +7 / +8 / +15 % (r, g, b); it was +17 / +16 / +26 %
-// while each direction set was a wedge of azimuths (windows cut at an edge
-// then kept only some azimuths; SharedSampling.EveryInterleavedSetCovers…).
+// The shipped configuration (½ resolution, interleaving, tent blur,
+// upsampling) stays close to the full-resolution image. Indirect energy
+// measured at this size: −2 / −4 / −4 % (r, g, b); with the old box blur
+// and ¼ resolution it was +7 / +8 / +15 %, and +17 / +16 / +26 % while each
+// direction set was a wedge of azimuths (SharedSampling.EveryInterleavedSetCovers…).
 TEST(NearField, ReducedResolutionStaysCloseToFullResolution) {
   RenderOutput full = render("builtin:cornell", "nearfield", {"resolution=1", "interleave=1", "blur=false"}, 128, 8,
                              {"indirect"});
-  RenderOutput quarter = render("builtin:cornell", "nearfield", {}, 128, 4, {"indirect"});
-  EXPECT_LT(compareImages(quarter.result.image, full.result.image).relMse, 0.003);
-  glm::dvec3 a = mean(quarter.result.aovs.at("indirect")), b = mean(full.result.aovs.at("indirect"));
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], 1.0, 0.2) << "channel " << k;
+  RenderOutput shipped = render("builtin:cornell", "nearfield", {}, 128, 4, {"indirect"});
+  EXPECT_LT(compareImages(shipped.result.image, full.result.image).relMse, 0.002);  // measured 0.00046
+  glm::dvec3 a = mean(shipped.result.aovs.at("indirect")), b = mean(full.result.aovs.at("indirect"));
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], 1.0, 0.08) << "channel " << k;
 }
 
 // hierarchical == dda on every ray (tests/traverse), so the images are equal bit for bit.

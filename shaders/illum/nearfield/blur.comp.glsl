@@ -1,7 +1,8 @@
-// Geometry-aware blur of the indirect buffer over a k×k window (k the
-// interleave block; offsets −⌊k/2⌋ … ⌈k/2⌉−1), so each pixel averages each of
-// the k² direction sets of its neighbourhood exactly once — but only from neighbours on its own surface (depth along the
-// normal, normal similarity), which keeps indirect shadows and corners sharp.
+// Geometry-aware blur of the indirect buffer over a (2k−1)×(2k−1) tent
+// window (k the interleave block), so each pixel averages the k² direction
+// sets of its neighbourhood with equal weight — but only from neighbours on
+// its own surface (depth along the normal, normal similarity), which keeps
+// indirect shadows and corners sharp.
 #include "indirect_buffer.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler2D uInput;
@@ -23,19 +24,23 @@ void main() {
   vec3 n = texelFetch(gNormal, px, 0).xyz;
   vec3 sum = vec3(0.0f);
   float wsum = 0.0f;
-  int lo = -(uInterleave / 2), hi = lo + uInterleave - 1;
-  for (int dy = lo; dy <= hi; ++dy)
-    for (int dx = lo; dx <= hi; ++dx) {
+  // Tent weights (k − |dx|)(k − |dy|) over −(k−1) … k−1: they sum to the
+  // same total on every k-periodic lattice, so each direction set still
+  // counts equally on a flat surface, and one bright ray spreads as a soft
+  // bump instead of a hard k×k square (visible at 1 spp).
+  int k = uInterleave;
+  for (int dy = 1 - k; dy <= k - 1; ++dy)
+    for (int dx = 1 - k; dx <= k - 1; ++dx) {
       ivec2 qj = q + ivec2(dx, dy);
       if (qj.x < 0 || qj.y < 0 || qj.x >= size.x || qj.y >= size.y) continue;
       vec4 cj = texelFetch(uInput, qj, 0);
       if (cj.w == 0.0f) continue;
       ivec2 pj = representative(qj, full);
-      float w = geometryWeight(p, n, texelFetch(gPosition, pj, 0).xyz, texelFetch(gNormal, pj, 0).xyz,
+      float w = float((k - abs(dx)) * (k - abs(dy))) * geometryWeight(p, n, texelFetch(gPosition, pj, 0).xyz, texelFetch(gNormal, pj, 0).xyz,
                                float(uScale));
       sum += w * cj.xyz;
       wsum += w;
     }
-  // The centre always has weight 1, so wsum ≥ 1.
+  // The centre always has weight k² > 0.
   imageStore(uOutput, q, vec4(sum / wsum, 1.0f));
 }

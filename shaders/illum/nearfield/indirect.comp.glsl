@@ -10,8 +10,9 @@
 //
 // Interleaved sampling (Keller and Heidrich 2001): the pixels of a k×k block
 // use k² different sets of N directions, which together stratify the
-// hemisphere (Hammersley over k²·N points, rotated per frame); the
-// geometry-aware blur afterwards averages them.
+// hemisphere (Hammersley over k²·N points, rotated per frame and per block,
+// so the pattern does not repeat with the block period); the geometry-aware
+// blur afterwards averages them.
 //
 // Output: rgb = mean radiance arriving along the rays (so the reflected
 // indirect light of a diffuse surface is albedo × rgb), w = 1 where there is a
@@ -35,27 +36,97 @@ uniform float uOffset;       // start offset along the normal, world units
 uniform float uVoxelDiagonal;
 uniform int uEnv;
 uniform vec2 uRotation;      // per-frame Cranley–Patterson rotation
+uniform int uFrame;          // each interleave block adds its own rotation (shared/sampling.glsl)
 uniform int uRsmRes;
+uniform int uPassThrough;     // 1: rays go on past voxels a light sees through
+uniform int uRefine;          // back-projection: 0 the voxel entry (VGI), 1 the RSM surface's plane
 
 
-// Direct radiance leaving the hit point y, read back from every RSM.
-vec3 backProject(vec3 y) {
+// The RSM texel of light l that point y projects to: its face and texel, or
+// face −1 outside every face or where the light saw nothing.
+struct RsmTexel {
+  int face;
+  ivec3 texel;
+  vec3 position, normal;
+};
+bool insideLightMap(int l, vec3 y) {
+  vec2 uv = lightMapUv(lightFaces[lightFaceOf(l, y)], y);
+  return uv.x >= 0.0f && uv.y >= 0.0f && uv.x <= 1.0f && uv.y <= 1.0f;
+}
+RsmTexel rsmTexelAt(int l, vec3 y) {
+  RsmTexel r;
+  r.face = lightFaceOf(l, y);
+  vec2 uv = lightMapUv(lightFaces[r.face], y);
+  r.texel = ivec3(min(ivec2(uv * float(uRsmRes)), ivec2(uRsmRes - 1)), r.face);
+  vec4 P = texelFetch(lightPosition, r.texel, 0);
+  if (uv.x < 0.0f || uv.y < 0.0f || uv.x > 1.0f || uv.y > 1.0f || P.w == 0.0f) r.face = -1;
+  r.position = P.xyz;
+  r.normal = texelFetch(lightNormal, r.texel, 0).xyz;
+  return r;
+}
+
+// VGI's ε (shared/light_maps.glsl) for the surface a texel saw.
+float rsmEpsilon(int l, RsmTexel r, float voxelTerm) {
+  LightSample ls = sampleDeltaLight(lights[l], r.position);
+  return backProjectionEpsilon(voxelTerm,
+                               lightMapTexelWorld(lightFaces[r.face], lightMapDistance(lightFaces[r.face], r.position)),
+                               dot(r.normal, ls.wi));
+}
+
+// Direct radiance leaving the surface the ray (o, d) hit in the voxel it
+// entered at distance t, read back from every RSM.
+//   uRefine 0, VGI §5.1: the voxel entry y = o + t·d is back-projected and
+//     takes the texel's radiance when |y − p_rsm| < ε (ε ≥ the voxel diagonal,
+//     as y lies up to a diagonal off the surface).
+//   uRefine 1: the texel y projects to says which surface the light sees
+//     there; the ray is intersected with that surface's plane, and the point
+//     found (on the ray, on the surface) is back-projected again and tested
+//     with the texel term of ε alone. The plane must be met inside the hit
+//     voxel's reach (t − diag … t + diag), within r, from the lit side
+//     (a ray meeting the unlit back of a wall sees no RSM light); so voxel
+//     quantisation no longer lets the ε test accept a neighbouring surface
+//     or reject a lit one seen at a grazing angle.
+struct BackProjection {
+  vec3 radiance;
+  bool seenThrough;  // a light sees past y: nothing is there (see main)
+};
+BackProjection backProject(vec3 o, vec3 d, float t) {
+  vec3 y = o + t * d;
   vec3 sum = vec3(0.0f);
+  bool through = false;
   for (int l = 0; l < lights.length(); ++l) {
-    int f = lightFaceOf(l, y);
-    LightFace face = lightFaces[f];
-    vec2 uv = lightMapUv(face, y);
-    if (uv.x < 0.0f || uv.y < 0.0f || uv.x > 1.0f || uv.y > 1.0f) continue;
-    ivec3 texel = ivec3(min(ivec2(uv * float(uRsmRes)), ivec2(uRsmRes - 1)), f);
-    vec4 P = texelFetch(lightPosition, texel, 0);
-    if (P.w == 0.0f) continue;
-    vec3 n = texelFetch(lightNormal, texel, 0).xyz;
-    LightSample ls = sampleDeltaLight(lights[l], P.xyz);
-    float eps = backProjectionEpsilon(uVoxelDiagonal, lightMapTexelWorld(face, lightMapDistance(face, P.xyz)),
-                                      dot(n, ls.wi));
-    if (distance(y, P.xyz) < eps) sum += texelFetch(lightRadiance, texel, 0).xyz;
+    RsmTexel r = rsmTexelAt(l, y);
+    if (r.face < 0) {
+      through = through || texelFetch(lightPosition, r.texel, 0).w == 0.0f && insideLightMap(l, y);
+      continue;
+    }
+    LightFace face = lightFaces[r.face];
+    through = through || lightMapDistance(face, r.position) > lightMapDistance(face, y) + 1.5f * uVoxelDiagonal;
+    if (uRefine == 0) {
+      if (distance(y, r.position) < rsmEpsilon(l, r, uVoxelDiagonal)) sum += texelFetch(lightRadiance, r.texel, 0).xyz;
+      continue;
+    }
+    // Up to three steps: a step that lands on another surface's texel
+    // (small features: the first texel belongs to a neighbour) tries that one.
+    for (int step = 0; step < 3; ++step) {
+      float c = dot(d, r.normal);
+      if (c >= -1e-4f) break;  // parallel to the plane, or meeting its unlit side
+      float ts = dot(r.position - o, r.normal) / c;
+      if (ts < t - uVoxelDiagonal || ts > t + 8.0f * uVoxelDiagonal || ts > uRadius) break;
+      vec3 ys = o + ts * d;
+      RsmTexel rs = rsmTexelAt(l, ys);
+      if (rs.face < 0) break;
+      if (distance(ys, rs.position) < rsmEpsilon(l, rs, 0.0f)) {
+        sum += texelFetch(lightRadiance, rs.texel, 0).xyz;
+        break;
+      }
+      r = rs;
+    }
   }
-  return sum;
+  BackProjection b;
+  b.radiance = sum;
+  b.seenThrough = through && sum == vec3(0.0f);
+  return b;
 }
 
 void main() {
@@ -72,15 +143,30 @@ void main() {
   Basis frame = makeBasis(n);
   vec3 origin = P.xyz + n * uOffset;
   uint set = uint(q.x % uInterleave + uInterleave * (q.y % uInterleave));
+  vec2 rotation = uRotation + blockRotation(uint(q.x / uInterleave), uint(q.y / uInterleave), uint(uFrame));
   vec3 sum = vec3(0.0f);
   for (int r = 0; r < uRays; ++r) {
     // Every set alone spans the hemisphere (shared/sampling.glsl), so a blur
     // window that loses some sets at an edge loses samples, not azimuths.
-    vec2 u = fract(interleavedSample(uint(r), set, uint(uRays), uint(uInterleave * uInterleave)) + uRotation);
+    vec2 u = fract(interleavedSample(uint(r), set, uint(uRays), uint(uInterleave * uInterleave)) + rotation);
     vec3 d = basisToWorld(frame, cosineSampleHemisphere(u));
-    TraceHit h = traceRay(origin, d, uRadius);
-    if (h.hit != 0u) sum += backProject(origin + h.t * d);
-    else if (uEnv != 0) sum += gpuEnvironmentRadiance(d);
+    // A voxel whose entry point a light sees through holds no surface there
+    // (conservative voxels of thin features): with uPassThrough the ray goes
+    // on past it, up to three times.
+    float start = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+      TraceHit h = traceRay(origin + start * d, d, uRadius - start);
+      if (h.hit == 0u) {
+        if (uEnv != 0) sum += gpuEnvironmentRadiance(d);
+        break;
+      }
+      BackProjection b = backProject(origin, d, start + h.t);
+      sum += b.radiance;
+      if (uPassThrough == 0 || !b.seenThrough || k == 3) break;
+      GridRay gr = prepareGridRay(gridFromUniforms(), origin + start * d, d, uRadius - start);
+      start += voxelExitT(gr, h.voxel) + 1e-4f * uVoxelDiagonal;
+      if (start >= uRadius) break;
+    }
   }
   imageStore(uIndirect, q, vec4(sum / float(uRays), 1.0f));
 }
