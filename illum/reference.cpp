@@ -26,7 +26,7 @@
 // | integrator | string | path               | path, nearfield, ao, direct                          |
 // | maxdepth   | int    | 8                  | path: maximum number of bounces                      |
 // | rr_depth   | int    | 3                  | path: bounces before Russian roulette starts         |
-// | radius     | float  | 0.1 · scene diag.  | nearfield/ao: ray length (world units)               |
+// | radius     | float  | 0.5 / 0.1 · diag.  | nearfield (as the nearfield module) / ao: ray length (world units) |
 // | env        | bool   | true               | nearfield: rays leaving `radius` read the environment |
 // | visibility | string | exact              | nearfield: exact, or voxels (see below)              |
 // | voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        |
@@ -50,6 +50,7 @@
 #include "core/error.h"
 #include "core/gpu_scene.h"
 #include "core/progress.h"
+#include "illum/nearfield.h"
 #include "shaders/shared/brdf.glsl"
 #include "shaders/shared/lights.glsl"
 #include "shaders/shared/sampling.glsl"
@@ -121,7 +122,9 @@ class ReferenceRenderer : public Method {
     };
     const char* depthDoc = "path: maximum number of bounces";
     const char* rrDoc = "path: bounces before Russian roulette";
-    const char* radiusDoc = "nearfield/ao: ray length in world units (default 0.1 x scene diagonal)";
+    const char* radiusDoc =
+        "nearfield/ao: ray length in world units (default 0.5 x scene diagonal for nearfield, as the nearfield "
+        "module; 0.1 x for ao)";
     const char* envDoc =
         "nearfield: rays that leave the radius read the environment (black where the scene has none)";
     if (check(usesDepth, "maxdepth")) maxDepth_ = params.getInt("maxdepth", 8, depthDoc, 1, 10000);
@@ -129,8 +132,9 @@ class ReferenceRenderer : public Method {
     if (check(usesDepth, "rr_depth")) rrDepth_ = params.getInt("rr_depth", 3, rrDoc, 0, 10000);
     else params.declare("rr_depth", "int", "3", rrDoc);
     float diag = scene.bounds().diagonal();
-    if (check(usesRadius, "radius")) radius_ = params.getFloat("radius", 0.1f * diag, radiusDoc, 1e-30f, 1e30f);
-    else params.declare("radius", "float", std::to_string(0.1f * diag), radiusDoc);
+    const float radiusDefault = (nearField ? kDefaultNearFieldRadius : 0.1f) * diag;
+    if (check(usesRadius, "radius")) radius_ = params.getFloat("radius", radiusDefault, radiusDoc, 1e-30f, 1e30f);
+    else params.declare("radius", "float", std::to_string(radiusDefault), radiusDoc);
     if (check(nearField, "env")) env_ = params.getBool("env", true, envDoc);
     else params.declare("env", "bool", "true", envDoc);
     const char* visDoc = "nearfield: exact, or voxels (voxel visibility on an exact voxelization)";

@@ -40,6 +40,30 @@ TEST(ImageMetrics, HandComputedValues) {
   EXPECT_NEAR(d.relMse, (0.25 / 1.01 + 0 + 1 / 0.01) / 3.0, 1e-5);
 }
 
+// A dim image (an indirect channel): the fixed ε hides a 50 % error, the
+// relative one does not; per-channel rel. MAE and energy are hand-computed.
+TEST(ImageMetrics, RelativeEpsilonPerChannelErrorsAndSignedDifference) {
+  Image a(2, 1), b(2, 1);
+  b.pixels = {glm::vec3(0.002f, 0.004f, 0.0f), glm::vec3(0.002f, 0.0f, 0.001f)};
+  a.pixels = {glm::vec3(0.003f, 0.004f, 0.0f), glm::vec3(0.003f, 0.0f, 0.0f)};
+  ImageDiff fixed = compareImages(a, b);
+  EXPECT_LT(fixed.relMse, 1e-4);
+  DiffOptions rel;
+  rel.relativeEpsilon = 0.1;
+  ImageDiff d = compareImages(a, b, "a", "b", rel);
+  const double mean = (0.002 + 0.004 + 0.002 + 0.001) / 6.0;
+  EXPECT_NEAR(d.epsilon, 0.01 * mean * mean, 1e-12);
+  EXPECT_GT(d.relMse, 0.1);
+  EXPECT_NEAR(d.relMaeRgb[0], 0.002 / 0.004, 1e-5);  // red: +0.001 twice over 0.004
+  EXPECT_NEAR(d.relMaeRgb[1], 0.0, 1e-7);
+  EXPECT_NEAR(d.relMaeRgb[2], 1.0, 1e-5);             // blue: all of it missing
+  EXPECT_NEAR(d.energyRgb[0], 1.5, 1e-5);
+  EXPECT_NEAR(d.energyRgb[2], 0.0, 1e-7);
+  Image e = signedDifference(a, b);
+  EXPECT_NEAR(e.pixels[1].z, -0.001f, 1e-9f);
+  test::expectError([&] { compareImages(a, b, "a", "b", DiffOptions{0.0, 0.0}); }, {"epsilon"});
+}
+
 TEST(ImageMetrics, RefusesDifferentSizesAndNaN) {
   Image a(4, 4), b(4, 5);
   test::expectError([&] { compareImages(a, b, "a.exr", "b.exr"); }, {"different sizes", "a.exr is 4x4", "b.exr is 4x5"});
