@@ -43,6 +43,7 @@ void addCompareCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->callback([=] {
     applyRenderArgs(*args, *opt);
+    opt->methodGiven = true;  // compare is about this method: a preset written for another one is an error
     if (*refSpp < 1 || *refSpp > 1 << 20) fail("--ref-spp ", *refSpp, ": must be in [1, 1048576]");
     checkOutputPath(*out);
     const MethodInfo& info = findMethod(opt->method);

@@ -44,7 +44,7 @@
 // | env          | bool   | true               | rays leaving r read the environment (black if the scene has none) |
 // | backprojection | string | plane            | hit → RSM: `plane` (see indirect.comp) or `entry` (VGI's voxel entry) |
 // | passthrough  | bool   | true               | go on past hit voxels whose entry a light sees through |
-// | offset       | float  | 1.0                | ray start offset along the normal, voxel diagonals   |
+// | offset       | float  | 0.5                | ray start offset along the normal, voxel diagonals (VGI: 1) |
 // | voxels       | string | 128                | grid resolution N or WxHxD                           |
 // | voxelizer    | string | atlas              | binary voxelizer (see `vgi voxelize --help`)         |
 // | shadow_res, shadow_bias, normal_offset: light maps, as in `direct`                        |
@@ -76,7 +76,7 @@ namespace {
 
 struct NearFieldParams {
   int rays = 16, interleave = 4;
-  float radius = 0, resolution = 0.5f, offset = 1.0f;
+  float radius = 0, resolution = 0.5f, offset = 0.5f;
   bool blur = true, env = true, passThrough = true;
   std::string tracer = "hierarchical", voxelizer = "atlas", backProjection = "plane";
   glm::uvec3 voxels{128};
@@ -108,7 +108,10 @@ class NearFieldMethod : public Method {
                                    {"plane", "entry"});
     q.passThrough = p.getBool("passthrough", true,
                               "rays go on past a hit voxel whose entry point a light sees through (empty there)");
-    q.offset = p.getFloat("offset", 1.0f, "ray start offset along the normal, in voxel diagonals", 0.0f, 100.0f);
+    q.offset = p.getFloat("offset", 0.5f,
+                          "ray start offset along the normal, in voxel diagonals (VGI: 1; with passthrough, voxels "
+                          "within a diagonal of the receiver's plane that give no light are passed)",
+                          0.0f, 100.0f);
     q.voxels = parseResolution(p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"),
                                "parameter 'voxels'");
     std::vector<std::string> voxelizers;

@@ -16,6 +16,11 @@
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/or_mip_pyramid.h"
 #include "traverse/ray_tracers.h"
+#include "core/scene_loader.h"
+#include "traverse/ray_population.h"
+#include "voxelize/exact_voxelizer.h"
+#include "voxelize/voxelizer.h"
+#include "voxelize/voxel_grid.h"
 
 namespace vgi {
 
@@ -395,4 +400,77 @@ TEST(RayTracers, StressTenMillionRaysFinish) {
   RecordProperty("step_bound", int(bound));
 }
 
+}  // namespace vgi
+
+namespace vgi {
+// Near-field rays that go on past a hit voxel (nearfield's passthrough): each
+// hit is traced again from just past the voxel's exit (shared voxelExitT),
+// three times. The resumed rays start a hair past a voxel face, inside the
+// grid; hierarchical must still equal the DDA on every one of them.
+TEST(RayTracers, ResumedPastAHitVoxelHierarchicalEqualsDda) {
+  Scene scene = loadScene("builtin:cornell");
+  GridBox box = fitGridBox(scene, glm::uvec3(128), 0.0f);
+  auto gl = GlContext::create();
+  ShaderLibrary shaders;
+  Profiler profiler(true);
+  // The grid nearfield traces by default: the atlas voxelizer's (conservative footprints).
+  VoxelizeRequest vreq;
+  vreq.scene = &scene;
+  vreq.box = box;
+  vreq.gl = gl.get();
+  vreq.shaders = &shaders;
+  vreq.atlasCacheDir = "";
+  nlohmann::json vstats;
+  OrMipPyramid pyramid(findVoxelizer("atlas").run(vreq, profiler, vstats));
+  TracerInputs in;
+  in.pyramid = &pyramid;
+  auto hier = createTracer("hierarchical", in), dda = createTracer("dda", in);
+  const float diag = glm::length(box.voxelSize());
+  RayPopulation pop;
+  pop.count = 200000;
+  pop.tmax = 0.5f * scene.bounds().diagonal();
+  pop.offset = 0.5f * diag;
+  pop.viewpoint = scene.camera.position;
+  std::vector<TraceRay> rays = surfaceRays(flatten(scene, 0.0f), pop);
+  const shared::GridParams g = pyramid.box().params();
+  size_t resumed = 0, mismatches = 0;
+  std::string first;
+  std::vector<TraceRay> all;  // every ray traced, resumed ones included: for the GLSL check below
+  for (TraceRay ray : rays) {
+    for (int k = 0; k < 4; ++k) {
+      if (all.size() < 100000) all.push_back(ray);
+      TraceResult h = hier->trace(ray), d = dda->trace(ray);
+      if (h.hit != d.hit || (h.hit && (h.voxel != d.voxel || h.t != d.t))) {
+        if (mismatches++ == 0) {
+          std::ostringstream s;
+          s.precision(9);
+          s << "step " << k << " o=(" << ray.origin.x << "," << ray.origin.y << "," << ray.origin.z << ") d=("
+            << ray.dir.x << "," << ray.dir.y << "," << ray.dir.z << ") tmax " << ray.tmax << ": t " << h.t << "/"
+            << d.t << " voxel (" << h.voxel.x << "," << h.voxel.y << "," << h.voxel.z << ")/(" << d.voxel.x << ","
+            << d.voxel.y << "," << d.voxel.z << ")";
+          first = s.str();
+        }
+        break;
+      }
+      if (!h.hit) break;
+      shared::GridRay gr = shared::prepareGridRay(g, ray.origin, ray.dir, ray.tmax);
+      float start = shared::voxelExitT(gr, h.voxel) + 1e-4f * diag;
+      if (start >= ray.tmax) break;
+      ray.origin += start * ray.dir;
+      ray.tmax -= start;
+      ++resumed;
+    }
+  }
+  EXPECT_EQ(mismatches, 0u) << "first: " << first;
+  EXPECT_GT(resumed, rays.size() / 2);
+  // The GLSL tracers on llvmpipe, on the same rays: bit for bit the C++ ones.
+  GlPyramid gpu(pyramid);
+  for (const char* name : {"hierarchical", "dda"}) {
+    std::vector<TraceResult> cpu;
+    createTracer(name, in)->traceBatch(all, cpu);
+    Mismatch m;
+    compare(traceRaysGl(gpu, shaders, name, all, profiler), cpu, all, box, true, m);
+    EXPECT_EQ(m.count, 0u) << name << ": " << m.first;
+  }
+}
 }  // namespace vgi
