@@ -60,17 +60,36 @@ struct Expander {
     out << "#line " << lineDirective(index, 1) << "\n";
     static const std::regex includeRe(R"(^\s*#\s*include\s+\"([^\"]+)\"\s*$)");
     std::string line;
-    int lineNo = 0, cppDepth = 0;
+    // `#ifdef __cplusplus` … [`#else` …] `#endif`: the C++ branch becomes blank
+    // lines (line numbers kept), the `#else` branch is GLSL and stays.
+    // cppDepth > 0: inside the C++ branch, at that #if nesting depth;
+    // glslDepth > 0: inside the GLSL (#else) branch, whose #endif is dropped.
+    int lineNo = 0, cppDepth = 0, glslDepth = 0;
     while (std::getline(in, line)) {
       ++lineNo;
       std::string t = line.substr(line.find_first_not_of(" \t") == std::string::npos ? line.size() : line.find_first_not_of(" \t"));
-      if (cppDepth > 0) {  // inside #ifdef __cplusplus: C++ only, keep line count
-        if (t.rfind("#if", 0) == 0) ++cppDepth;
-        else if (t.rfind("#endif", 0) == 0) --cppDepth;
+      const bool opens = t.rfind("#if", 0) == 0, closes = t.rfind("#endif", 0) == 0;
+      if (cppDepth > 0) {
+        if (opens) ++cppDepth;
+        else if (closes) --cppDepth;
+        else if (cppDepth == 1 && t.rfind("#elif", 0) == 0)
+          fail(files[index], ":", lineNo, ": #elif after #ifdef __cplusplus is not supported (use #else)");
+        else if (cppDepth == 1 && t.rfind("#else", 0) == 0) {
+          cppDepth = 0;
+          glslDepth = 1;
+        }
         out << "\n";
         continue;
       }
+      if (glslDepth > 0) {
+        if (opens) ++glslDepth;
+        else if (closes && --glslDepth == 0) {
+          out << "\n";
+          continue;
+        }
+      }
       if (t.rfind("#ifdef __cplusplus", 0) == 0) {
+        if (glslDepth > 0) fail(files[index], ":", lineNo, ": nested #ifdef __cplusplus inside its own #else");
         cppDepth = 1;
         out << "\n";
         continue;

@@ -54,6 +54,29 @@ TEST(ShaderLibrary, CompileErrorsNameTheIncludedFileAndLine) {
   EXPECT_EQ(ctx->errorCount(), 0);
 }
 
+// `#ifdef __cplusplus` … `#else` … `#endif`: the C++ side is blanked, the
+// GLSL side kept (it once vanished with the C++ side), nested #ifs included,
+// and the line numbers stay those of the file.
+TEST(ShaderLibrary, TheGlslSideOfACplusplusElseIsKept) {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::path(testing::TempDir()) / "shaders_else_test";
+  fs::create_directories(dir);
+  std::ofstream(dir / "a.comp.glsl") << "#ifdef __cplusplus\n#include <cpp_only>\n#if 1\nint cpp;\n#endif\n#else\n"
+                                        "#if 1\nint glslNested;\n#endif\nint glslSide;\n#endif\nint after;\n";
+  ShaderLibrary lib(dir.string());
+  const std::string text = lib.preprocess("a.comp.glsl", {}).text;
+  for (const char* kept : {"int glslNested;", "int glslSide;", "int after;"})
+    EXPECT_NE(text.find(kept), std::string::npos) << kept << " missing from:\n" << text;
+  for (const char* gone : {"cpp_only", "int cpp;"}) EXPECT_EQ(text.find(gone), std::string::npos) << gone;
+  // Lines keep their numbers: "int after;" is line 12 of the file.
+  const std::string body = text.substr(text.find("#line 1 0\n") + 10);
+  int line = 1;
+  for (size_t i = 0; i < body.find("int after;"); ++i) line += body[i] == '\n';
+  EXPECT_EQ(line, 12);
+  std::ofstream(dir / "b.comp.glsl") << "#ifdef __cplusplus\nint a;\n#elif FOO\nint b;\n#endif\n";
+  test::expectError([&] { lib.preprocess("b.comp.glsl", {}); }, {"b.comp.glsl:3", "#elif"});
+}
+
 TEST(Profiler, GpuPassesGetTimestampTimings) {
   auto ctx = GlContext::create();
   Profiler prof(true);
