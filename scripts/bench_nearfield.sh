@@ -9,7 +9,7 @@
 #        tracer, the module's start offset), exact shading at the hit
 #   NF   nearfield at full resolution, no interleaving, no blur, 64 frames ×
 #        16 rays: converged, so NF − RV is RSM back-projection + shadow maps
-#   NQ   nearfield as shipped (¼ resolution, 4×4 interleaving, blur,
+#   NQ   nearfield as shipped (½ resolution, 4×4 interleaving, blur,
 #        upsampling), 64 frames: NQ − NF is reduced resolution + upsampling
 # Usage: scripts/bench_nearfield.sh [out-dir] [size] [ref-spp]
 set -euo pipefail
@@ -42,7 +42,7 @@ def diff(a, b):
     r = subprocess.run([vgi, "diff", "--json", os.path.join(out, a), os.path.join(out, b)],
                        check=True, capture_output=True, text=True)
     return json.loads(r.stdout)
-print("| scene | grid | relMSE NF vs R | relMSE NQ vs R | indirect rel. MAE: NF vs R (total) | RV vs R (voxel visibility) | NF vs RV (RSM + shadow maps) | NQ vs NF (¼ res + blur + upsampling) | NQ vs R |")
+print("| scene | grid | relMSE NF vs R | relMSE NQ vs R | indirect rel. MAE: NF vs R (total) | RV vs R (voxel visibility) | NF vs RV (RSM + shadow maps) | NQ vs NF (reduced res + blur + upsampling) | NQ vs R |")
 print("|---|---|---|---|---|---|---|---|---|")
 for name in ["cornell", "sibenik"]:
     if not os.path.exists(os.path.join(out, name + "_R.exr")): continue

@@ -9,6 +9,7 @@
 #include "shaders/shared/trace_dda.glsl"
 #include "shaders/shared/trace_hierarchical.glsl"
 #include "shaders/shared/trace_march.glsl"
+#include "shaders/shared/tracer_ids.glsl"
 #include "traverse/embree_tracer.h"
 #include "traverse/or_mip_pyramid.h"
 
@@ -16,9 +17,10 @@ namespace vgi {
 
 const std::vector<TracerInfo>& tracerRegistry() {
   static const std::vector<TracerInfo> registry = {
-      {"hierarchical", "first hit over the OR-mip pyramid (VGI §4)", true, 0},
-      {"dda", "3D DDA over the finest grid (Amanatides & Woo 1987); the oracle on the grid", true, 1},
-      {"march", "fixed-step ray marching (AVG paper); step = half the smallest voxel edge", true, 2},
+      {"hierarchical", "first hit over the OR-mip pyramid (VGI §4)", true, VGI_TRACER_HIERARCHICAL},
+      {"dda", "3D DDA over the finest grid (Amanatides & Woo 1987); the oracle on the grid", true, VGI_TRACER_DDA},
+      {"march", "fixed-step ray marching (AVG paper); step = half the smallest voxel edge", true,
+       VGI_TRACER_MARCH},
       {"embree", "exact first hit on the triangles (Embree, CPU only)", false, -1},
   };
   return registry;
@@ -78,10 +80,14 @@ class VoxelTracer : public RayTracer {
       : kind_(kind), params_(pyramidParams(pyramid)), words_(pyramid.words().data()), marchStep_(marchStep) {}
   TraceResult trace(const TraceRay& ray) const override {
     switch (kind_) {
-      case 0: return fromShared(shared::traceHierarchical(params_, ray.origin, ray.dir, ray.tmax, words_));
-      case 1: return fromShared(shared::traceDda(params_, ray.origin, ray.dir, ray.tmax, words_));
-      default: return fromShared(shared::traceMarch(params_, ray.origin, ray.dir, ray.tmax, marchStep_, words_));
+      case VGI_TRACER_HIERARCHICAL:
+        return fromShared(shared::traceHierarchical(params_, ray.origin, ray.dir, ray.tmax, words_));
+      case VGI_TRACER_DDA: return fromShared(shared::traceDda(params_, ray.origin, ray.dir, ray.tmax, words_));
+      case VGI_TRACER_MARCH:
+        return fromShared(shared::traceMarch(params_, ray.origin, ray.dir, ray.tmax, marchStep_, words_));
     }
+    VGI_CHECK(!"unknown tracer id");
+    return {};
   }
 
  private:

@@ -1,10 +1,12 @@
-// The tracer a GLSL pass uses, chosen at compile time by VGI_TRACER
-// (0 hierarchical, 1 dda, 2 march; see traverse/ray_tracers.cpp's registry):
+// The tracer a GLSL pass uses, chosen at compile time by VGI_TRACER (one of
+// the ids in shared/tracer_ids.glsl, as traverse/ray_tracers.cpp's registry
+// sets it; any other value fails to compile):
 //   TraceHit traceRay(vec3 origin, vec3 dir, float tmax)
 //   bool visibleBetween(vec3 a, vec3 b)
 // The pyramid and its parameters are bound by GlPyramid::bind (traverse/gl_ray_tracer.cpp).
+#include "../shared/tracer_ids.glsl"
 #ifndef VGI_TRACER
-#define VGI_TRACER 0
+#define VGI_TRACER VGI_TRACER_HIERARCHICAL
 #endif
 #include "../shared/voxel_grid.glsl"
 #include "../shared/or_mip.glsl"
@@ -28,12 +30,14 @@ PyramidParams pyramidFromUniforms() {
 
 TraceHit traceRay(vec3 origin, vec3 dir, float tmax) {
   PyramidParams p = pyramidFromUniforms();
-#if VGI_TRACER == 0
+#if VGI_TRACER == VGI_TRACER_HIERARCHICAL
   return traceHierarchical(p, origin, dir, tmax);
-#elif VGI_TRACER == 1
+#elif VGI_TRACER == VGI_TRACER_DDA
   return traceDda(p, origin, dir, tmax);
-#else
+#elif VGI_TRACER == VGI_TRACER_MARCH
   return traceMarch(p, origin, dir, tmax, uMarchStep);
+#else
+#error "unknown VGI_TRACER (ids: shaders/shared/tracer_ids.glsl)"
 #endif
 }
 

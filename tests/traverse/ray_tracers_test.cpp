@@ -16,6 +16,7 @@
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/or_mip_pyramid.h"
 #include "traverse/ray_tracers.h"
+#include "shaders/shared/tracer_ids.glsl"
 #include "core/scene_loader.h"
 #include "traverse/ray_population.h"
 #include "voxelize/exact_voxelizer.h"
@@ -368,6 +369,10 @@ TEST(RayTracers, GlslOnLlvmpipeEqualsCppBitForBit) {
   test::expectError([&] { std::vector<TraceRay> r; ShaderDefines d; addTracerDefine(d, "embree"); },
                     {"tracer 'embree'", "no GLSL"});
   test::expectError([] { findTracer("octree"); }, {"tracer 'octree'", "hierarchical", "dda", "march", "embree"});
+  // An id that names no tracer is a compile error in GLSL, not a silent `march`.
+  test::expectError([&] { shaders.program({"traverse/trace_rays.comp.glsl"}, {{"VGI_TRACER", "7"}}); },
+                    {"trace_rays.comp.glsl", "unknown VGI_TRACER"});
+  EXPECT_EQ(findTracer("dda").define, VGI_TRACER_DDA);
 }
 
 // 10^7 adversarial rays through a deep, mostly empty grid: must finish (the

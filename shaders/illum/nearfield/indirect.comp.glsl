@@ -39,7 +39,7 @@ uniform int uEnv;
 uniform vec2 uRotation;      // per-frame Cranley–Patterson rotation
 uniform int uFrame;          // each interleave block adds its own rotation (shared/sampling.glsl)
 uniform int uRsmRes;
-uniform int uPassThrough;     // 1: rays go on past voxels a light sees through
+uniform int uPassThrough;     // 1: rays go on past empty-looking and own voxels (see main)
 uniform int uRefine;          // back-projection: 0 the voxel entry (VGI), 1 the RSM surface's plane
 
 
@@ -82,8 +82,9 @@ float rsmEpsilon(int l, RsmTexel r, float voxelTerm) {
 //   uRefine 1: the texel y projects to says which surface the light sees
 //     there; the ray is intersected with that surface's plane, and the point
 //     found (on the ray, on the surface) is back-projected again and tested
-//     with the texel term of ε alone. The plane must be met inside the hit
-//     voxel's reach (t − diag … t + diag), within r, from the lit side
+//     with the texel term of ε alone. The plane must be met near the hit
+//     voxel (t − diag … t + 8·diag: a conservatively set voxel is often
+//     entered far before the plane at grazing angles), within r, from the lit side
 //     (a ray meeting the unlit back of a wall sees no RSM light); so voxel
 //     quantisation no longer lets the ε test accept a neighbouring surface
 //     or reject a lit one seen at a grazing angle.
