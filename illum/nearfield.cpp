@@ -44,7 +44,7 @@
 // | env          | bool   | true               | rays leaving r read the environment (black if the scene has none) |
 // | backprojection | string | plane            | hit → RSM: `plane` (see indirect.comp) or `entry` (VGI's voxel entry) |
 // | passthrough  | bool   | true               | go on past hit voxels whose entry a light sees through |
-// | offset       | float  | 0.5                | ray start offset along the normal, voxel diagonals (VGI: 1) |
+// | offset       | float  | 0.5 (entry: 1)     | ray start offset along the normal, voxel diagonals (VGI: 1) |
 // | voxels       | string | 128                | grid resolution N or WxHxD                           |
 // | voxelizer    | string | atlas              | binary voxelizer (see `vgi voxelize --help`)         |
 // | shadow_res, shadow_bias, normal_offset: light maps, as in `direct`                        |
@@ -106,12 +106,17 @@ class NearFieldMethod : public Method {
                                    "hit -> RSM: plane (the ray meets the plane of the surface the RSM sees there) "
                                    "or entry (VGI: the voxel entry point, epsilon >= a voxel diagonal)",
                                    {"plane", "entry"});
+    // VGI's entry test takes light from any surface within ε ≥ a voxel diagonal, the receiver's own
+    // voxels included, so with `entry` the rays start VGI's full diagonal off.
+    const bool entry = q.backProjection == "entry";
+    q.offset = p.getFloat("offset", entry ? 1.0f : 0.5f,
+                          "ray start offset along the normal, in voxel diagonals (default 0.5; 1 with "
+                          "backprojection=entry, as VGI; with passthrough, voxels within a diagonal of the "
+                          "receiver's plane that give no light are passed)",
+                          0.0f, 100.0f);
     q.passThrough = p.getBool("passthrough", true,
                               "rays go on past a hit voxel whose entry point a light sees through (empty there)");
-    q.offset = p.getFloat("offset", 0.5f,
-                          "ray start offset along the normal, in voxel diagonals (VGI: 1; with passthrough, voxels "
-                          "within a diagonal of the receiver's plane that give no light are passed)",
-                          0.0f, 100.0f);
+
     q.voxels = parseResolution(p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"),
                                "parameter 'voxels'");
     std::vector<std::string> voxelizers;
