@@ -4,9 +4,8 @@
 // stats file is never left half-written by a name. Values quoted in error
 // messages are cut short: a 10⁶-element array must not become a 2 MB line.
 #pragma once
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace vgi {
 

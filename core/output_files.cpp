@@ -27,7 +27,9 @@ void checkOutputFile(const std::string& path, const std::string& option) {
     if (ec || !fs::is_directory(dir)) {
       std::error_code isDir;
       fail(option, " '", path, "': cannot create folder '", dir.string(), "': ",
-           ec ? ec.message() : fs::exists(dir, isDir) ? "a file of that name is in the way" : "unknown reason");
+           ec                       ? ec.message()
+           : fs::exists(dir, isDir) ? "a file of that name is in the way"
+                                    : "unknown reason");
     }
   }
   const fs::file_status st = fs::status(file, ec);
@@ -36,7 +38,8 @@ void checkOutputFile(const std::string& path, const std::string& option) {
 }
 
 void writeJsonFile(const nlohmann::json& j, const std::string& path) {
-  const std::string text = jsonText(j, 2) + "\n";  // whole before the file is opened: never a half-written file
+  const std::string text =
+      jsonText(j, 2) + "\n";  // whole before the file is opened: never a half-written file
   std::ofstream out(path, std::ios::binary);
   out << text;
   out.close();

@@ -1,9 +1,8 @@
 // Files a command writes: checked (and their folder made) before the work
 // that fills them, so a long render is never lost to a bad path at its end.
 #pragma once
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace vgi {
 
@@ -13,6 +12,5 @@ namespace vgi {
 void checkOutputFile(const std::string& path, const std::string& option);
 // Writes `j` (indented; bytes that are not UTF-8 become U+FFFD) to `path`.
 void writeJsonFile(const nlohmann::json& j, const std::string& path);
-
 
 }  // namespace vgi

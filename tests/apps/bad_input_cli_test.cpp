@@ -4,7 +4,6 @@
 // (-1 here), a hang, an internal error (3), or an exit 0 without its files.
 #include <filesystem>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_util.h"
@@ -20,12 +19,13 @@ using test::vgi;
 namespace {
 // A render of a corpus file at a small size.
 CliRun renderBad(const std::string& file, const std::string& extra = "") {
-  return vgi("render --scene '" + dataPath("bad/" + file) + "' --size 16x16 --spp 1 --quiet " + extra + " -o " +
-             tmp("bad_" + file + ".exr"));
+  return vgi("render --scene '" + dataPath("bad/" + file) + "' --size 16x16 --spp 1 --quiet " + extra +
+             " -o " + tmp("bad_" + file + ".exr"));
 }
 void expectRefused(const CliRun& r, std::initializer_list<std::string> needles) {
   EXPECT_EQ(r.code, 2) << r.output;
-  for (auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "'" << n << "' not in: " << r.output;
+  for (auto& n : needles)
+    EXPECT_NE(r.output.find(n), std::string::npos) << "'" << n << "' not in: " << r.output;
   EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
 }
 // Exit 0, a finite image and stats that parse.
@@ -45,9 +45,9 @@ TEST(BadInputCli, SizesOfEveryShapeAreParsedOrRefused) {
   parseSize("640x480", w, h);
   EXPECT_EQ(w, 640);
   EXPECT_EQ(h, 480);
-  for (const char* s : {"", "x", "8x", "x8", "0x8", "8x0", "-8x8", "8x-8", "8x8x8", "8 x8", "8x8 ", "+8x8junk",
-                        "99999999999999999999999999999999x8", "8x99999999999999999999999999999999", "16385x8",
-                        "1e3x8", "0x10x"})
+  for (const char* s : {"", "x", "8x", "x8", "0x8", "8x0", "-8x8", "8x-8", "8x8x8", "8 x8", "8x8 ",
+                        "+8x8junk", "99999999999999999999999999999999x8",
+                        "8x99999999999999999999999999999999", "16385x8", "1e3x8", "0x10x"})
     test::expectError([&] { parseSize(s, w, h); }, {"--size", std::string("'") + s + "'"});
   expectRefused(vgi("render --size 123456789012345678901234567890x2 -o " + tmp("s.exr")), {"--size"});
 }
@@ -88,8 +88,9 @@ TEST(BadInputCli, NamesAndPathsThatAreNotUtf8KeepTheStatsValid) {
     std::filesystem::copy_file(dataPath(std::string("bad/") + f), dir + "/" + f,
                                std::filesystem::copy_options::overwrite_existing);
   const std::string stem = dir + "/out\xe9";
-  expectRendered(vgi("render --scene '" + dir + "/bad_utf8.obj' --size 16x16 --spp 1 --quiet -o '" + stem + ".exr'"),
-                 stem);
+  expectRendered(
+      vgi("render --scene '" + dir + "/bad_utf8.obj' --size 16x16 --spp 1 --quiet -o '" + stem + ".exr'"),
+      stem);
   CliRun info = vgi("info --json --scene '" + dir + "/bad_utf8.obj'");
   ASSERT_EQ(info.code, 0) << info.output;
   nlohmann::json parsed;
@@ -104,7 +105,8 @@ TEST(BadInputCli, DevicesAndLinksToThemAreNotReadAsFiles) {
   std::filesystem::create_symlink("/dev/zero", devLink);
   expectRefused(vgi("diff " + devLink + " " + devLink), {devLink, "not a regular file"});
   expectRefused(vgi("diff /dev/urandom /dev/zero"), {"image '/dev/urandom'", "not a regular file"});
-  expectRefused(vgi("render --scene /dev/zero -o " + tmp("d.exr")), {"scene '/dev/zero'", "not a regular file"});
+  expectRefused(vgi("render --scene /dev/zero -o " + tmp("d.exr")),
+                {"scene '/dev/zero'", "not a regular file"});
   // A texture or environment map that is a device: a warning, and the constant colour.
   for (const char* f : {"device_texture.json", "device_env.json"}) {
     CliRun r = renderBad(f);
@@ -118,7 +120,8 @@ TEST(BadInputCli, DevicesAndLinksToThemAreNotReadAsFiles) {
 TEST(BadInputCli, OverlongNameComponentsAreErrorsAboutThePath) {
   const std::string longName(300, 'n');
   expectRefused(vgi("render --size 8x8 -o " + tmp(longName + ".exr")), {"-o", "304 bytes long", "255"});
-  expectRefused(vgi("render --scene " + tmp(longName + ".obj") + " -o " + tmp("l.exr")), {"scene", "too long"});
+  expectRefused(vgi("render --scene " + tmp(longName + ".obj") + " -o " + tmp("l.exr")),
+                {"scene", "too long"});
   expectRefused(vgi("diff " + tmp(longName + ".exr") + " " + tmp("l.exr")), {"image", "too long"});
 }
 
@@ -131,8 +134,8 @@ TEST(BadInputCli, OutputPathsAreCheckedAndMadeBeforeTheRender) {
   // --stats naming a folder is refused at once, before the (long) render.
   std::filesystem::create_directories(tmp("stats_dir"));
   std::filesystem::remove(tmp("sd.exr"));
-  expectRefused(vgi("render --method reference --spp 100000 --size 256x256 --stats " + tmp("stats_dir") + " -o " +
-                    tmp("sd.exr")),
+  expectRefused(vgi("render --method reference --spp 100000 --size 256x256 --stats " + tmp("stats_dir") +
+                    " -o " + tmp("sd.exr")),
                 {"--stats", "is a directory"});
   EXPECT_FALSE(std::filesystem::exists(tmp("sd.exr")));
 }
@@ -150,8 +153,8 @@ TEST(BadInputCli, AStillInterruptedBeforeItsFirstSampleWritesNothing) {
   const std::string out = tmp("first.exr");
   std::filesystem::remove(out);
   std::filesystem::remove(tmp("first.json"));
-  CliRun r = vgi("render --method reference --set integrator=path --size 2048x2048 --spp 1 --quiet -o " + out +
-                 " 2>&1 & pid=$!; sleep 1; kill -INT $pid; wait $pid");
+  CliRun r = vgi("render --method reference --set integrator=path --size 2048x2048 --spp 1 --quiet -o " +
+                 out + " 2>&1 & pid=$!; sleep 1; kill -INT $pid; wait $pid");
   ASSERT_EQ(r.code, 130) << r.output;
   EXPECT_NE(r.output.find("nothing written"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(out));

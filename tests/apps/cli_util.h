@@ -1,9 +1,9 @@
 // Runs the `vgi` command as a user does: exit status and everything it printed.
 #pragma once
+#include <sys/wait.h>
+
 #include <cstdio>
 #include <string>
-
-#include <sys/wait.h>
 
 #include "test_util.h"
 
