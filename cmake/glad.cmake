@@ -17,7 +17,7 @@ if(NOT _glad_python)
   message(FATAL_ERROR "No python3 with the 'glad' module found: run scripts/setup.sh (installs python3-glad)")
 endif()
 
-set(GLAD_OUT ${CMAKE_BINARY_DIR}/glad)
+set(GLAD_OUT ${PROJECT_BINARY_DIR}/glad)
 add_custom_command(
   OUTPUT ${GLAD_OUT}/src/gl.c ${GLAD_OUT}/include/glad/gl.h
   COMMAND ${_glad_python} -m glad --api gl:core=4.5 --extensions GL_KHR_debug
