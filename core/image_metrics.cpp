@@ -126,13 +126,14 @@ void writeSignedError(const Image& difference, const std::string& path, float fu
   std::string ext = std::filesystem::path(path).extension().string();
   for (auto& c : ext) c = char(std::tolower(c));
   if (ext == ".exr") return writeImage(difference, path);
+  if (difference.pixels.empty()) fail("cannot write the error image '", path, "': the image is empty");
   if (!(fullScale > 0)) {
     std::vector<float> mags;
     mags.reserve(difference.pixels.size());
     for (auto& p : difference.pixels) mags.push_back(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
     const size_t k = std::min(mags.size() - 1, size_t(0.99 * double(mags.size())));
     std::nth_element(mags.begin(), mags.begin() + long(k), mags.end());
-    fullScale = mags.empty() || mags[k] <= 0 ? 1.0f : mags[k];
+    fullScale = mags[k] > 0 ? mags[k] : 1.0f;
   }
   // Luminance of the signed error, shown red (positive) or blue (negative) at
   // display values (writeImage's sRGB encoding applies).

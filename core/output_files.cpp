@@ -1,5 +1,6 @@
 #include "core/output_files.h"
 
+#include <climits>
 #include <filesystem>
 #include <fstream>
 
@@ -14,7 +15,7 @@ void checkOutputFile(const std::string& path, const std::string& option) {
   if (path.empty()) fail(option, ": the path is empty");
   const fs::path file(path);
   // Every name component must fit the file system: ask it now, not after the render.
-  const long nameMax = 255;
+  const long nameMax = NAME_MAX;
   for (const fs::path& part : file)
     if (part.native().size() > size_t(nameMax))
       fail(option, " '", path, "': the name component '", part.native().substr(0, 40), "…' is ",

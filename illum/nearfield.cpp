@@ -115,7 +115,9 @@ class NearFieldMethod : public Method {
                           "receiver's plane that give no light are passed)",
                           0.0f, 100.0f);
     q.passThrough = p.getBool("passthrough", true,
-                              "rays go on past a hit voxel whose entry point a light sees through (empty there)");
+                              "rays go on past a hit voxel whose entry point a light sees through (empty there), "
+                              "or that lies within a voxel diagonal of the receiver's plane and gives no light "
+                              "(it may be the receiver's own)");
 
     q.voxels = parseResolution(p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"),
                                "parameter 'voxels'");

@@ -34,7 +34,8 @@
 //
 // nearfield with visibility=voxels isolates the voxel-visibility error of the
 // `nearfield` module: the bounce ray starts `offset` voxel diagonals along the
-// normal (as the module's) and the hierarchical tracer decides, on an exact
+// normal (VGI's one diagonal by default; the module starts at ½ and passes
+// its own voxels instead) and the hierarchical tracer decides, on an exact
 // (triangle–box) voxelization, whether and where it stops within `radius`;
 // the surface there is then found and shaded exactly (Embree, within two voxel
 // diagonals of the hit voxel's entry; none there — a voxel the ray grazes

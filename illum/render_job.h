@@ -17,7 +17,7 @@ namespace vgi {
 
 struct RenderOptions {
   std::string scene = "builtin:cornell";
-  std::string method = "nearfield";
+  std::string method = defaultMethodName();
   bool methodGiven = false;      // --method was on the command line (a preset may name its method otherwise)
   std::vector<std::string> set;  // key=value
   std::string preset;            // scene preset name, applied before `set`

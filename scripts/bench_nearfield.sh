@@ -6,7 +6,7 @@
 #   R    exact reference (Embree)                                   REF_SPP samples
 #   R2   the same with another seed: the reference's own noise floor
 #   RV   reference with voxel visibility (exact voxelization, hierarchical
-#        tracer, the module's start offset), exact shading at the hit
+#        tracer, VGI's start offset of one diagonal), exact shading at the hit
 #   NF   nearfield at full resolution, no interleaving, no blur, 64 frames ×
 #        16 rays: converged, so NF − RV is RSM back-projection + shadow maps
 #   NQ   nearfield as shipped (½ resolution, 4×4 interleaving, blur,

@@ -159,9 +159,11 @@ void main() {
     // be the receiver's own voxel. (b) is what lets rays start half a diagonal
     // off the surface instead of VGI's full diagonal, so contact light in
     // corners and at small features is not lost (Sibenik: energy 0.82 → 0.88).
-    // `precise`: the resumed origin must round alike in every tracer's
-    // program (a fused multiply-add in one of them moves it by an ulp across
-    // a voxel face, and hierarchical and dda would then differ).
+    // `precise`: the resumed origin is rounded without fused multiply-adds,
+    // the way the tracers' shared code computes. (With resumed rays the
+    // hierarchical and dda programs still differ on a few pixels, though the
+    // tracers agree on such rays in tests/traverse — an open question, see
+    // NearField.TracerIsAParameter….)
     precise float start = 0.0f;
     for (int k = 0; k < 4; ++k) {
       precise vec3 from = origin + start * d;
