@@ -1,5 +1,6 @@
 // vgi render: one image of a scene with a method.
 #include <cstdio>
+#include <cstdlib>
 
 #include "apps/commands.h"
 #include "core/error.h"
@@ -21,6 +22,10 @@ void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args) {
   cmd->add_option("--threads", opt.threads, "CPU threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--time", opt.time, "animation time for dynamic meshes (of the first frame)")->capture_default_str();
   cmd->add_option("--gl", args.gl, "GL backend: auto|egl|osmesa")->capture_default_str();
+  cmd->add_option("--accumulate", args.accumulate,
+                  "sample accumulation: compensated (Kahan sums on the GPU: no drift over 10^5 samples) or plain "
+                  "(one float add per sample)")
+      ->capture_default_str();
   cmd->add_flag("--quiet", args.quiet, "no progress bars");
 }
 
@@ -28,6 +33,9 @@ void applyRenderArgs(const RenderArgs& args, RenderOptions& opt) {
   parseSize(args.size, opt.width, opt.height);
   opt.gl = parseGlBackend(args.gl);
   opt.progress = !args.quiet;
+  if (args.accumulate == "compensated") opt.accumulation = Accumulation::Compensated;
+  else if (args.accumulate == "plain") opt.accumulation = Accumulation::Plain;
+  else fail("--accumulate '", args.accumulate, "': expected compensated or plain");
 }
 
 void addRenderCommand(CLI::App& app) {
@@ -53,6 +61,10 @@ void addRenderCommand(CLI::App& app) {
   auto aovs = std::make_shared<std::string>();
   cmd->add_option("--aov", *aovs, "extra outputs, comma-separated (e.g. indirect,direct): <stem>.<aov>.exr/.png");
   cmd->add_option("--help-module", *helpModule, "print a method's parameters and exit");
+  auto checkpoints = std::make_shared<std::string>();
+  cmd->add_option("--checkpoints", *checkpoints,
+                  "sample counts (comma-separated, e.g. 1,4,16,64) at which the image so far and its stats are "
+                  "written too: <stem>.sppNNNNN.exr/.png/.json (convergence plots)");
   cmd->callback([=] {
     if (!helpModule->empty()) {
       std::printf("%s", describeMethod(*helpModule, opt->scene).c_str());
@@ -61,6 +73,13 @@ void addRenderCommand(CLI::App& app) {
     if (!(*exposure > 0.0f) || *exposure > 1e6f) fail("--exposure ", *exposure, ": must be in (0, 1e6]");
     applyRenderArgs(*args, *opt);
     opt->aovs = splitList(*aovs);
+    for (auto& c : splitList(*checkpoints)) {
+      char* end = nullptr;
+      const long v = std::strtol(c.c_str(), &end, 10);
+      if (c.empty() || *end || v < 1 || v > opt->spp)
+        fail("--checkpoints: '", c, "' is not a sample count in [1, --spp ", opt->spp, "]");
+      opt->checkpoints.push_back(int(v));
+    }
     checkOutputPath(*out);
     if (!stats->empty()) checkOutputFile(*stats, "--stats");
     opt->methodGiven = cmd->count("--method") > 0;
@@ -68,12 +87,15 @@ void addRenderCommand(CLI::App& app) {
     std::vector<std::string> files;
     RenderOutput result;
     if (opt->frames == 1) {
-      result = runRender(*opt);
+      result = runRender(*opt, {}, [&](int spp, const RenderOutput& c) {
+        for (auto& file : writeCheckpointOutputs(c, *out, spp, *exposure)) files.push_back(file);
+      });
       if (result.result.sppCompleted == 0) {
         std::fprintf(stderr, "interrupted before the first sample of every pixel was done: nothing written\n");
         throw Interrupted{};
       }
-      files = writeRenderOutputs(result, *out, *exposure);
+      std::vector<std::string> last = writeRenderOutputs(result, *out, *exposure);
+      files.insert(files.begin(), last.begin(), last.end());
     } else {
       // Each frame is written as soon as it is done: an interrupted animation keeps its frames.
       result = runRender(*opt, [&](int frame, const RenderOutput& f) {

@@ -25,7 +25,7 @@ inline std::vector<std::string> splitList(const std::string& s) {
 // spp, seed, threads, time, gl, quiet), read into `opt` and the raw texts of
 // `args`; applyRenderArgs() parses the texts (size, GL backend) into `opt`.
 struct RenderArgs {
-  std::string size, gl = "auto";
+  std::string size, gl = "auto", accumulate = "compensated";
   bool quiet = false;
 };
 void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args);

@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -163,6 +164,8 @@ unsigned ShaderLibrary::program(const std::vector<std::string>& files, const Sha
   if (it != cache_.end()) return it->second;
 
   GLuint prog = glCreateProgram();
+  ProgramInfo info;
+  for (auto& f : files) info.files += (info.files.empty() ? "" : " + ") + f;
   std::vector<GLuint> shaders;
   auto cleanup = [&] {
     for (GLuint s : shaders) glDeleteShader(s);
@@ -178,6 +181,7 @@ unsigned ShaderLibrary::program(const std::vector<std::string>& files, const Sha
       cleanup();
       throw;
     }
+    for (auto& u : declaredUniforms(src.text)) info.declared.insert(u);
     GLuint s = glCreateShader(stage);
     shaders.push_back(s);
     const char* text = src.text.c_str();
@@ -211,7 +215,65 @@ unsigned ShaderLibrary::program(const std::vector<std::string>& files, const Sha
     glDeleteShader(s);
   }
   cache_[key] = prog;
+  info_[prog] = std::move(info);
   return prog;
+}
+
+std::set<std::string> ShaderLibrary::declaredUniforms(const std::string& source) {
+  // Comments out, then every `uniform …;` that is not a block (`uniform Name {`).
+  static const std::regex comments(R"(//[^\n]*|/\*[\s\S]*?\*/)");
+  static const std::regex decl(R"(\buniform\b([^;{]*);)");
+  static const std::regex ident(R"(([A-Za-z_]\w*)\s*(\[[^\]]*\]\s*)?$)");
+  const std::string text = std::regex_replace(source, comments, " ");
+  std::set<std::string> names;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), decl); it != std::sregex_iterator(); ++it) {
+    std::string body = (*it)[1].str();
+    size_t start = 0;
+    while (start <= body.size()) {
+      size_t comma = body.find(',', start);
+      std::string part = body.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      while (!part.empty() && std::isspace(static_cast<unsigned char>(part.back()))) part.pop_back();
+      std::smatch m;
+      if (std::regex_search(part, m, ident)) names.insert(m[1].str());
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  }
+  return names;
+}
+
+int ShaderLibrary::uniformLocation(unsigned program, const std::string& name) {
+  auto it = info_.find(program);
+  if (it == info_.end()) fail("internal: program ", program, " was not made by this shader library");
+  ProgramInfo& p = it->second;
+  auto loc = p.locations.find(name);
+  if (loc != p.locations.end()) return loc->second;
+  if (!p.declared.count(name))
+    fail("program (", p.files, ") declares no uniform '", name, "': a misspelt name or a uniform removed from the shader");
+  const int l = glGetUniformLocation(program, name.c_str());
+  p.locations[name] = l;
+  return l;
+}
+
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, int v) { glProgramUniform1i(p, uniformLocation(p, n), v); }
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, unsigned v) { glProgramUniform1ui(p, uniformLocation(p, n), v); }
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, float v) { glProgramUniform1f(p, uniformLocation(p, n), v); }
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::vec2 v) { glProgramUniform2f(p, uniformLocation(p, n), v.x, v.y); }
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::vec3 v) {
+  glProgramUniform3f(p, uniformLocation(p, n), v.x, v.y, v.z);
+}
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::vec4 v) {
+  glProgramUniform4f(p, uniformLocation(p, n), v.x, v.y, v.z, v.w);
+}
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::ivec2 v) { glProgramUniform2i(p, uniformLocation(p, n), v.x, v.y); }
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::ivec3 v) {
+  glProgramUniform3i(p, uniformLocation(p, n), v.x, v.y, v.z);
+}
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::uvec3 v) {
+  glProgramUniform3ui(p, uniformLocation(p, n), v.x, v.y, v.z);
+}
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, const glm::mat4& v) {
+  glProgramUniformMatrix4fv(p, uniformLocation(p, n), 1, GL_FALSE, &v[0][0]);
 }
 
 }  // namespace vgi

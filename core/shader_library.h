@@ -5,8 +5,11 @@
 // shaders/shared/) are dropped. Programs are cached per (files, defines).
 #pragma once
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 namespace vgi {
 
@@ -33,12 +36,38 @@ class ShaderLibrary {
   };
   Source preprocess(const std::string& file, const ShaderDefines& defines) const;
 
+  // Checked uniform setters (glProgramUniform*) for a program this library
+  // made. A name no file of the program declares (a typo) is an error naming
+  // the program's files and the uniform — GL itself would return location −1
+  // and ignore the call. A declared uniform the compiler dropped (unused under
+  // these defines) is skipped, as GL would.
+  void setUniform(unsigned program, const std::string& name, int v);
+  void setUniform(unsigned program, const std::string& name, unsigned v);
+  void setUniform(unsigned program, const std::string& name, float v);
+  void setUniform(unsigned program, const std::string& name, glm::vec2 v);
+  void setUniform(unsigned program, const std::string& name, glm::vec3 v);
+  void setUniform(unsigned program, const std::string& name, glm::vec4 v);
+  void setUniform(unsigned program, const std::string& name, glm::ivec2 v);
+  void setUniform(unsigned program, const std::string& name, glm::ivec3 v);
+  void setUniform(unsigned program, const std::string& name, glm::uvec3 v);
+  void setUniform(unsigned program, const std::string& name, const glm::mat4& v);
+  // The location, with the check above (−1 for a dropped one).
+  int uniformLocation(unsigned program, const std::string& name);
+  // The uniform names a GLSL source declares (`uniform T a, b[2];`, blocks excluded).
+  static std::set<std::string> declaredUniforms(const std::string& source);
+
   // Rewrites the "N:L(C)" / "N(L)" prefixes of a driver log into "file:line".
   static std::string mapLog(const std::string& log, const std::vector<std::string>& files);
 
  private:
   std::string root_;
   std::map<std::string, unsigned> cache_;
+  struct ProgramInfo {
+    std::string files;
+    std::set<std::string> declared;
+    std::map<std::string, int> locations;
+  };
+  std::map<unsigned, ProgramInfo> info_;
 };
 
 }  // namespace vgi

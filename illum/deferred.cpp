@@ -50,7 +50,7 @@ FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int fr
   return c;
 }
 
-GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H) {
+GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H), shaders_(shaders) {
   GLint maxTex = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
   if (W > maxTex || H > maxTex) fail("--size ", W, "x", H, " exceeds this GL's largest texture (", maxTex, ")");
@@ -92,7 +92,7 @@ void GBuffer::render(const GpuScene& gpu, const FrameCamera& camera) {
   glClearBufferfv(GL_DEPTH, 0, &clearDepth);
   glUseProgram(prog_);
   gpu.bind(prog_);
-  glUniformMatrix4fv(glGetUniformLocation(prog_, "uViewProj"), 1, GL_FALSE, glm::value_ptr(camera.viewProj));
+  shaders_.setUniform(prog_, "uViewProj", camera.viewProj);
   gpu.draw();
   glDepthFunc(GL_LESS);
   glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
@@ -105,47 +105,21 @@ void GBuffer::bind() const {
   for (unsigned i = 0; i < 4; ++i) glBindTextureUnit(units[i], tex_[i]);
 }
 
-Accumulator::Accumulator(int W, int H) : w_(W), h_(H) {
-  glCreateTextures(GL_TEXTURE_2D, 1, &tex_);
-  glTextureStorage2D(tex_, 1, GL_RGBA32F, W, H);
-  clear();
-}
-
-void Accumulator::clear() const {
-  const float zero[4] = {0, 0, 0, 0};
-  glClearTexImage(tex_, 0, GL_RGBA, GL_FLOAT, zero);
-}
-
-Accumulator::~Accumulator() { glDeleteTextures(1, &tex_); }
-
-Image Accumulator::read() const {
-  std::vector<glm::vec4> px(size_t(w_) * h_);
-  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-  glGetTextureImage(tex_, 0, GL_RGBA, GL_FLOAT, GLsizei(px.size() * sizeof(glm::vec4)), px.data());
-  Image image(w_, h_);
-  for (int y = 0; y < h_; ++y)
-    for (int x = 0; x < w_; ++x) {
-      const glm::vec4& v = px[size_t(h_ - 1 - y) * w_ + x];  // GL rows start at the bottom
-      image.at(x, y) = v.w > 0 ? glm::vec3(v) / v.w : glm::vec3(0.0f);
-    }
-  return image;
-}
-
 DirectPass::DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadowBias, float normalOffset)
-    : gpu_(gpu) {
+    : shaders_(shaders), gpu_(gpu) {
   prog_ = shaders.program({"illum/direct/shade.comp.glsl"});
-  glProgramUniform1f(prog_, glGetUniformLocation(prog_, "uShadowBias"), shadowBias);
-  glProgramUniform1f(prog_, glGetUniformLocation(prog_, "uNormalOffset"), normalOffset);
+  shaders.setUniform(prog_, "uShadowBias", shadowBias);
+  shaders.setUniform(prog_, "uNormalOffset", normalOffset);
 }
 
-void DirectPass::shade(const GBuffer& g, const LightMaps& maps, const FrameCamera& cam, const Accumulator& target) {
+void DirectPass::shade(const GBuffer& g, const LightMaps& maps, const FrameCamera& cam, unsigned target) {
   glUseProgram(prog_);
   gpu_.bind(prog_);  // other passes may have used the same binding points
-  glUniform3fv(glGetUniformLocation(prog_, "uCameraPosition"), 1, &cam.position.x);
-  glUniformMatrix4fv(glGetUniformLocation(prog_, "uInvViewProj"), 1, GL_FALSE, glm::value_ptr(cam.invViewProj));
+  shaders_.setUniform(prog_, "uCameraPosition", cam.position);
+  shaders_.setUniform(prog_, "uInvViewProj", cam.invViewProj);
   g.bind();
   maps.bind();
-  glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  glBindImageTexture(IMAGE_SAMPLE, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute(unsigned(g.width() + 7) / 8, unsigned(g.height() + 7) / 8, 1);
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }

@@ -1,6 +1,6 @@
 // Building blocks the GL modules share: the camera of a (jittered) frame, the
-// G-buffer, the deferred direct-lighting pass and reading back an
-// accumulation image. `direct` is these alone; the GI modules add to them.
+// G-buffer and the deferred direct-lighting pass. `direct` is these alone; the
+// GI modules add to them. (Accumulation is the sample loop's: illum/sample_loop.h.)
 #pragma once
 #include <glm/glm.hpp>
 
@@ -40,33 +40,20 @@ class GBuffer {
 
  private:
   int w_, h_;
+  ShaderLibrary& shaders_;
   unsigned tex_[4] = {0, 0, 0, 0}, depth_ = 0, fbo_ = 0, prog_ = 0;
 };
 
-// An RGBA32F image that frames are added into (w counts the frames).
-class Accumulator {
- public:
-  Accumulator(int width, int height);
-  ~Accumulator();
-  Accumulator(const Accumulator&) = delete;
-  Accumulator& operator=(const Accumulator&) = delete;
-  unsigned texture() const { return tex_; }
-  void clear() const;
-  Image read() const;  // rgb / w, rows top-down
-
- private:
-  int w_, h_;
-  unsigned tex_ = 0;
-};
-
 // Deferred direct lighting (emission + delta lights through the light maps;
-// environment behind), added into an accumulator: the `direct` module's frame.
+// environment behind) written into an RGBA32F image (a sample image of the
+// loop): the `direct` module's sample, and the GI modules' direct part.
 class DirectPass {
  public:
   DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadowBias, float normalOffset);
-  void shade(const GBuffer& gbuffer, const LightMaps& maps, const FrameCamera& camera, const Accumulator& target);
+  void shade(const GBuffer& gbuffer, const LightMaps& maps, const FrameCamera& camera, unsigned targetImage);
 
  private:
+  ShaderLibrary& shaders_;
   const GpuScene& gpu_;
   unsigned prog_ = 0;
 };

@@ -23,16 +23,20 @@
 
 #include "core/error.h"
 #include "core/gpu_scene.h"
-#include "core/progress.h"
 #include "illum/deferred.h"
 #include "illum/light_maps.h"
+#include "illum/sample_loop.h"
 
 namespace vgi {
 
 void readShadowParams(ParamSet& p, ShadowParams& s) {
   s.resolution = p.getInt("shadow_res", 1024, "shadow map size (per face)", 16, 8192);
-  s.bias = p.getFloat("shadow_bias", 1.0f, "depth bias in shadow-map texels (receiver plane at the texel centre; slope-scaled within 0.6 deg of grazing)", 0.0f, 100.0f);
-  s.normalOffset = p.getFloat("normal_offset", 0.0f, "lookup offset along the normal, in texels", 0.0f, 100.0f);
+  s.bias = p.getFloat("shadow_bias", 1.0f,
+                      "depth bias in shadow-map texels (receiver plane at the texel centre; slope-scaled "
+                      "within 0.6 deg of grazing)",
+                      0.0f, 100.0f);
+  s.normalOffset =
+      p.getFloat("normal_offset", 0.0f, "lookup offset along the normal, in texels", 0.0f, 100.0f);
 }
 
 namespace {
@@ -40,53 +44,26 @@ namespace {
 class DirectMethod : public Method {
  public:
   DirectMethod(ParamSet& p, const Scene&) { readShadowParams(p, shadow_); }
-  RenderResult render(const RenderRequest& req, Profiler& profiler) override;
+  SceneNeeds needs() const override {
+    SceneNeeds n;
+    n.gbuffer = true;
+    n.lightMaps = LightMapNeed{shadow_.resolution, false};
+    return n;
+  }
+  void prepareFrame(Frame& f) override {
+    pass_ =
+        std::make_unique<DirectPass>(f.shaders(), f.resources.gpuScene(), shadow_.bias, shadow_.normalOffset);
+  }
+  bool addSample(Frame& f, int) override {
+    auto s = f.profiler.scope("shade");
+    pass_->shade(f.gbuffer(), f.resources.lightMaps(), f.camera, f.sampleImage("image"));
+    return true;
+  }
 
  private:
   ShadowParams shadow_;
+  std::unique_ptr<DirectPass> pass_;
 };
-
-RenderResult DirectMethod::render(const RenderRequest& req, Profiler& prof) {
-  VGI_CHECK(req.gl && req.shaders);
-  const Scene& scene = *req.scene;
-  std::unique_ptr<GpuScene> gpu;
-  {
-    auto s = prof.scope("upload");
-    gpu = std::make_unique<GpuScene>(scene, req.time);
-  }
-  GBuffer gbuffer(req.width, req.height, *req.shaders);
-  Accumulator accum(req.width, req.height);
-  LightMaps maps(scene, *gpu, *req.shaders, shadow_.resolution, false, prof);
-  DirectPass direct(*req.shaders, *gpu, shadow_.bias, shadow_.normalOffset);
-
-  RenderResult result;
-  ProgressBar bar("direct", req.spp);
-  int done = 0;
-  for (; done < req.spp && !interruptRequested(); ++done) {
-    FrameCamera cam = frameCamera(scene.camera, gpu->bounds(), req.width, req.height, done, req.spp);
-    {
-      auto s = prof.scope("gbuffer");
-      gbuffer.render(*gpu, cam);
-    }
-    {
-      auto s = prof.scope("shade");
-      direct.shade(gbuffer, maps, cam, accum);
-    }
-    prof.resolve(false);
-    if (req.progress) bar.advance();
-  }
-  bar.finish();
-  {
-    auto s = prof.scope("readback");
-    result.image = accum.read();
-  }
-  result.samplePasses = {"gbuffer", "shade"};
-  result.sppCompleted = done;
-  result.interrupted = done < req.spp;
-  result.extra["light_maps"] = maps.describe();
-  result.built = {"gbuffer", "light_maps"};
-  return result;
-}
 
 }  // namespace
 

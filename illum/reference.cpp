@@ -15,10 +15,10 @@
 //              `radius` unoccluded (camera misses are 0)
 //
 // Determinism: every (pixel, sample) owns a PCG32 stream seeded from (seed,
-// pixel, sample), and each pixel sums its samples in order, so the image is the
-// same for any thread count. Samples are added in progressive passes; Ctrl-C
-// ends the render after the tiles in flight, and pixels are normalised by
-// their own sample count.
+// pixel, sample), and the framework's sample loop adds the samples of each
+// pixel in order (double sums), so the image is the same for any thread
+// count. A sample is one pass over the image (tiles in parallel); Ctrl-C
+// drops the sample in flight, so every pixel has the same sample count.
 //
 // Parameters
 // | key        | type   | default            | meaning                                              |
@@ -43,22 +43,19 @@
 #include "illum/reference.h"
 
 #include <algorithm>
-#include <atomic>
-#include <mutex>
 #include <cmath>
-#include <thread>
 
 #include "core/error.h"
 #include "core/gpu_scene.h"
+#include "core/parallel.h"
 #include "core/progress.h"
+#include "illum/sample_loop.h"
 #include "illum/nearfield.h"
 #include "shaders/shared/brdf.glsl"
 #include "shaders/shared/lights.glsl"
 #include "shaders/shared/sampling.glsl"
 #include "traverse/embree_tracer.h"
-#include "traverse/or_mip_pyramid.h"
 #include "traverse/ray_tracers.h"
-#include "voxelize/exact_voxelizer.h"
 
 namespace vgi {
 
@@ -153,7 +150,18 @@ class ReferenceRenderer : public Method {
     if (integrator_ == Integrator::Direct) maxDepth_ = 1;
   }
 
-  RenderResult render(const RenderRequest& req, Profiler& profiler) override;
+  SceneNeeds needs() const override {
+    SceneNeeds n;
+    n.bvh = true;
+    if (voxelVisibility_) {
+      n.binaryGrid = BinaryGridNeed{voxels_, "exact"};
+      n.orMipPyramid = true;
+    }
+    return n;
+  }
+  void prepareFrame(Frame& f) override;
+  bool addSample(Frame& f, int k) override;
+  void finishFrame(Frame& f) override;
   // nearfield splits its estimate into the direct part and the one indirect bounce.
   std::vector<std::string> outputs() const override {
     return integrator_ == Integrator::NearField ? std::vector<std::string>{"direct", "indirect"}
@@ -178,15 +186,18 @@ class ReferenceRenderer : public Method {
   glm::uvec3 voxels_{128};
   float offset_ = 1.0f;
 
-  // Per render.
+  // Per frame (prepareFrame).
   const Scene* scene_ = nullptr;
-  FlatScene flat_;
-  std::unique_ptr<EmbreeTracer> tracer_;
-  std::unique_ptr<OrMipPyramid> pyramid_;       // visibility=voxels
-  std::unique_ptr<RayTracer> voxelTracer_;
+  const FlatScene* flat_ = nullptr;
+  const EmbreeTracer* tracer_ = nullptr;
+  std::unique_ptr<RayTracer> voxelTracer_;  // visibility=voxels, over the resources' exact pyramid
   float voxelDiagonal_ = 0;
   std::vector<PackedLight> lights_;
   float eps_ = 1e-5f;
+  struct View {
+    vec3 position, fwd, right, up;
+    float tanHalf, aspect;
+  } view_{};
 };
 
 bool ReferenceRenderer::intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) const {
@@ -194,9 +205,9 @@ bool ReferenceRenderer::intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) 
   if (!h.hit) return false;
   const size_t t = size_t(h.triangle);
   const float w = 1.0f - h.u - h.v;
-  const vec3* P = &flat_.positions[3 * t];
-  const vec3* N = &flat_.normals[3 * t];
-  const vec2* UV = &flat_.uvs[3 * t];
+  const vec3* P = &flat_->positions[3 * t];
+  const vec3* N = &flat_->normals[3 * t];
+  const vec2* UV = &flat_->uvs[3 * t];
   sp.p = o + h.t * d;
   sp.wo = -d;
   sp.ng = glm::normalize(glm::cross(P[1] - P[0], P[2] - P[0]));
@@ -204,7 +215,7 @@ bool ReferenceRenderer::intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) 
   sp.n = glm::normalize(w * N[0] + h.u * N[1] + h.v * N[2]);
   if (!std::isfinite(sp.n.x) || dot(sp.n, sp.ng) < 0.0f) sp.n = -sp.n;
   if (!std::isfinite(sp.n.x)) sp.n = sp.ng;
-  const Material& m = scene_->materials[size_t(flat_.material[t])];
+  const Material& m = scene_->materials[size_t(flat_->material[t])];
   sp.brdf.albedo = m.albedo;
   if (m.albedoTexture >= 0)
     sp.brdf.albedo *= scene_->textures[size_t(m.albedoTexture)].lookup(w * UV[0] + h.u * UV[1] + h.v * UV[2]);
@@ -310,123 +321,67 @@ vec3 ReferenceRenderer::li(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
   return vec3(0.0f);
 }
 
-RenderResult ReferenceRenderer::render(const RenderRequest& req, Profiler& profiler) {
-  scene_ = req.scene;
-  {
-    auto s = profiler.scope("build_bvh");
-    flat_ = flatten(*req.scene, req.time);
-    tracer_ = std::make_unique<EmbreeTracer>(flat_);
-  }
+void ReferenceRenderer::prepareFrame(Frame& f) {
+  scene_ = &f.scene;
+  flat_ = &f.resources.flatScene();
+  tracer_ = &f.resources.bvh();
+  voxelTracer_.reset();
   if (voxelVisibility_) {
-    auto s = profiler.scope("voxelize_exact");
-    GridBox box = fitGridBox(*req.scene, voxels_, req.time);
-    pyramid_ = std::make_unique<OrMipPyramid>(voxelizeExact(*req.scene, box, req.time, req.threads));
     TracerInputs in;
-    in.pyramid = pyramid_.get();
+    in.pyramid = &f.resources.cpuPyramid();
     voxelTracer_ = createTracer("hierarchical", in);
-    voxelDiagonal_ = glm::length(box.voxelSize());
+    voxelDiagonal_ = f.resources.voxelDiagonal();
   }
   lights_.clear();
-  for (auto& l : req.scene->lights) lights_.push_back(packLight(l));
-  eps_ = 2e-5f * req.scene->bounds(req.time).diagonal();
+  for (auto& l : f.scene.lights) lights_.push_back(packLight(l));
+  eps_ = 2e-5f * f.scene.bounds(f.request.time).diagonal();
+  const Camera& cam = f.scene.camera;
+  view_.position = cam.position;
+  view_.fwd = glm::normalize(cam.target - cam.position);
+  view_.right = glm::normalize(glm::cross(view_.fwd, cam.up));
+  view_.up = glm::cross(view_.right, view_.fwd);
+  view_.tanHalf = std::tan(glm::radians(cam.fovYDeg) * 0.5f);
+  view_.aspect = float(f.width()) / float(f.height());
+}
 
-  const Camera& cam = req.scene->camera;
-  const vec3 fwd = glm::normalize(cam.target - cam.position);
-  const vec3 right = glm::normalize(glm::cross(fwd, cam.up));
-  const vec3 up = glm::cross(right, fwd);
-  const float tanHalf = std::tan(glm::radians(cam.fovYDeg) * 0.5f);
-  const float aspect = float(req.width) / float(req.height);
-
-  const int W = req.width, H = req.height, tile = 16;
+bool ReferenceRenderer::addSample(Frame& f, int k) {
+  const int W = f.width(), H = f.height(), tile = 16;
   const int tilesX = (W + tile - 1) / tile, tilesY = (H + tile - 1) / tile;
-  std::vector<glm::dvec3> sum(size_t(W) * H, glm::dvec3(0.0));
-  const bool splitIndirect = req.wants("indirect") || req.wants("direct");
-  std::vector<glm::dvec3> sumIndirect(splitIndirect ? sum.size() : 0, glm::dvec3(0.0));
-  std::vector<int> count(size_t(W) * H, 0);
-  int threads = req.threads > 0 ? req.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-
-  RenderResult result;
-  ProgressBar bar("reference", long(req.spp) * tilesX * tilesY);
-  auto s = profiler.scope("render");
-  int done = 0;
-  for (int pass = 0; done < req.spp && !interruptRequested(); ++pass) {
-    // Passes grow 1, 1, 2, 4, … 16 samples: early feedback, little overhead later.
-    // (Capped before shifting: 1 << (pass − 1) is undefined from pass 33 on.)
-    int n = std::min(req.spp - done, pass == 0 ? 1 : (pass <= 5 ? 1 << (pass - 1) : 16));
-    std::atomic<int> next{0};
-    auto work = [&] {
-      for (int t; (t = next.fetch_add(1)) < tilesX * tilesY;) {
-        if (interruptRequested()) return;
-        int x0 = (t % tilesX) * tile, y0 = (t / tilesX) * tile;
-        for (int y = y0; y < std::min(y0 + tile, H); ++y)
-          for (int x = x0; x < std::min(x0 + tile, W); ++x) {
-            size_t pix = size_t(y) * W + x;
-            for (int k = done; k < done + n; ++k) {
-              Pcg32 rng(uint64_t(req.seed) * 0x9E3779B97F4A7C15ULL + pix, uint64_t(k));
-              vec2 j = rng.uniform2();
-              float px = (2.0f * (x + j.x) / W - 1.0f) * tanHalf * aspect;
-              float py = (1.0f - 2.0f * (y + j.y) / H) * tanHalf;
-              vec3 d = glm::normalize(fwd + px * right + py * up);
-              vec3 indirect(0.0f);
-              vec3 L = li(cam.position, d, rng, indirect);
-              if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) sum[pix] += glm::dvec3(L);
-              else throw std::logic_error("reference: non-finite radiance");
-              if (splitIndirect) sumIndirect[pix] += glm::dvec3(indirect);
-            }
-            count[pix] += n;
-          }
-        if (req.progress) bar.advance(n);
-      }
-    };
-    std::vector<std::thread> pool;
-    std::exception_ptr error;
-    std::mutex errorMutex;
-    for (int i = 0; i < threads; ++i)
-      pool.emplace_back([&] {
-        try {
-          work();
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(errorMutex);
-          error = std::current_exception();
-          next = tilesX * tilesY;
+  vec3* image = f.samplePixels("image");
+  vec3* indirectOut = f.wants("indirect") ? f.samplePixels("indirect") : nullptr;
+  vec3* directOut = f.wants("direct") ? f.samplePixels("direct") : nullptr;
+  const uint32_t seed = f.request.seed;
+  auto s = f.profiler.scope("render");
+  parallelFor(size_t(tilesX) * tilesY, 1, f.request.threads, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      if (interruptRequested()) return;
+      const int x0 = int(t % size_t(tilesX)) * tile, y0 = int(t / size_t(tilesX)) * tile;
+      for (int y = y0; y < std::min(y0 + tile, H); ++y)
+        for (int x = x0; x < std::min(x0 + tile, W); ++x) {
+          const size_t pix = size_t(y) * W + x;
+          // Every (pixel, sample) owns a stream: the image is the same for any thread count.
+          Pcg32 rng(uint64_t(seed) * 0x9E3779B97F4A7C15ULL + pix, uint64_t(k));
+          vec2 j = rng.uniform2();
+          float px = (2.0f * (x + j.x) / W - 1.0f) * view_.tanHalf * view_.aspect;
+          float py = (1.0f - 2.0f * (y + j.y) / H) * view_.tanHalf;
+          vec3 d = glm::normalize(view_.fwd + px * view_.right + py * view_.up);
+          vec3 indirect(0.0f);
+          vec3 L = li(view_.position, d, rng, indirect);
+          if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z))
+            throw std::logic_error("reference: non-finite radiance");
+          image[pix] = L;
+          if (indirectOut) indirectOut[pix] = indirect;
+          if (directOut) directOut[pix] = L - indirect;
         }
-      });
-    for (auto& th : pool) th.join();
-    if (error) std::rethrow_exception(error);
-    if (!interruptRequested()) done += n;
-  }
-  bar.finish();
+    }
+  });
+  return !interruptRequested();
+}
 
-  result.image = Image(W, H);
-  int minCount = req.spp;
-  for (size_t i = 0; i < sum.size(); ++i) {
-    minCount = std::min(minCount, count[i]);
-    if (count[i] > 0) result.image.pixels[i] = vec3(sum[i] / double(count[i]));
-  }
-  if (splitIndirect) {
-    Image indirect(W, H), direct(W, H);
-    for (size_t i = 0; i < sum.size(); ++i)
-      if (count[i] > 0) {
-        indirect.pixels[i] = vec3(sumIndirect[i] / double(count[i]));
-        direct.pixels[i] = vec3((sum[i] - sumIndirect[i]) / double(count[i]));
-      }
-    if (req.wants("indirect")) result.aovs["indirect"] = std::move(indirect);
-    if (req.wants("direct")) result.aovs["direct"] = std::move(direct);
-  }
-  result.interrupted = done < req.spp;
-  result.sppCompleted = minCount;
-  result.extra["threads"] = threads;
-  result.built = {"bvh"};
-  if (voxelTracer_) {
-    result.built.push_back("binary_grid");
-    result.built.push_back("or_mip_pyramid");
-    result.extra["voxel_diagonal"] = voxelDiagonal_;
-  }
-  result.extra["triangles"] = flat_.triangleCount();
-  tracer_.reset();
-  voxelTracer_.reset();
-  pyramid_.reset();
-  return result;
+void ReferenceRenderer::finishFrame(Frame& f) {
+  f.extra["threads"] = resolveThreads(f.request.threads);
+  if (voxelTracer_) f.extra["voxel_diagonal"] = voxelDiagonal_;
+  f.extra["triangles"] = flat_->triangleCount();
 }
 
 }  // namespace

@@ -22,10 +22,9 @@ std::string exactText(const nlohmann::json& v) {
 const std::vector<MethodInfo>& methodRegistry() {
   static const std::vector<MethodInfo> table = {
       {"direct", "GL deferred direct lighting with shadow maps (delta lights, emission)", true,
-       {"gbuffer", "light_maps"}, [](ParamSet& p, const Scene& s) { return createDirectMethod(p, s); },
+       [](ParamSet& p, const Scene& s) { return createDirectMethod(p, s); },
        [](const nlohmann::json&) { return Counterpart{"reference", {"integrator=direct"}, {}}; }},
       {"nearfield", "GL near-field one-bounce GI: voxel visibility + RSM back-projection (VGI 5.1)", true,
-       {"binary_grid", "or_mip_pyramid", "rsm", "gbuffer"},
        [](ParamSet& p, const Scene& s) { return createNearFieldMethod(p, s); },
        [](const nlohmann::json& p) {
          return Counterpart{"reference",
@@ -33,7 +32,7 @@ const std::vector<MethodInfo>& methodRegistry() {
                              std::string("env=") + (p.at("env").get<bool>() ? "true" : "false")},
                             {"direct", "indirect"}};
        }},
-      {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false, {"bvh"},
+      {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
        [](ParamSet& p, const Scene& s) { return createReferenceMethod(p, s); }},
   };
   return table;

@@ -17,6 +17,7 @@
 #include "core/progress.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
+#include "illum/sample_loop.h"
 
 namespace fs = std::filesystem;
 
@@ -72,15 +73,6 @@ std::unique_ptr<Method> createMethod(const RenderOptions& opt, const MethodInfo&
   return method;
 }
 
-// The sample passes the method declares that this render actually timed (a
-// method lists every pass it may run; `blur`, say, runs only with interleaving).
-std::vector<std::string> timedSamplePasses(const RenderResult& r, const nlohmann::json& timings) {
-  std::vector<std::string> passes;
-  for (auto& p : r.samplePasses)
-    if (timings.contains(p)) passes.push_back(p);
-  return passes;
-}
-
 // What one render() reports: samples, per-pass timings, the method's stats.
 nlohmann::json renderStats(const RenderResult& r, const Profiler& profiler) {
   const nlohmann::json timings = profiler.timingsMs();
@@ -91,7 +83,7 @@ nlohmann::json renderStats(const RenderResult& r, const Profiler& profiler) {
           {"total_ms", profiler.totalMs()},
           {"extra", r.extra},
           {"built", r.built},
-          {"sample_passes", timedSamplePasses(r, timings)}};
+          {"sample_passes", r.samplePasses}};
 }
 
 // A method that returns a non-finite pixel must never have it written as if
@@ -132,7 +124,7 @@ nlohmann::json resolveParameters(const RenderOptions& opt) {
   return params.resolved();
 }
 
-RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
+RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame, const CheckpointSink& onCheckpoint) {
   if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
   if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
     fail("--size ", opt.width, "x", opt.height, ": each side must be in [1, 16384]");
@@ -154,24 +146,35 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
            known.empty() ? "it has none besides the image" : "known: " + known, ")");
     }
 
+  if (!opt.checkpoints.empty() && opt.frames > 1)
+    fail("--checkpoints applies to a still; --frames ", opt.frames, " renders an animation");
+  for (int c : opt.checkpoints)
+    if (c < 1 || c > opt.spp) fail("--checkpoints: ", c, " is not a sample count in [1, --spp ", opt.spp, "]");
+
   std::unique_ptr<GlContext> gl;
   std::unique_ptr<ShaderLibrary> shaders;
   if (info.needsGl) {
     gl = GlContext::create(opt.gl);
     shaders = std::make_unique<ShaderLibrary>();
   }
+  const SceneNeeds needs = method->needs();
+  needs.check(info.name, info.needsGl);
   RenderRequest req;
   req.scene = &scene;
+  req.method = info.name;
+  req.accumulation = opt.accumulation;
+  req.checkpoints = opt.checkpoints;
   req.width = opt.width;
   req.height = opt.height;
   req.spp = opt.spp;
   req.seed = opt.seed;
   req.threads = opt.threads;
-  req.gl = gl.get();
-  req.shaders = shaders.get();
   req.progress = opt.progress && opt.frames == 1;
   req.aovs = opt.aovs;
   for (int f = 0; f < opt.frames; ++f) req.frameTimes.push_back(opt.time + float(f) * opt.timeStep);
+  // The framework's, kept across the frames of an animation.
+  SceneResources resources(scene, needs, gl.get(), shaders.get(), req.frameTimes, opt.threads);
+  SampleTargets targets;
 
   // What describes the run (the same for every frame).
   nlohmann::json run;
@@ -192,7 +195,8 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
   run["triangles"] = scene.triangleCount();
   run["degenerate_triangles_dropped"] = scene.report.degenerateTrianglesDropped;
   run["warnings"] = scene.report.warnings;
-  run["needs"] = info.needs;
+  run["needs"] = needs.names();
+  run["accumulation"] = opt.accumulation == Accumulation::Compensated ? "compensated" : "plain";
   run["aovs"] = opt.aovs;
   auto checkGl = [&] {
     if (gl && gl->errorCount() > 0)
@@ -205,7 +209,20 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
   if (opt.frames == 1) {
     req.time = opt.time;
     Profiler profiler(gl != nullptr);
-    out.result = method->render(req, profiler);
+    if (onCheckpoint)
+      req.onCheckpoint = [&](const RenderResult& sofar, Profiler& p) {
+        checkFinite(sofar, info.name);
+        RenderOutput c;
+        c.result = sofar;
+        c.stats = run;
+        p.resolve(true);
+        c.stats.update(renderStats(sofar, p));
+        c.stats["checkpoint"] = true;
+        c.stats["wall_ms"] =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        onCheckpoint(sofar.sppCompleted, c);
+      };
+    out.result = renderFrame(*method, req, resources, targets, shaders.get(), profiler);
     profiler.resolve(true);
     checkFinite(out.result, info.name);
     nlohmann::json& s = out.stats;
@@ -234,7 +251,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame) {
     req.time = req.frameTimes[size_t(f)];
     const auto tf = std::chrono::steady_clock::now();
     Profiler profiler(gl != nullptr);
-    out.result = method->render(req, profiler);
+    out.result = renderFrame(*method, req, resources, targets, shaders.get(), profiler);
     profiler.resolve(true);
     checkGl();
     checkFinite(out.result, info.name);
@@ -311,6 +328,17 @@ std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::
   return files;
 }
 
+std::vector<std::string> writeCheckpointOutputs(const RenderOutput& out, const std::string& path, int spp,
+                                                float exposure) {
+  char number[24];
+  std::snprintf(number, sizeof number, ".spp%05d", spp);
+  const std::string stem = stemOf(path) + number;
+  std::vector<std::string> files = writeImages(out.result, stem, exposure);
+  files.insert(files.begin() + 2, stem + ".json");
+  writeStats(out.stats, stem + ".json", files, exposure);
+  return files;
+}
+
 std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame, float exposure) {
   char number[16];
   std::snprintf(number, sizeof number, "_%04d", frame);
@@ -336,7 +364,7 @@ std::string describeMethod(const std::string& name, const std::string& sceneSpec
     for (auto& x : v) s += (s.empty() ? "" : ", ") + x;
     return s.empty() ? std::string("-") : s;
   };
-  os << "needs: " << list(info.needs) << "\n";
+  os << "needs: " << list(method->needs().names()) << " (with these defaults)\n";
   os << "outputs: image" << (method->outputs().empty() ? "" : ", " + list(method->outputs())) << " (--aov NAME,...)\n";
   os << "parameters (--set key=value; scene-dependent defaults shown for " << sceneSpec << "):\n";
   for (auto& d : params.docs())

@@ -31,6 +31,8 @@ struct RenderOptions {
   GlBackend gl = GlBackend::Auto;
   bool progress = true;
   std::vector<std::string> aovs;  // --aov: extra output channels
+  Accumulation accumulation = Accumulation::Compensated;  // --accumulate
+  std::vector<int> checkpoints;   // --checkpoints: sample counts to write the image at (a still)
 };
 
 struct RenderOutput {
@@ -46,8 +48,12 @@ void parseSize(const std::string& text, int& width, int& height);
 // stats are the frame's: time, timings, extra) and the returned output holds
 // the last frame's image and stats for the whole run, with a "frames" array.
 // Ctrl-C stops an animation after the current frame.
+// With checkpoints, `onCheckpoint` receives the image and its stats at each
+// of those sample counts below --spp (the result is the last).
 using FrameSink = std::function<void(int frame, const RenderOutput& output)>;
-RenderOutput runRender(const RenderOptions& options, const FrameSink& onFrame = {});
+using CheckpointSink = std::function<void(int spp, const RenderOutput& output)>;
+RenderOutput runRender(const RenderOptions& options, const FrameSink& onFrame = {},
+                       const CheckpointSink& onCheckpoint = {});
 
 // The method's parameters as a render with these options would resolve them
 // (scene-dependent defaults included), without rendering.
@@ -56,6 +62,9 @@ nlohmann::json resolveParameters(const RenderOptions& options);
 // Writes <stem>.exr, <stem>.png and <stem>.json (stats) for output path `path`
 // (.exr or .png), and <stem>.<aov>.exr/.png per extra output; returns the files written.
 std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path, float exposure);
+// A checkpoint of a still: <stem>.sppNNNNN.exr/.png/.json (+ outputs); returns the files written.
+std::vector<std::string> writeCheckpointOutputs(const RenderOutput& out, const std::string& path, int spp,
+                                                float exposure);
 // An animation's frame: <stem>_NNNN.exr/.png and <stem>_NNNN.<aov>.exr/.png (no JSON);
 // returns the files written.
 std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame, float exposure);

@@ -45,7 +45,7 @@ void GlPyramid::build(const BinaryGrid& grid, ShaderLibrary& shaders) {
 
 void GlPyramid::reduce(ShaderLibrary& shaders) {
   const unsigned prog = shaders.program({"traverse/or_mip.comp.glsl"});
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_GRID_WORDS, buffer_);
   glUseProgram(prog);
   const glm::uvec2 base(box_.resolution.x, box_.resolution.y);
   const uint32_t D = box_.resolution.z, wpc = D / 32u;
@@ -119,8 +119,8 @@ std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& sh
   glNamedBufferStorage(bufs[1], GLsizeiptr(std::min(batch, rays.size()) * 32), nullptr, 0);
   glUseProgram(prog);
   pyramid.bind(prog);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, bufs[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bufs[1]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_RAYS, bufs[0]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_HITS, bufs[1]);
   std::vector<glm::uvec4> hits;
   for (size_t b = 0; b < rays.size(); b += batch) {
     const size_t n = std::min(batch, rays.size() - b);

@@ -33,6 +33,7 @@
 #include "voxelize/atlas.h"
 #include "voxelize/gpu_grid.h"
 #include "shaders/shared/atlas_footprint.glsl"
+#include "shaders/shared/bindings.glsl"
 
 namespace vgi {
 
@@ -90,9 +91,9 @@ struct AtlasVoxelizer::ValueBuffers {
       if (sums[k]) glCopyNamedBufferSubData(sums[k], o.sums[k], 0, 0, GLsizeiptr(cells * 16));
   }
   void bind() const {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, counts);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, counts);
     for (unsigned k = 0; k < 3; ++k)
-      if (sums[k]) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5 + k, sums[k]);
+      if (sums[k]) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_NORMAL + k, sums[k]);
   }
 };
 
@@ -321,9 +322,9 @@ void AtlasVoxelizer::setPointCellInputs(unsigned program, const MeshGpu& m, floa
   glProgramUniform1f(program, glGetUniformLocation(program, "uFootprint"), request_.atlasFootprint * m.texelWorld);
   glm::mat4 model = m.mesh->objectToWorld(time);
   glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "uModel"), 1, GL_FALSE, &model[0][0]);
-  glBindTextureUnit(0, targets_[0]);
-  glBindTextureUnit(4, targets_[1]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.vbo);
+  glBindTextureUnit(TEXUNIT_ATLAS_POSITION, targets_[0]);
+  glBindTextureUnit(TEXUNIT_ATLAS_TRIANGLE, targets_[1]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
 }
 
 void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGridBuffer& target,
@@ -354,7 +355,7 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     // covers keeps that centre's point (the regular lattice the resolution
     // rule relies on); the others hold edge or corner points of slivers.
     const int clampLoc = glGetUniformLocation(renderProg_, "uClampToTriangle");
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, m.vbo);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
     glUniform1i(clampLoc, 0);
     glDrawArrays(GL_POINTS, 0, m.corners);
     glUniform1i(clampLoc, 1);  // line fragments overshoot the edge's ends
@@ -368,8 +369,8 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     glUseProgram(insertProg_);
     glProgramUniform2i(insertProg_, glGetUniformLocation(insertProg_, "uAtlasSize"), R, R);
     setPointCellInputs(insertProg_, m, time);
-    target.bind(0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, counter);
+    target.bind(BINDING_GRID_WORDS);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VOXEL_COUNTER, counter);
     glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -378,7 +379,8 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     glUseProgram(valueProg_);
     glProgramUniform2i(valueProg_, glGetUniformLocation(valueProg_, "uAtlasSize"), R, R);
     setPointCellInputs(valueProg_, m, time);
-    for (unsigned k = 0; k < 3; ++k) glBindTextureUnit(1 + k, valueTargets_[k]);
+    const unsigned units[3] = {TEXUNIT_ATLAS_NORMAL, TEXUNIT_ATLAS_ALBEDO, TEXUNIT_ATLAS_GLOSSY};
+    for (unsigned k = 0; k < 3; ++k) glBindTextureUnit(units[k], valueTargets_[k]);
     values->bind();
     glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
+#include "shaders/shared/bindings.glsl"
 #include "voxelize/voxelizer.h"
 
 namespace vgi {
@@ -46,7 +47,7 @@ BinaryGrid rasterizeSceneIntoGrid(const VoxelizeRequest& req, unsigned program, 
     auto s = prof.scope(passName);
     drawWithoutAttachments(width, height, [&] {
       glUseProgram(program);
-      target.bind(0);
+      target.bind(BINDING_GRID_WORDS);
       gpu->draw();
     });
   }

@@ -6,8 +6,4 @@
 #pragma once
 #endif
 
-#define TEXUNIT_GBUFFER_POSITION 0
-#define TEXUNIT_GBUFFER_NORMAL 1
-#define TEXUNIT_GBUFFER_ALBEDO 2
-#define TEXUNIT_GBUFFER_GEOMETRIC_NORMAL 4
-#define TEXUNIT_PASS_INPUT 3
+#include "bindings.glsl"

@@ -6,11 +6,7 @@
 #include "lights.glsl"
 #endif
 
-#define BINDING_MATERIALS 0      // SSBO PackedMaterial[]
-#define BINDING_TRI_MATERIAL 1   // SSBO int[] material index per triangle
-#define BINDING_LIGHTS 2         // SSBO PackedLight[]
-#define TEXUNIT_ALBEDO_ARRAY 8   // sampler2DArray of albedo textures (one size)
-#define TEXUNIT_ENV_MAP 9        // sampler2D lat-long environment
+#include "bindings.glsl"
 
 SHARED_BEGIN
 struct PackedMaterial {

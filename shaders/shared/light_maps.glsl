@@ -15,12 +15,7 @@
 #include "cpp_prelude.h"
 #endif
 
-#define BINDING_LIGHT_FACES 4       // SSBO LightFace[]
-#define BINDING_LIGHT_RANGES 5      // SSBO ivec4[] per light: x first face, y face count
-#define TEXUNIT_LIGHT_DISTANCE 10   // sampler2DArray R32F
-#define TEXUNIT_LIGHT_POSITION 11   // sampler2DArray RGBA32F (w = 1 where a surface was seen)
-#define TEXUNIT_LIGHT_NORMAL 12     // sampler2DArray RGBA16F
-#define TEXUNIT_LIGHT_RADIANCE 13   // sampler2DArray RGBA16F, reflected direct radiance (diffuse)
+#include "bindings.glsl"
 
 SHARED_BEGIN
 

@@ -8,7 +8,7 @@
 #include "cpp_prelude.h"
 #include "voxel_grid.glsl"
 #endif
-#define BINDING_PYRAMID 6  // SSBO: the pyramid's words, for GLSL tracers (shaders/traverse/tracer.glsl)
+#include "bindings.glsl"
 SHARED_BEGIN
 
 const uint kMaxPyramidLevels = 16u;

@@ -4,7 +4,7 @@
 #include "../shared/voxel_grid.glsl"
 #include "../shared/or_mip.glsl"
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(std430, binding = 0) buffer Pyramid { uint words[]; };
+layout(std430, binding = BINDING_GRID_WORDS) buffer Pyramid { uint words[]; };
 uniform uvec2 uSize;
 uniform uvec2 uChildSize;
 uniform uint uDepth;

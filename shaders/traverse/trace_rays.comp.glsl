@@ -8,8 +8,9 @@ struct Ray {
   vec3 dir;
   float pad;
 };
-layout(std430, binding = 0) readonly buffer Rays { Ray rays[]; };
-layout(std430, binding = 1) writeonly buffer Hits { uvec4 hits[]; };  // 2 per ray
+#include "../shared/bindings.glsl"
+layout(std430, binding = BINDING_TRACE_RAYS) readonly buffer Rays { Ray rays[]; };
+layout(std430, binding = BINDING_TRACE_HITS) writeonly buffer Hits { uvec4 hits[]; };  // 2 per ray
 uniform uint uRayCount;
 void main() {
   uint i = gl_GlobalInvocationID.x;

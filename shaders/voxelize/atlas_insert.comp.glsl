@@ -4,8 +4,9 @@
 // (insertAtlasPoints) runs the same shared kernels.
 #include "grid_uniforms.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 0) buffer Columns { uint words[]; };
-layout(std430, binding = 1) buffer Counters { uint points; };
+#include "../shared/bindings.glsl"
+layout(std430, binding = BINDING_GRID_WORDS) buffer Columns { uint words[]; };
+layout(std430, binding = BINDING_VOXEL_COUNTER) buffer Counters { uint points; };
 void visitCell(ivec2 texel, uvec3 c) {
   atomicOr(words[columnWordIndex(c.x, c.y, depthWord(c.z), uResolution)], depthBit(c.z));
 }

@@ -6,13 +6,14 @@
 #include "grid_uniforms.glsl"
 #include "../shared/value_grid.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 1) uniform sampler2D atlasNormal;
-layout(binding = 2) uniform sampler2D atlasAlbedo;
-layout(binding = 3) uniform sampler2D atlasGlossy;
-layout(std430, binding = 4) buffer Counts { uint counts[]; };
-layout(std430, binding = 5) buffer NormalSums { uint normalSums[]; };
-layout(std430, binding = 6) buffer AlbedoSums { uint albedoSums[]; };
-layout(std430, binding = 7) buffer GlossySums { uint glossySums[]; };
+#include "../shared/bindings.glsl"
+layout(binding = TEXUNIT_ATLAS_NORMAL) uniform sampler2D atlasNormal;
+layout(binding = TEXUNIT_ATLAS_ALBEDO) uniform sampler2D atlasAlbedo;
+layout(binding = TEXUNIT_ATLAS_GLOSSY) uniform sampler2D atlasGlossy;
+layout(std430, binding = BINDING_VALUE_COUNTS) buffer Counts { uint counts[]; };
+layout(std430, binding = BINDING_VALUE_NORMAL) buffer NormalSums { uint normalSums[]; };
+layout(std430, binding = BINDING_VALUE_ALBEDO) buffer AlbedoSums { uint albedoSums[]; };
+layout(std430, binding = BINDING_VALUE_GLOSSY) buffer GlossySums { uint glossySums[]; };
 void visitCell(ivec2 t, uvec3 cell) {
   atomicAdd(counts[valueIndex(cell, uResolution, 0u) / 4u], 1u);
 #ifdef VALUE_NORMAL

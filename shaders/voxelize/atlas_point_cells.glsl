@@ -5,9 +5,10 @@
 #include "grid_uniforms.glsl"
 #include "../shared/triangle_box.glsl"
 #include "../shared/atlas_footprint.glsl"
-layout(binding = 0) uniform sampler2D atlasPosition;
-layout(binding = 4) uniform isampler2D atlasTriangle;
-layout(std430, binding = 3) readonly buffer Corners { float corners[]; };  // the mesh's VBO
+#include "../shared/bindings.glsl"
+layout(binding = TEXUNIT_ATLAS_POSITION) uniform sampler2D atlasPosition;
+layout(binding = TEXUNIT_ATLAS_TRIANGLE) uniform isampler2D atlasTriangle;
+layout(std430, binding = BINDING_ATLAS_CORNERS) readonly buffer Corners { float corners[]; };  // the mesh's VBO
 uniform ivec2 uAtlasSize;
 uniform float uFootprint;  // world radius; 0: the point only
 uniform mat4 uModel;

@@ -5,6 +5,8 @@
 // edge's ends by up to half a texel: they are pulled back onto their triangle,
 // so every point lies on the surface.
 #include "../shared/closest_point.glsl"
+// Outside #ifdef MULTI_VALUED: the library includes a file once, at its first #include line.
+#include "../shared/bindings.glsl"
 #ifdef MULTI_VALUED
 #include "../shared/constants.glsl"
 #include "../shared/sampling.glsl"
@@ -22,7 +24,7 @@ in vec2 vTexUv;
 flat in int vTriangle;
 uniform mat4 uModel;
 uniform int uClampToTriangle;
-layout(std430, binding = 3) readonly buffer Corners { float corners[]; };  // the VBO: ATLAS_VERTEX_FLOATS per corner
+layout(std430, binding = BINDING_ATLAS_CORNERS) readonly buffer Corners { float corners[]; };  // the VBO: ATLAS_VERTEX_FLOATS per corner
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out int outTriangle;
 vec3 corner(int i) {

@@ -9,7 +9,8 @@ flat in vec3 gA;
 flat in vec3 gB;
 flat in vec3 gC;
 uniform uvec4 uResolution;
-layout(std430, binding = 0) buffer Columns { uint words[]; };
+#include "../shared/bindings.glsl"
+layout(std430, binding = BINDING_GRID_WORDS) buffer Columns { uint words[]; };
 
 vec3 unswizzle(vec3 s, int axis) {
   if (axis == 0) return vec3(s.z, s.x, s.y);

@@ -1,7 +1,8 @@
 #include "../shared/voxel_grid.glsl"
 in float vDepth;
 uniform uvec4 uResolution;
-layout(std430, binding = 0) buffer Columns { uint words[]; };
+#include "../shared/bindings.glsl"
+layout(std430, binding = BINDING_GRID_WORDS) buffer Columns { uint words[]; };
 void main() {
   if (vDepth < 0.0f || vDepth > float(uResolution.z)) return;
   uint k = min(uint(vDepth), uResolution.z - 1u);

@@ -1,6 +1,7 @@
 // Deferred direct lighting: per pixel, every delta light through the shared
 // light and BRDF kernels, visibility from the shadow maps, plus emission; the
-// environment where no surface was seen. Adds one jittered sample into uAccum.
+// environment where no surface was seen. Writes one jittered sample into uSample
+// (the sample loop accumulates it).
 #include "../../shared/constants.glsl"
 #include "../../shared/sampling.glsl"
 #include "../../shared/brdf.glsl"
@@ -14,7 +15,7 @@ layout(binding = TEXUNIT_GBUFFER_POSITION) uniform sampler2D gPosition;
 layout(binding = TEXUNIT_GBUFFER_NORMAL) uniform sampler2D gNormal;
 layout(binding = TEXUNIT_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
 layout(binding = TEXUNIT_GBUFFER_GEOMETRIC_NORMAL) uniform sampler2D gGeometricNormal;
-layout(rgba32f, binding = 0) uniform image2D uAccum;
+layout(rgba32f, binding = IMAGE_SAMPLE) uniform writeonly image2D uSample;
 
 uniform vec3 uCameraPosition;
 uniform mat4 uInvViewProj;
@@ -23,7 +24,7 @@ uniform float uNormalOffset;   // in shadow-map texels
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(uAccum);
+  ivec2 size = imageSize(uSample);
   if (px.x >= size.x || px.y >= size.y) return;
   vec4 P = texelFetch(gPosition, px, 0);
   vec3 L = vec3(0.0f);
@@ -48,5 +49,5 @@ void main() {
       if (lit) L += evalBrdf(brdf, n, wo, ls.wi) * ls.radiance * cosI;
     }
   }
-  imageStore(uAccum, px, imageLoad(uAccum, px) + vec4(L, 1.0f));
+  imageStore(uSample, px, vec4(L, 1.0f));
 }

@@ -6,7 +6,7 @@
 #include "indirect_buffer.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler2D uInput;
-layout(rgba32f, binding = 0) uniform writeonly image2D uOutput;
+layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D uOutput;
 uniform int uInterleave;
 
 void main() {

@@ -28,7 +28,7 @@
 #include "indirect_buffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba32f, binding = 0) uniform writeonly image2D uIndirect;
+layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D uIndirect;
 
 uniform int uRays;           // N
 uniform int uInterleave;     // k

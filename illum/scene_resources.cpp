@@ -1,0 +1,194 @@
+#include "illum/scene_resources.h"
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "core/gpu_scene.h"
+#include "core/profiler.h"
+#include "core/scene.h"
+#include "illum/light_maps.h"
+#include "traverse/embree_tracer.h"
+#include "traverse/gl_ray_tracer.h"
+#include "traverse/or_mip_pyramid.h"
+#include "voxelize/atlas.h"
+#include "voxelize/atlas_voxelizer.h"
+#include "voxelize/voxelizer.h"
+
+namespace vgi {
+
+std::vector<std::string> SceneNeeds::names() const {
+  std::vector<std::string> n;
+  if (gbuffer) n.push_back("gbuffer");
+  if (lightMaps) n.push_back(lightMaps->reflective ? "rsm" : "light_maps");
+  if (binaryGrid) n.push_back("binary_grid");
+  if (orMipPyramid) n.push_back("or_mip_pyramid");
+  if (bvh) n.push_back("bvh");
+  return n;
+}
+
+void SceneNeeds::check(const std::string& method, bool gl) const {
+  if (orMipPyramid && !binaryGrid)
+    fail("method '", method, "' asks for an OR-mip pyramid without a binary grid");
+  if (gl && binaryGrid && !orMipPyramid)
+    fail("method '", method,
+         "' asks for a GL binary grid without its pyramid (GLSL reads the grid as its level 0)");
+  if (!gl && (gbuffer || lightMaps))
+    fail("method '", method, "' runs on the CPU but asks for GL resources (G-buffer, light maps)");
+  if (binaryGrid) {
+    const VoxelizerInfo& v = findVoxelizer(binaryGrid->voxelizer);
+    if (v.needsGl && !gl) fail("method '", method, "' runs on the CPU but voxelizer '", v.name, "' needs GL");
+  }
+}
+
+SceneResources::SceneResources(const Scene& scene, SceneNeeds needs, GlContext* gl, ShaderLibrary* shaders,
+                               std::vector<float> frameTimes, int threads)
+    : scene_(scene),
+      needs_(std::move(needs)),
+      gl_(gl),
+      shaders_(shaders),
+      frameTimes_(std::move(frameTimes)),
+      threads_(threads) {
+  VGI_CHECK(bool(gl_) == bool(shaders_));
+}
+
+SceneResources::~SceneResources() = default;
+
+bool SceneResources::update(float time, Profiler& prof) {
+  const bool dynamic = scene_.hasDynamicMeshes();
+  rebuilt_ = first_ || (dynamic && time != time_);
+  time_ = time;
+  if (!rebuilt_) return false;
+  const bool first = first_;
+  first_ = false;
+
+  const bool gpuScene = needs_.gbuffer || needs_.lightMaps;
+  if (gpuScene) {
+    auto s = prof.scope("upload");
+    if (!gpu_)
+      gpu_ = std::make_unique<GpuScene>(scene_, time);
+    else
+      gpu_->setTime(scene_, time);
+  }
+  if (needs_.lightMaps) {
+    if (!lightMaps_)
+      lightMaps_ = std::make_unique<LightMaps>(scene_, *gpu_, *shaders_, needs_.lightMaps->resolution,
+                                               needs_.lightMaps->reflective, prof);
+    else
+      lightMaps_->render(*gpu_, *shaders_, prof);
+  }
+  if (needs_.binaryGrid) {
+    if (first) {
+      // One grid box for the whole animation: the union of the frames' bounds.
+      Bounds b;
+      for (float t : frameTimes_.empty() ? std::vector<float>{time} : frameTimes_) {
+        Bounds f = scene_.bounds(t);
+        b.extend(f.lo);
+        b.extend(f.hi);
+        if (!dynamic) break;
+      }
+      box_ = fitGridBox(b, needs_.binaryGrid->resolution);
+      hasBox_ = true;
+    }
+    buildGrid(prof);
+  }
+  if (needs_.bvh) {
+    auto s = prof.scope("build_bvh");
+    bvh_.reset();
+    flat_ = std::make_unique<FlatScene>(flatten(scene_, time));
+    bvh_ = std::make_unique<EmbreeTracer>(*flat_);
+  }
+  return true;
+}
+
+void SceneResources::buildGrid(Profiler& prof) {
+  const BinaryGridNeed& g = *needs_.binaryGrid;
+  VoxelizeRequest vreq;
+  vreq.scene = &scene_;
+  vreq.box = box_;
+  vreq.time = time_;
+  vreq.threads = threads_;
+  vreq.gl = gl_;
+  vreq.shaders = shaders_;
+  vreq.atlasCacheDir = defaultAtlasCacheDir();
+  voxelsCounted_ = false;
+  if (!voxelizerStats_) voxelizerStats_ = std::make_unique<nlohmann::json>(nlohmann::json::object());
+  if (gl_ && g.voxelizer == "atlas") {
+    // The atlas voxelizer keeps the static meshes' grid on the GPU and re-inserts the dynamic ones.
+    if (!atlas_) atlas_ = std::make_unique<AtlasVoxelizer>(vreq, prof);
+    atlas_->voxelizeFrame(time_, prof);
+    if (!glPyramid_) glPyramid_ = std::make_unique<GlPyramid>(box_);
+    auto s = prof.scope("pyramid");
+    glPyramid_->build(atlas_->frameGrid(), *shaders_);
+    return;
+  }
+  BinaryGrid grid = findVoxelizer(g.voxelizer).run(vreq, prof, *voxelizerStats_);
+  if (gl_) {
+    if (!glPyramid_) glPyramid_ = std::make_unique<GlPyramid>(box_);
+    auto s = prof.scope("pyramid");
+    glPyramid_->build(grid, *shaders_);
+  } else {
+    auto s = prof.scope("pyramid");
+    cpuPyramid_ = std::make_unique<OrMipPyramid>(grid);
+  }
+}
+
+namespace {
+template <class T>
+const T& need(const std::unique_ptr<T>& p, const char* what) {
+  if (!p) fail("internal: a method read the ", what, " it did not declare in its needs");
+  return *p;
+}
+}  // namespace
+
+const GpuScene& SceneResources::gpuScene() const { return need(gpu_, "GPU scene"); }
+const LightMaps& SceneResources::lightMaps() const { return need(lightMaps_, "light maps"); }
+const GridBox& SceneResources::gridBox() const {
+  if (!hasBox_) fail("internal: a method read the grid box without declaring a binary grid");
+  return box_;
+}
+float SceneResources::voxelDiagonal() const { return glm::length(gridBox().voxelSize()); }
+const GlPyramid& SceneResources::glPyramid() const { return need(glPyramid_, "GL pyramid"); }
+const OrMipPyramid& SceneResources::cpuPyramid() const { return need(cpuPyramid_, "CPU pyramid"); }
+const EmbreeTracer& SceneResources::bvh() const { return need(bvh_, "BVH"); }
+const FlatScene& SceneResources::flatScene() const { return need(flat_, "flattened scene"); }
+
+std::vector<std::string> SceneResources::built() const {
+  std::vector<std::string> n;
+  if (lightMaps_) n.push_back(lightMaps_->reflective() ? "rsm" : "light_maps");
+  if (glPyramid_ || cpuPyramid_) {
+    n.push_back("binary_grid");  // the pyramid's level 0
+    n.push_back("or_mip_pyramid");
+  }
+  if (bvh_) n.push_back("bvh");
+  return n;
+}
+
+nlohmann::json SceneResources::gridStats() {
+  if (!needs_.binaryGrid) return nullptr;
+  if (!voxelsCounted_) {
+    if (atlas_) *voxelizerStats_ = atlas_->stats();
+    if (glPyramid_) {
+      voxelsSet_ = glPyramid_->countLevel0();
+    } else {
+      const OrMipPyramid& p = *cpuPyramid_;
+      const size_t end = p.levels() > 1 ? p.levelOffset(1) : p.words().size();
+      voxelsSet_ = 0;
+      for (size_t i = p.levelOffset(0); i < end; ++i)
+        voxelsSet_ += uint64_t(__builtin_popcount(p.words()[i]));
+    }
+    voxelsCounted_ = true;
+  }
+  const glm::uvec3 r = needs_.binaryGrid->resolution;
+  return {{"resolution", {r.x, r.y, r.z}},
+          {"voxelizer", needs_.binaryGrid->voxelizer},
+          {"voxels_set", voxelsSet_},
+          {"stats", *voxelizerStats_},
+          {"rebuilt_this_frame", rebuilt_}};
+}
+
+nlohmann::json SceneResources::lightMapStats() const {
+  if (!lightMaps_) return nullptr;
+  return lightMaps_->describe();
+}
+
+}  // namespace vgi

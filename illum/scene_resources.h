@@ -1,0 +1,125 @@
+// What a method needs of a scene, as a typed declaration, and the one object
+// that builds exactly that and keeps it across the frames of an animation.
+//
+// A method states its needs from its resolved parameters (Method::needs());
+// the render job makes one SceneResources per run and calls update(time)
+// before each frame: the first call builds everything; later calls, for a
+// scene with dynamic meshes, update only what moves (the GPU scene's
+// vertices, the dynamic meshes' voxels — the atlas voxelizer keeps the static
+// meshes' grid, VGI §3.2 —, the pyramid, the light maps, the BVH). Static
+// scenes build once. built() names what was actually allocated, so the
+// stats, `vgi compare` and the registry tests read facts, not declarations.
+#pragma once
+#include <glm/glm.hpp>
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "voxelize/voxel_grid.h"
+
+namespace vgi {
+
+class AtlasVoxelizer;
+class EmbreeTracer;
+class GlContext;
+class GlPyramid;
+class GpuScene;
+class LightMaps;
+class OrMipPyramid;
+class Profiler;
+struct Scene;
+class ShaderLibrary;
+struct FlatScene;
+
+struct LightMapNeed {
+  int resolution = 1024;
+  bool reflective = false;  // reflective shadow maps (position, normal, flux) for VGI §5.1
+};
+
+struct BinaryGridNeed {
+  glm::uvec3 resolution{128};
+  std::string voxelizer = "atlas";  // a name of voxelizerRegistry()
+};
+
+// The resources one render of a method uses. GL methods get GL resources (the
+// grid voxelized into GPU memory, a GPU pyramid); CPU methods get host ones.
+struct SceneNeeds {
+  bool gbuffer = false;                   // GL: the per-pixel G-buffer (a render target of the image size)
+  std::optional<LightMapNeed> lightMaps;  // GL: shadow maps / RSMs of every delta light
+  std::optional<BinaryGridNeed> binaryGrid;
+  bool orMipPyramid = false;  // over binaryGrid (required with it on GL: GLSL reads level 0)
+  bool bvh = false;           // CPU: the flattened scene in an Embree BVH
+
+  // The resource names of the stats ("gbuffer", "light_maps" or "rsm",
+  // "binary_grid", "or_mip_pyramid", "bvh"), in that order.
+  std::vector<std::string> names() const;
+  // Throws if the combination cannot be built (a pyramid without a grid, …),
+  // naming `method`.
+  void check(const std::string& method, bool gl) const;
+};
+
+class SceneResources {
+ public:
+  // gl/shaders: set for a GL method (then GL resources are made), null for a CPU one.
+  SceneResources(const Scene& scene, SceneNeeds needs, GlContext* gl, ShaderLibrary* shaders,
+                 std::vector<float> frameTimes, int threads);
+  ~SceneResources();
+  SceneResources(const SceneResources&) = delete;
+  SceneResources& operator=(const SceneResources&) = delete;
+
+  // Makes the resources current for animation time `time` (see above); returns
+  // whether anything was (re)built.
+  bool update(float time, Profiler& profiler);
+
+  const Scene& scene() const { return scene_; }
+  const SceneNeeds& needs() const { return needs_; }
+  bool rebuiltThisFrame() const { return rebuilt_; }
+  float time() const { return time_; }
+
+  // Each throws if the method did not declare it (a module reads only what it
+  // asked for, so `built` stays true).
+  const GpuScene& gpuScene() const;
+  const LightMaps& lightMaps() const;
+  const GridBox& gridBox() const;  // the grid's box: the union of the animation's bounds
+  float voxelDiagonal() const;
+  const GlPyramid& glPyramid() const;
+  const OrMipPyramid& cpuPyramid() const;
+  const EmbreeTracer& bvh() const;
+  const FlatScene& flatScene() const;  // the triangles the BVH holds
+
+  // What was allocated, as SceneNeeds::names() spells it (the G-buffer, a
+  // render target, is the sample loop's: it adds that name).
+  std::vector<std::string> built() const;
+  // The grid's stats (resolution, voxelizer, voxels set, the voxelizer's own)
+  // and the light maps'; null where absent.
+  nlohmann::json gridStats();  // counts the set voxels once per build (a read-back: call it after the image)
+  nlohmann::json lightMapStats() const;
+
+ private:
+  void buildGrid(Profiler& profiler);
+  const Scene& scene_;
+  SceneNeeds needs_;
+  GlContext* gl_;
+  ShaderLibrary* shaders_;
+  std::vector<float> frameTimes_;
+  int threads_;
+  bool first_ = true, rebuilt_ = false;
+  float time_ = 0;
+
+  std::unique_ptr<GpuScene> gpu_;
+  std::unique_ptr<LightMaps> lightMaps_;
+  GridBox box_;
+  bool hasBox_ = false;
+  std::unique_ptr<AtlasVoxelizer> atlas_;  // holds the static meshes' grid between frames
+  std::unique_ptr<GlPyramid> glPyramid_;
+  std::unique_ptr<OrMipPyramid> cpuPyramid_;
+  std::unique_ptr<FlatScene> flat_;
+  std::unique_ptr<EmbreeTracer> bvh_;
+  uint64_t voxelsSet_ = 0;
+  bool voxelsCounted_ = false;
+  std::unique_ptr<nlohmann::json> voxelizerStats_;
+};
+
+}  // namespace vgi

@@ -1,0 +1,52 @@
+// Every SSBO, texture and image unit the GL code binds, in one table read by
+// C++ (glBind*) and GLSL (layout(binding = …)). Units may repeat only between
+// resources no pass binds together: tests/core/bindings_test.cpp compiles every
+// program and checks, from GL's own introspection, that no two resources one
+// program uses share a unit, and that each unit is within this GL's limits.
+#ifdef __cplusplus
+#pragma once
+#endif
+
+// ---- shader storage buffers
+#define BINDING_MATERIALS 0        // SSBO PackedMaterial[] (shared/gpu_scene.glsl)
+#define BINDING_TRI_MATERIAL 1     // SSBO int[] material index per triangle
+#define BINDING_LIGHTS 2           // SSBO PackedLight[]
+#define BINDING_ATLAS_CORNERS 3    // SSBO a mesh's VBO, read by the atlas voxelizer's passes
+#define BINDING_LIGHT_FACES 4      // SSBO LightFace[] (shared/light_maps.glsl)
+#define BINDING_LIGHT_RANGES 5     // SSBO ivec4[] per light: x first face, y face count
+#define BINDING_PYRAMID 6          // SSBO the OR-mip pyramid's words (traverse/tracer.glsl)
+#define BINDING_GRID_WORDS 7       // SSBO a binary grid's words being written (voxelizers, or_mip build)
+#define BINDING_VOXEL_COUNTER 8    // SSBO uint counter of inserted points
+#define BINDING_VALUE_COUNTS 9     // SSBO multi-valued grid: points per voxel
+#define BINDING_VALUE_NORMAL 10    // SSBO multi-valued grid: normal sums
+#define BINDING_VALUE_ALBEDO 11    // SSBO multi-valued grid: albedo sums
+#define BINDING_VALUE_GLOSSY 12    // SSBO multi-valued grid: glossy sums
+#define BINDING_TRACE_RAYS 13      // SSBO rays of a batch trace (traverse/trace_rays.comp)
+#define BINDING_TRACE_HITS 14      // SSBO their hits
+
+// ---- textures (samplers)
+#define TEXUNIT_GBUFFER_POSITION 0          // world position, w = 1 where a surface was seen
+#define TEXUNIT_GBUFFER_NORMAL 1            // shading normal towards the viewer, w = material
+#define TEXUNIT_GBUFFER_ALBEDO 2
+#define TEXUNIT_PASS_INPUT 3                // a pass's own input texture
+#define TEXUNIT_GBUFFER_GEOMETRIC_NORMAL 4  // the triangle's normal (the shadow test's receiver plane)
+#define TEXUNIT_ATLAS_POSITION 5            // atlas voxelizer: the rendered atlas' positions
+#define TEXUNIT_ATLAS_TRIANGLE 6            // … its triangle ids
+#define TEXUNIT_ATLAS_NORMAL 7              // … normals (multi-valued grids)
+#define TEXUNIT_ALBEDO_ARRAY 8              // sampler2DArray of albedo textures (one size)
+#define TEXUNIT_ENV_MAP 9                   // sampler2D lat-long environment
+#define TEXUNIT_LIGHT_DISTANCE 10           // sampler2DArray R32F
+#define TEXUNIT_LIGHT_POSITION 11           // sampler2DArray RGBA32F (w = 1 where a surface was seen)
+#define TEXUNIT_LIGHT_NORMAL 12             // sampler2DArray RGBA16F
+#define TEXUNIT_LIGHT_RADIANCE 13           // sampler2DArray RGBA16F, reflected direct radiance (diffuse)
+#define TEXUNIT_ATLAS_ALBEDO 14             // atlas voxelizer: albedo (multi-valued grids)
+#define TEXUNIT_ATLAS_GLOSSY 15             // … glossy
+
+// ---- images
+#define IMAGE_OUTPUT 0                 // a pass's output
+#define IMAGE_SAMPLE 0                 // the sample loop's "image" channel a method writes
+#define IMAGE_SAMPLE_AOV0 1            // the first output channel (e.g. indirect)
+#define IMAGE_SAMPLE_AOV1 2            // the second (e.g. direct)
+#define IMAGE_ACCUMULATE_SAMPLE 0      // shaders/illum/accumulate.comp
+#define IMAGE_ACCUMULATE_SUM 1
+#define IMAGE_ACCUMULATE_COMPENSATION 2
