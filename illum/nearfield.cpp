@@ -59,6 +59,7 @@
 #include "core/shader_library.h"
 #include "illum/deferred.h"
 #include "illum/direct.h"
+#include "illum/gather_kit.h"
 #include "illum/light_maps.h"
 #include "illum/sample_loop.h"
 #include "shaders/shared/bindings.glsl"
@@ -70,11 +71,11 @@ namespace vgi {
 namespace {
 
 struct NearFieldParams {
-  int rays = 16, interleave = 4;
-  float radius = 0, resolution = 0.5f, offset = 0.5f;
-  bool blur = true, env = true, passThrough = true;
-  std::string tracer = "hierarchical", voxelizer = "atlas", backProjection = "plane";
-  glm::uvec3 voxels{128};
+  GatherSettings gather;
+  float radius = 0, offset = 0.5f;
+  bool env = true, passThrough = true;
+  std::string tracer = "hierarchical", backProjection = "plane";
+  BinaryGridNeed grid;
   ShadowParams shadow;
 };
 
@@ -82,20 +83,13 @@ class NearFieldMethod : public Method {
  public:
   NearFieldMethod(ParamSet& p, const Scene& scene) {
     NearFieldParams& q = p_;
-    q.rays = p.getInt("rays", 16, "rays per indirect pixel per frame", 1, 4096);
+    q.gather = readGatherParams(p, "indirect", true);
     // The default makes near-field GI plainly visible: 0.5 × the diagonal
     // gathers 82 % of the exact one-bounce light on the Cornell box (0.1 ×:
     // 8 %) and all of it on Sibenik (docs/BENCHMARKS.md, the radius table).
     q.radius = p.getFloat("radius", kDefaultNearFieldRadius * scene.bounds().diagonal(),
                           "ray length r in world units (default 0.5 x scene diagonal)", 1e-30f, 1e30f);
-    q.resolution =
-        p.getFloat("resolution", 0.5f, "indirect resolution: 1, 0.5 or 0.25 of the image", 0.0f, 1.0f);
-    if (q.resolution != 1.0f && q.resolution != 0.5f && q.resolution != 0.25f)
-      fail("parameter 'resolution': ", q.resolution, " is not one of 1, 0.5, 0.25");
-    q.interleave = p.getInt("interleave", 4, "k: k x k pixel blocks share k^2 direction sets", 1, 8);
-    q.blur = p.getBool("blur", true, "geometry-aware blur over the interleave window");
-    q.tracer =
-        p.getString("tracer", "hierarchical", "voxel tracer (GLSL define)", {"hierarchical", "dda", "march"});
+    q.tracer = readTracerParam(p);
     q.env =
         p.getBool("env", true,
                   "rays that leave the radius read the environment (directional occlusion); a scene without "
@@ -119,13 +113,7 @@ class NearFieldMethod : public Method {
                   "or that lies within a voxel diagonal of the receiver's plane and gives no light "
                   "(it may be the receiver's own)");
 
-    q.voxels =
-        parseResolution(p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"),
-                        "parameter 'voxels'");
-    std::vector<std::string> voxelizers;
-    for (auto& v : voxelizerRegistry()) voxelizers.push_back(v.name);
-    q.voxelizer = p.getString("voxelizer", "atlas", "binary voxelizer (see vgi voxelize --help)", voxelizers);
-    checkGridMemory(q.voxels, 4);  // static + frame grid (atlas), the pyramid (≈ 4/3 of a grid)
+    q.grid = readBinaryGridParams(p, 4);  // static + frame grid (atlas), the pyramid (≈ 4/3 of a grid)
     readShadowParams(p, q.shadow);
   }
   std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
@@ -133,7 +121,7 @@ class NearFieldMethod : public Method {
     SceneNeeds n;
     n.gbuffer = true;
     n.lightMaps = LightMapNeed{p_.shadow.resolution, true};
-    n.binaryGrid = BinaryGridNeed{p_.voxels, p_.voxelizer};
+    n.binaryGrid = p_.grid;
     n.orMipPyramid = true;
     return n;
   }
@@ -144,35 +132,23 @@ class NearFieldMethod : public Method {
  private:
   NearFieldParams p_;
   // Per frame (prepareFrame).
+  GatherKit kit_;
   std::unique_ptr<DirectPass> direct_;
-  unsigned indirectProg_ = 0, blurProg_ = 0, upProg_ = 0;
-  unsigned low_[2] = {0, 0};  // indirect at its resolution: gathered, blurred (the loop's scratch textures)
-  int scale_ = 1, lw_ = 0, lh_ = 0;
+  unsigned indirectProg_ = 0;
   float voxelDiagonal_ = 0;
-  bool blur_ = false;
 };
 
 void NearFieldMethod::prepareFrame(Frame& f) {
   ShaderLibrary& shaders = f.shaders();
-  scale_ = int(std::lround(1.0f / p_.resolution));
-  lw_ = (f.width() + scale_ - 1) / scale_;
-  lh_ = (f.height() + scale_ - 1) / scale_;
-  for (int i = 0; i < 2; ++i)
-    low_[i] = f.scratchTexture(i == 0 ? "indirect" : "indirect_blurred", lw_, lh_, GL_RGBA32F);
+  kit_.prepare(f, p_.gather);
   voxelDiagonal_ = f.resources.voxelDiagonal();
-  blur_ = p_.blur && p_.interleave > 1;
-  direct_ =
-      std::make_unique<DirectPass>(shaders, f.resources.gpuScene(), p_.shadow.bias, p_.shadow.normalOffset);
+  direct_ = std::make_unique<DirectPass>(shaders, f.resources.gpuScene(), p_.shadow.bias, p_.shadow.normalOffset);
   ShaderDefines defs;
   addTracerDefine(defs, p_.tracer);
   indirectProg_ = shaders.program({"illum/nearfield/indirect.comp.glsl"}, defs);
-  blurProg_ = shaders.program({"illum/nearfield/blur.comp.glsl"});
-  upProg_ = shaders.program({"illum/nearfield/upsample.comp.glsl"});
   // What stays the same over the frame's samples.
   const unsigned ip = indirectProg_;
-  shaders.setUniform(ip, "uScale", scale_);
-  shaders.setUniform(ip, "uRays", p_.rays);
-  shaders.setUniform(ip, "uInterleave", p_.interleave);
+  kit_.setFrameUniforms(shaders, ip);
   shaders.setUniform(ip, "uRadius", p_.radius);
   shaders.setUniform(ip, "uOffset", p_.offset * voxelDiagonal_);
   shaders.setUniform(ip, "uVoxelDiagonal", voxelDiagonal_);
@@ -180,67 +156,24 @@ void NearFieldMethod::prepareFrame(Frame& f) {
   shaders.setUniform(ip, "uRsmRes", p_.shadow.resolution);
   shaders.setUniform(ip, "uRefine", p_.backProjection == "plane" ? 1 : 0);
   shaders.setUniform(ip, "uPassThrough", p_.passThrough ? 1 : 0);
-  const float pixelAngle = 2.0f * std::tan(glm::radians(f.scene.camera.fovYDeg) * 0.5f) / float(f.height());
-  for (unsigned prog : {blurProg_, upProg_}) {
-    shaders.setUniform(prog, "uPixelAngle", pixelAngle);
-    shaders.setUniform(prog, "uScale", scale_);
-  }
-  shaders.setUniform(blurProg_, "uInterleave", p_.interleave);
-  shaders.setUniform(upProg_, "uWriteIndirect", f.wants("indirect") ? 1 : 0);
-  shaders.setUniform(upProg_, "uWriteDirect", f.wants("direct") ? 1 : 0);
 }
 
 bool NearFieldMethod::addSample(Frame& f, int k) {
-  ShaderLibrary& shaders = f.shaders();
-  Profiler& prof = f.profiler;
-  const GBuffer& gbuffer = f.gbuffer();
-  const unsigned sample = f.sampleImage("image");
   {
-    auto s = prof.scope("direct");
-    direct_->shade(gbuffer, f.resources.lightMaps(), f.camera, sample);
+    auto s = f.profiler.scope("direct");
+    direct_->shade(f.gbuffer(), f.resources.lightMaps(), f.camera, f.sampleImage("image"));
   }
   {
-    auto s = prof.scope("indirect");
+    auto s = f.profiler.scope("indirect");
     glUseProgram(indirectProg_);
     f.resources.gpuScene().bind(indirectProg_);
     f.resources.lightMaps().bind();
     f.resources.glPyramid().bind(indirectProg_);
-    gbuffer.bind();
-    shaders.setUniform(indirectProg_, "uFrame", k);
-    // Sample 0 unrotated; later samples rotate by Halton (5, 7) points.
-    shaders.setUniform(indirectProg_, "uRotation",
-                       k == 0 ? glm::vec2(0.0f) : glm::vec2(halton(k, 5), halton(k, 7)));
-    glBindImageTexture(IMAGE_OUTPUT, low_[0], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glDispatchCompute(unsigned(lw_ + 7) / 8, unsigned(lh_ + 7) / 8, 1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    f.gbuffer().bind();
+    kit_.setSampleUniforms(f.shaders(), indirectProg_, k);
+    kit_.dispatchGather();
   }
-  int current = 0;
-  if (blur_) {
-    auto s = prof.scope("blur");
-    glUseProgram(blurProg_);
-    shaders.setUniform(blurProg_, "uCameraPosition", f.camera.position);
-    gbuffer.bind();
-    glBindTextureUnit(TEXUNIT_PASS_INPUT, low_[0]);
-    glBindImageTexture(IMAGE_OUTPUT, low_[1], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glDispatchCompute(unsigned(lw_ + 7) / 8, unsigned(lh_ + 7) / 8, 1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    current = 1;
-  }
-  {
-    auto s = prof.scope(scale_ > 1 ? "upsample_composite" : "composite");
-    glUseProgram(upProg_);
-    shaders.setUniform(upProg_, "uCameraPosition", f.camera.position);
-    gbuffer.bind();
-    glBindTextureUnit(TEXUNIT_PASS_INPUT, low_[current]);
-    glBindImageTexture(IMAGE_SAMPLE, sample, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-    // Outputs not asked for are not written (uWriteIndirect/uWriteDirect); their units get the sample image.
-    const unsigned indirect = f.wants("indirect") ? f.sampleImage("indirect") : sample;
-    const unsigned direct = f.wants("direct") ? f.sampleImage("direct") : sample;
-    glBindImageTexture(IMAGE_SAMPLE_AOV0, indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(IMAGE_SAMPLE_AOV1, direct, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-  }
+  kit_.resolve(f);
   return true;
 }
 
@@ -249,9 +182,9 @@ void NearFieldMethod::finishFrame(Frame& f) {
   extra["radius"] = p_.radius;
   extra["voxel_diagonal"] = voxelDiagonal_;
   extra["offset_world"] = p_.offset * voxelDiagonal_;
-  extra["indirect_size"] = {lw_, lh_};
-  extra["blur_window_px"] = blur_ ? p_.interleave : 0;
-  extra["rays_per_frame"] = uint64_t(lw_) * lh_ * p_.rays;
+  extra["indirect_size"] = {kit_.width(), kit_.height()};
+  extra["blur_window_px"] = kit_.blurWindow();
+  extra["rays_per_frame"] = uint64_t(kit_.width()) * kit_.height() * p_.gather.rays;
 }
 
 }  // namespace

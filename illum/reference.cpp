@@ -51,6 +51,7 @@
 #include "core/progress.h"
 #include "illum/sample_loop.h"
 #include "illum/nearfield.h"
+#include "illum/voxel_ao.h"
 #include "shaders/shared/brdf.glsl"
 #include "shaders/shared/lights.glsl"
 #include "shaders/shared/sampling.glsl"
@@ -130,7 +131,7 @@ class ReferenceRenderer : public Method {
     if (check(usesDepth, "rr_depth")) rrDepth_ = params.getInt("rr_depth", 3, rrDoc, 0, 10000);
     else params.declare("rr_depth", "int", "3", rrDoc);
     float diag = scene.bounds().diagonal();
-    const float radiusDefault = (nearField ? kDefaultNearFieldRadius : 0.1f) * diag;
+    const float radiusDefault = (nearField ? kDefaultNearFieldRadius : kDefaultAoRadius) * diag;
     if (check(usesRadius, "radius")) radius_ = params.getFloat("radius", radiusDefault, radiusDoc, 1e-30f, 1e30f);
     else params.declare("radius", "float", std::to_string(radiusDefault), radiusDoc);
     if (check(nearField, "env")) env_ = params.getBool("env", true, envDoc);

@@ -7,6 +7,7 @@
 #include "illum/method.h"
 #include "illum/nearfield.h"
 #include "illum/reference.h"
+#include "illum/voxel_ao.h"
 
 namespace vgi {
 
@@ -31,6 +32,11 @@ const std::vector<MethodInfo>& methodRegistry() {
                             {"integrator=nearfield", "radius=" + exactText(p.at("radius")),
                              std::string("env=") + (p.at("env").get<bool>() ? "true" : "false")},
                             {"direct", "indirect"}};
+       }},
+      {"voxel_ao", "GL ambient occlusion through the binary voxel grid (hierarchical first-hit tracer, VGI 4)", true,
+       [](ParamSet& p, const Scene& s) { return createVoxelAoMethod(p, s); },
+       [](const nlohmann::json& p) {
+         return Counterpart{"reference", {"integrator=ao", "radius=" + exactText(p.at("radius"))}, {}};
        }},
       {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
        [](ParamSet& p, const Scene& s) { return createReferenceMethod(p, s); }},

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/gpu_scene.h"
+#include "core/params.h"
 #include "core/profiler.h"
 #include "core/scene.h"
 #include "illum/light_maps.h"
@@ -38,6 +39,17 @@ void SceneNeeds::check(const std::string& method, bool gl) const {
     const VoxelizerInfo& v = findVoxelizer(binaryGrid->voxelizer);
     if (v.needsGl && !gl) fail("method '", method, "' runs on the CPU but voxelizer '", v.name, "' needs GL");
   }
+}
+
+BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids) {
+  BinaryGridNeed g;
+  g.resolution = parseResolution(p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"),
+                                 "parameter 'voxels'");
+  std::vector<std::string> voxelizers;
+  for (auto& v : voxelizerRegistry()) voxelizers.push_back(v.name);
+  g.voxelizer = p.getString("voxelizer", "atlas", "binary voxelizer (see vgi voxelize --help)", voxelizers);
+  checkGridMemory(g.resolution, grids);
+  return g;
 }
 
 SceneResources::SceneResources(const Scene& scene, SceneNeeds needs, GlContext* gl, ShaderLibrary* shaders,

@@ -28,6 +28,7 @@ class GlPyramid;
 class GpuScene;
 class LightMaps;
 class OrMipPyramid;
+class ParamSet;
 class Profiler;
 struct Scene;
 class ShaderLibrary;
@@ -59,6 +60,11 @@ struct SceneNeeds {
   // naming `method`.
   void check(const std::string& method, bool gl) const;
 };
+
+// The `voxels` (N or WxHxD) and `voxelizer` parameters of a module that
+// traces a binary grid; `grids`: how many grid-sized buffers it keeps (the
+// memory check).
+BinaryGridNeed readBinaryGridParams(ParamSet& params, int grids);
 
 class SceneResources {
  public:

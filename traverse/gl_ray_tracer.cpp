@@ -6,6 +6,7 @@
 #include <glad/gl.h>
 
 #include "core/error.h"
+#include "core/params.h"
 #include "core/profiler.h"
 #include "shaders/shared/or_mip.glsl"
 #include "traverse/or_mip_pyramid.h"
@@ -95,6 +96,10 @@ void GlPyramid::bind(unsigned program) const {
   glUniform1ui(glGetUniformLocation(program, "uPyramidLevels"), params_.levels);
   glUniform1uiv(glGetUniformLocation(program, "uPyramidOffsets"), 16, params_.levelOffsets);
   glUniform1f(glGetUniformLocation(program, "uMarchStep"), marchStep_);
+}
+
+std::string readTracerParam(ParamSet& p) {
+  return p.getString("tracer", "hierarchical", "voxel tracer (GLSL define)", {"hierarchical", "dda", "march"});
 }
 
 void addTracerDefine(ShaderDefines& defines, const std::string& tracer) {

@@ -11,6 +11,7 @@
 
 namespace vgi {
 
+class ParamSet;
 class Profiler;
 
 class GpuGridBuffer;
@@ -51,6 +52,8 @@ class GlPyramid {
 // with OrMipPyramid's).
 std::vector<uint32_t> buildOrMipGl(const BinaryGrid& grid, ShaderLibrary& shaders);
 
+// The `tracer` parameter of a GL module: hierarchical (default), dda or march.
+std::string readTracerParam(ParamSet& params);
 // Adds the define that selects a GLSL tracer; throws for tracers GLSL lacks.
 void addTracerDefine(ShaderDefines& defines, const std::string& tracer);
 

@@ -10,9 +10,9 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
+#endif
 #include "triangle_box.glsl"
 #include "voxel_grid.glsl"
-#endif
 SHARED_BEGIN
 
 // At most this many cells per axis are tested (a coarse atlas with a large

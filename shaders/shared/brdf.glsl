@@ -5,9 +5,9 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
+#endif
 #include "constants.glsl"
 #include "sampling.glsl"
-#endif
 SHARED_BEGIN
 
 struct BrdfParams {

@@ -3,8 +3,8 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
-#include "constants.glsl"
 #endif
+#include "constants.glsl"
 SHARED_BEGIN
 
 SHARED_FN vec2 latLongUv(vec3 dir) {

@@ -3,8 +3,8 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
-#include "lights.glsl"
 #endif
+#include "lights.glsl"
 
 #include "bindings.glsl"
 
@@ -17,7 +17,6 @@ struct PackedMaterial {
 SHARED_END
 
 #ifndef __cplusplus
-#include "lights.glsl"
 layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { PackedMaterial materials[]; };
 layout(std430, binding = BINDING_TRI_MATERIAL) readonly buffer TriMaterialBuffer { int triMaterial[]; };
 layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBuffer { PackedLight lights[]; };

@@ -4,8 +4,8 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
-#include "constants.glsl"
 #endif
+#include "constants.glsl"
 SHARED_BEGIN
 
 const uint LIGHT_POINT = 0u;

@@ -6,8 +6,8 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
-#include "voxel_grid.glsl"
 #endif
+#include "voxel_grid.glsl"
 #include "bindings.glsl"
 SHARED_BEGIN
 

@@ -26,8 +26,8 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
-#include "voxel_grid.glsl"
 #endif
+#include "voxel_grid.glsl"
 SHARED_BEGIN
 
 const float kTraceInfinity = 3.0e38f;

@@ -5,8 +5,8 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
-#include "constants.glsl"
 #endif
+#include "constants.glsl"
 SHARED_BEGIN
 
 struct Basis {

@@ -9,9 +9,9 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
+#endif
 #include "or_mip.glsl"
 #include "ray_grid.glsl"
-#endif
 SHARED_BEGIN
 
 SHARED_FN bool voxelSet(SHARED_IN(PyramidParams) p, int x, int y, int z PYRAMID_PARAM) {

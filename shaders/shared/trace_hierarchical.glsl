@@ -31,9 +31,9 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
+#endif
 #include "or_mip.glsl"
 #include "ray_grid.glsl"
-#endif
 SHARED_BEGIN
 
 SHARED_FN uint hierarchicalMaxSteps(uint w, uint h, uint levels) { return (w + h + 3u) * (levels + 2u) + levels; }

@@ -7,8 +7,8 @@
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
-#include "trace_dda.glsl"
 #endif
+#include "trace_dda.glsl"
 SHARED_BEGIN
 
 const uint kMaxMarchSteps = 1048576u;

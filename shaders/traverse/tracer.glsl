@@ -3,6 +3,7 @@
 // sets it; any other value fails to compile):
 //   TraceHit traceRay(vec3 origin, vec3 dir, float tmax)
 //   bool visibleBetween(vec3 a, vec3 b)
+//   float exitPastHit(vec3 origin, vec3 dir, float tmax, TraceHit hit, float voxelDiagonal)
 // The pyramid and its parameters are bound by GlPyramid::bind (traverse/gl_ray_tracer.cpp).
 #include "../shared/tracer_ids.glsl"
 #ifndef VGI_TRACER
@@ -42,3 +43,13 @@ TraceHit traceRay(vec3 origin, vec3 dir, float tmax) {
 }
 
 bool visibleBetween(vec3 a, vec3 b) { return traceRay(a, b - a, 1.0f).hit == 0u; }
+
+// How far along (origin, dir) a ray resumed past the voxel `hit` starts: the
+// voxel's exit distance plus 1e-4 of a voxel diagonal (modules that pass
+// voxels they judge empty or their receiver's own). `precise`: rounded
+// without fused multiply-adds, as the tracers' shared code computes.
+float exitPastHit(vec3 origin, vec3 dir, float tmax, TraceHit hit, float voxelDiagonal) {
+  GridRay gr = prepareGridRay(gridFromUniforms(), origin, dir, tmax);
+  precise float t = voxelExitT(gr, hit.voxel) + 1e-4f * voxelDiagonal;
+  return t;
+}

@@ -8,12 +8,7 @@
 // back-projected into every reflective shadow map and receives the stored
 // radiance where the RSM sees the same surface (the ε rule); rays that leave r
 // read the environment (directional occlusion) when uEnv is set.
-//
-// Interleaved sampling (Keller and Heidrich 2001): the pixels of a k×k block
-// use k² different sets of N directions, which together stratify the
-// hemisphere (Hammersley over k²·N points, rotated per frame and per block,
-// so the pattern does not repeat with the block period); the geometry-aware
-// blur afterwards averages them.
+// Directions: the gather kit's interleaved sets (../gather/gather.glsl).
 //
 // Output: rgb = mean radiance arriving along the rays (so the reflected
 // indirect light of a diffuse surface is albedo × rgb), w = 1 where there is a
@@ -25,19 +20,16 @@
 #include "../../shared/gpu_scene.glsl"
 #include "../../shared/light_maps.glsl"
 #include "../../traverse/tracer.glsl"
-#include "indirect_buffer.glsl"
+#define GATHER_DIRECTIONS
+#include "../gather/gather.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D uIndirect;
 
-uniform int uRays;           // N
-uniform int uInterleave;     // k
 uniform float uRadius;       // r, world units
 uniform float uOffset;       // start offset along the normal, world units
 uniform float uVoxelDiagonal;
 uniform int uEnv;
-uniform vec2 uRotation;      // per-frame Cranley–Patterson rotation
-uniform int uFrame;          // each interleave block adds its own rotation (shared/sampling.glsl)
 uniform int uRsmRes;
 uniform int uPassThrough;     // 1: rays go on past empty-looking and own voxels (see main)
 uniform int uRefine;          // back-projection: 0 the voxel entry (VGI), 1 the RSM surface's plane
@@ -144,14 +136,9 @@ void main() {
   vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
   Basis frame = makeBasis(n);
   vec3 origin = P.xyz + n * uOffset;
-  uint set = uint(q.x % uInterleave + uInterleave * (q.y % uInterleave));
-  vec2 rotation = uRotation + blockRotation(uint(q.x / uInterleave), uint(q.y / uInterleave), uint(uFrame));
   vec3 sum = vec3(0.0f);
   for (int r = 0; r < uRays; ++r) {
-    // Every set alone spans the hemisphere (shared/sampling.glsl), so a blur
-    // window that loses some sets at an edge loses samples, not azimuths.
-    vec2 u = fract(interleavedSample(uint(r), set, uint(uRays), uint(uInterleave * uInterleave)) + rotation);
-    vec3 d = basisToWorld(frame, cosineSampleHemisphere(u));
+    vec3 d = gatherDirection(q, r, frame);
     // With uPassThrough the ray goes on past a hit voxel, up to three times,
     // when (a) a light sees through its entry point — nothing is there (a
     // conservatively set voxel of a thin feature) — or (b) it lies within a
@@ -178,8 +165,7 @@ void main() {
       precise float height = dot(d, n) * (start + h.t) + uOffset;  // of the hit above the receiver's plane
       bool ownBand = height < uVoxelDiagonal && b.radiance == vec3(0.0f);
       if (uPassThrough == 0 || !(b.seenThrough || ownBand) || k == 3) break;
-      GridRay gr = prepareGridRay(gridFromUniforms(), from, d, left);
-      start += voxelExitT(gr, h.voxel) + 1e-4f * uVoxelDiagonal;
+      start += exitPastHit(from, d, left, h, uVoxelDiagonal);
       if (start >= uRadius) break;
     }
   }

@@ -1,12 +1,13 @@
-// Joint bilateral upsampling (Kopf et al. 2007) of the indirect buffer to full
+// Joint bilateral upsampling (Kopf et al. 2007) of the gather buffer to full
 // resolution, and the composite: the full-resolution G-buffer guides the
-// weights (bilinear × geometry) of the 4×4 nearest indirect pixels; the
-// reflected indirect light albedo × E/π is added to the sample's direct light
-// (uSample, written by the direct pass). Where no neighbour lies on the
+// weights (bilinear × geometry) of the 4×4 nearest gather pixels. Composite
+// uComposite 0 (reflected light): albedo × E is added to the sample's direct
+// light (uSample, written by the direct pass); 1 (a value such as AO): the
+// sample is E itself (0 where no surface was seen). Where no neighbour lies on the
 // pixel's surface (thin features under ¼ resolution), the geometrically
 // closest one is used. The indirect and the direct parts alone go to the
 // output channels when asked for (uWriteIndirect, uWriteDirect).
-#include "indirect_buffer.glsl"
+#include "gather.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = TEXUNIT_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler2D uInput;
@@ -14,16 +15,18 @@ layout(rgba32f, binding = IMAGE_SAMPLE) uniform image2D uSample;
 layout(rgba32f, binding = IMAGE_SAMPLE_AOV0) uniform writeonly image2D uIndirectAov;
 layout(rgba32f, binding = IMAGE_SAMPLE_AOV1) uniform writeonly image2D uDirectAov;
 uniform int uWriteIndirect, uWriteDirect;
+uniform int uComposite;
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   ivec2 full = imageSize(uSample);
   if (px.x >= full.x || px.y >= full.y) return;
   vec4 P = texelFetch(gPosition, px, 0);
-  vec4 direct = imageLoad(uSample, px);
+  vec4 direct = uComposite == 0 ? imageLoad(uSample, px) : vec4(0.0f, 0.0f, 0.0f, 1.0f);
   if (uWriteDirect != 0) imageStore(uDirectAov, px, direct);
   if (P.w == 0.0f) {
     if (uWriteIndirect != 0) imageStore(uIndirectAov, px, vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    if (uComposite != 0) imageStore(uSample, px, vec4(0.0f, 0.0f, 0.0f, 1.0f));
     return;
   }
   vec3 p = P.xyz;
@@ -57,7 +60,7 @@ void main() {
       }
     E = wsum > 1e-6f ? sum / wsum : best;
   }
-  vec3 indirect = texelFetch(gAlbedo, px, 0).xyz * E;
+  vec3 indirect = uComposite == 0 ? texelFetch(gAlbedo, px, 0).xyz * E : E;
   imageStore(uSample, px, vec4(direct.xyz + indirect, 1.0f));
   if (uWriteIndirect != 0) imageStore(uIndirectAov, px, vec4(indirect, 1.0f));
 }

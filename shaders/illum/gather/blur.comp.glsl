@@ -3,7 +3,7 @@
 // sets of its neighbourhood with equal weight — but only from neighbours on
 // its own surface (depth along the normal, normal similarity), which keeps
 // indirect shadows and corners sharp.
-#include "indirect_buffer.glsl"
+#include "gather.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler2D uInput;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D uOutput;

@@ -1,0 +1,99 @@
+#include "illum/gather_kit.h"
+
+#include <glad/gl.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/params.h"
+#include "core/shader_library.h"
+#include "illum/deferred.h"
+#include "illum/sample_loop.h"
+#include "shaders/shared/bindings.glsl"
+
+namespace vgi {
+
+GatherSettings readGatherParams(ParamSet& p, const std::string& what, bool reflect) {
+  GatherSettings s;
+  s.reflect = reflect;
+  s.rays = p.getInt("rays", 16, what + " rays per gather pixel per frame", 1, 4096);
+  s.resolution = p.getFloat("resolution", 0.5f, what + " resolution: 1, 0.5 or 0.25 of the image", 0.0f, 1.0f);
+  if (s.resolution != 1.0f && s.resolution != 0.5f && s.resolution != 0.25f)
+    fail("parameter 'resolution': ", s.resolution, " is not one of 1, 0.5, 0.25");
+  s.interleave = p.getInt("interleave", 4, "k: k x k pixel blocks share k^2 direction sets", 1, 8);
+  s.blur = p.getBool("blur", true, "geometry-aware blur over the interleave window");
+  return s;
+}
+
+void GatherKit::prepare(Frame& f, const GatherSettings& s) {
+  s_ = s;
+  ShaderLibrary& shaders = f.shaders();
+  scale_ = int(std::lround(1.0f / s.resolution));
+  lw_ = (f.width() + scale_ - 1) / scale_;
+  lh_ = (f.height() + scale_ - 1) / scale_;
+  low_[0] = f.scratchTexture("gather", lw_, lh_, GL_RGBA32F);
+  low_[1] = f.scratchTexture("gather_blurred", lw_, lh_, GL_RGBA32F);
+  blur_ = s.blur && s.interleave > 1;
+  blurProg_ = shaders.program({"illum/gather/blur.comp.glsl"});
+  upProg_ = shaders.program({"illum/gather/upsample.comp.glsl"});
+  const float pixelAngle = 2.0f * std::tan(glm::radians(f.scene.camera.fovYDeg) * 0.5f) / float(f.height());
+  for (unsigned prog : {blurProg_, upProg_}) {
+    shaders.setUniform(prog, "uPixelAngle", pixelAngle);
+    shaders.setUniform(prog, "uScale", scale_);
+  }
+  shaders.setUniform(blurProg_, "uInterleave", s.interleave);
+  shaders.setUniform(upProg_, "uComposite", s.reflect ? 0 : 1);
+  shaders.setUniform(upProg_, "uWriteIndirect", f.wants("indirect") ? 1 : 0);
+  shaders.setUniform(upProg_, "uWriteDirect", f.wants("direct") ? 1 : 0);
+}
+
+void GatherKit::setFrameUniforms(ShaderLibrary& shaders, unsigned prog) const {
+  shaders.setUniform(prog, "uScale", scale_);
+  shaders.setUniform(prog, "uRays", s_.rays);
+  shaders.setUniform(prog, "uInterleave", s_.interleave);
+}
+
+void GatherKit::setSampleUniforms(ShaderLibrary& shaders, unsigned prog, int k) const {
+  shaders.setUniform(prog, "uFrame", k);
+  // Sample 0 unrotated; later samples rotate by Halton (5, 7) points.
+  shaders.setUniform(prog, "uRotation", k == 0 ? glm::vec2(0.0f) : glm::vec2(halton(k, 5), halton(k, 7)));
+}
+
+void GatherKit::dispatchGather() const {
+  glBindImageTexture(IMAGE_OUTPUT, low_[0], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glDispatchCompute(unsigned(lw_ + 7) / 8, unsigned(lh_ + 7) / 8, 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void GatherKit::resolve(Frame& f) const {
+  ShaderLibrary& shaders = f.shaders();
+  const GBuffer& gbuffer = f.gbuffer();
+  int current = 0;
+  if (blur_) {
+    auto s = f.profiler.scope("blur");
+    glUseProgram(blurProg_);
+    shaders.setUniform(blurProg_, "uCameraPosition", f.camera.position);
+    gbuffer.bind();
+    glBindTextureUnit(TEXUNIT_PASS_INPUT, low_[0]);
+    glBindImageTexture(IMAGE_OUTPUT, low_[1], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glDispatchCompute(unsigned(lw_ + 7) / 8, unsigned(lh_ + 7) / 8, 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    current = 1;
+  }
+  auto s = f.profiler.scope(scale_ > 1 ? "upsample_composite" : "composite");
+  const unsigned sample = f.sampleImage("image");
+  glUseProgram(upProg_);
+  shaders.setUniform(upProg_, "uCameraPosition", f.camera.position);
+  gbuffer.bind();
+  glBindTextureUnit(TEXUNIT_PASS_INPUT, low_[current]);
+  glBindImageTexture(IMAGE_SAMPLE, sample, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  // Outputs not asked for are not written (uWriteIndirect/uWriteDirect); their units get the sample image.
+  const unsigned indirect = f.wants("indirect") ? f.sampleImage("indirect") : sample;
+  const unsigned direct = f.wants("direct") ? f.sampleImage("direct") : sample;
+  glBindImageTexture(IMAGE_SAMPLE_AOV0, indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(IMAGE_SAMPLE_AOV1, direct, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+}  // namespace vgi

@@ -1,0 +1,56 @@
+// The screen-space gather kit that hemisphere-gathering GL modules share
+// (nearfield, voxel_ao; shaders/illum/gather/): a gather buffer at 1, ½ or ¼
+// of the image resolution, the interleaved direction sets its gather pass
+// reads (GATHER_DIRECTIONS in gather.glsl), the geometry-aware blur over the
+// interleave window and the joint bilateral upsampling with its composite
+// into the frame's sample image.
+#pragma once
+#include <string>
+
+namespace vgi {
+
+class Frame;
+class ParamSet;
+class ShaderLibrary;
+
+struct GatherSettings {
+  int rays = 16;
+  float resolution = 0.5f;  // 1, 0.5 or 0.25 of the image
+  int interleave = 4;       // k: k×k blocks of k² direction sets
+  bool blur = true;
+  // true: the gathered E is reflected light (sample += albedo × E over the
+  // direct light already in the sample); false: the sample is E itself (AO).
+  bool reflect = true;
+};
+// Reads rays, resolution, interleave and blur (`what` names the gathered quantity in the docs).
+GatherSettings readGatherParams(ParamSet& params, const std::string& what, bool reflect);
+
+class GatherKit {
+ public:
+  // Once per frame: the gather buffers (the frame's scratch textures) and programs.
+  void prepare(Frame& frame, const GatherSettings& settings);
+  // The kit's uniforms of a gather program that uses GATHER_DIRECTIONS: uScale,
+  // uRays, uInterleave once per frame (prepare), uFrame and uRotation per sample.
+  void setFrameUniforms(ShaderLibrary& shaders, unsigned program) const;
+  void setSampleUniforms(ShaderLibrary& shaders, unsigned program, int sample) const;
+  // Binds the gather buffer at IMAGE_OUTPUT and dispatches the program in use over it.
+  void dispatchGather() const;
+  // Blur (when on and k > 1), then upsampling + composite into the sample
+  // image, and the "indirect" / "direct" outputs when asked for; timed as
+  // "blur" and "upsample_composite" (or "composite" at full resolution).
+  void resolve(Frame& frame) const;
+
+  int width() const { return lw_; }
+  int height() const { return lh_; }
+  int blurWindow() const { return blur_ ? s_.interleave : 0; }
+  const GatherSettings& settings() const { return s_; }
+
+ private:
+  GatherSettings s_;
+  int scale_ = 1, lw_ = 0, lh_ = 0;
+  bool blur_ = false;
+  unsigned low_[2] = {0, 0};  // gathered, blurred
+  unsigned blurProg_ = 0, upProg_ = 0;
+};
+
+}  // namespace vgi

@@ -1,0 +1,58 @@
+// voxel_ao's gather (illum/voxel_ao.cpp): per gather pixel, N cosine rays of
+// the kit's interleaved sets (../gather/gather.glsl) from the G-buffer point,
+// started uOffset along the normal, traced through the binary grid with the
+// chosen GLSL tracer up to the radius; AO = the fraction that reach it.
+// With uPassThrough, a hit within a voxel diagonal of the receiver's tangent
+// plane may be the receiver's own voxel and the ray goes on past it (up to
+// three times), as nearfield's rays do.
+// Output: rgb = AO, w = 1 where there is a surface, 0 elsewhere.
+#define GATHER_DIRECTIONS
+#include "../../shared/constants.glsl"
+#include "../../shared/sampling.glsl"
+#include "../../traverse/tracer.glsl"
+#include "../gather/gather.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D uAo;
+
+uniform float uRadius;        // r, world units
+uniform float uOffset;        // start offset along the normal, world units
+uniform float uVoxelDiagonal;
+uniform int uPassThrough;
+
+void main() {
+  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = imageSize(uAo);
+  if (q.x >= size.x || q.y >= size.y) return;
+  ivec2 px = representative(q, textureSize(gPosition, 0));
+  vec4 P = texelFetch(gPosition, px, 0);
+  if (P.w == 0.0f) {
+    imageStore(uAo, q, vec4(0.0f));
+    return;
+  }
+  vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
+  Basis frame = makeBasis(n);
+  vec3 origin = P.xyz + n * uOffset;
+  int open = 0;
+  for (int r = 0; r < uRays; ++r) {
+    vec3 d = gatherDirection(q, r, frame);
+    precise float start = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+      precise vec3 from = origin + start * d;
+      precise float left = uRadius - start;
+      TraceHit h = traceRay(from, d, left);
+      if (h.hit == 0u) {
+        ++open;
+        break;
+      }
+      precise float height = dot(d, n) * (start + h.t) + uOffset;  // of the hit above the receiver's plane
+      if (uPassThrough == 0 || height >= uVoxelDiagonal || k == 3) break;
+      start += exitPastHit(from, d, left, h, uVoxelDiagonal);
+      if (start >= uRadius) {
+        ++open;
+        break;
+      }
+    }
+  }
+  imageStore(uAo, q, vec4(vec3(float(open) / float(uRays)), 1.0f));
+}
