@@ -9,6 +9,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "core/error.h"
 
@@ -214,9 +215,82 @@ unsigned ShaderLibrary::program(const std::vector<std::string>& files, const Sha
     glDetachShader(prog, s);
     glDeleteShader(s);
   }
+  try {
+    checkBindings(prog, info.files);
+  } catch (...) {
+    glDeleteProgram(prog);
+    throw;
+  }
   cache_[key] = prog;
   info_[prog] = std::move(info);
   return prog;
+}
+
+namespace {
+bool isImageType(GLint t) {
+  switch (t) {
+    case GL_IMAGE_2D: case GL_IMAGE_3D: case GL_IMAGE_2D_ARRAY: case GL_IMAGE_CUBE: case GL_INT_IMAGE_2D:
+    case GL_INT_IMAGE_3D: case GL_UNSIGNED_INT_IMAGE_2D: case GL_UNSIGNED_INT_IMAGE_3D:
+    case GL_UNSIGNED_INT_IMAGE_2D_ARRAY: case GL_INT_IMAGE_2D_ARRAY: return true;
+    default: return false;
+  }
+}
+bool isSamplerType(GLint t) {
+  switch (t) {
+    case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE: case GL_SAMPLER_2D_ARRAY:
+    case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_2D_ARRAY_SHADOW: case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D:
+    case GL_UNSIGNED_INT_SAMPLER_2D: case GL_UNSIGNED_INT_SAMPLER_3D: case GL_INT_SAMPLER_2D_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY: case GL_SAMPLER_BUFFER: return true;
+    default: return false;
+  }
+}
+}  // namespace
+
+void ShaderLibrary::checkBindings(unsigned prog, const std::string& files) {
+  // kind → unit → the resource's name; GL's own introspection of what the program uses.
+  std::map<std::string, std::map<int, std::string>> used;
+  GLint maxSsbo = 0, maxTex = 0, maxImage = 0, maxUbo = 0;
+  glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &maxSsbo);
+  glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &maxTex);
+  glGetIntegerv(GL_MAX_IMAGE_UNITS, &maxImage);
+  glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &maxUbo);
+  auto add = [&](const std::string& kind, int unit, int limit, const std::string& name) {
+    if (unit < 0 || unit >= limit)
+      fail("program (", files, "): ", kind, " '", name, "' is bound to unit ", unit, ", outside this GL's 0..",
+           limit - 1);
+    auto [it, fresh] = used[kind].emplace(unit, name);
+    if (!fresh)
+      fail("program (", files, ") binds ", kind, "s '", it->second, "' and '", name, "' to the same unit ", unit,
+           " (shaders/shared/bindings.glsl lists the units)");
+  };
+  auto nameOf = [&](GLenum iface, GLuint i) {
+    char name[256] = {0};
+    glGetProgramResourceName(prog, iface, i, sizeof name, nullptr, name);
+    return std::string(name);
+  };
+  for (auto [iface, kind, limit] : {std::tuple<GLenum, const char*, GLint>{GL_SHADER_STORAGE_BLOCK, "storage buffer", maxSsbo},
+                                    std::tuple<GLenum, const char*, GLint>{GL_UNIFORM_BLOCK, "uniform buffer", maxUbo}}) {
+    GLint n = 0;
+    glGetProgramInterfaceiv(prog, iface, GL_ACTIVE_RESOURCES, &n);
+    for (GLint i = 0; i < n; ++i) {
+      const GLenum prop = GL_BUFFER_BINDING;
+      GLint binding = -1;
+      glGetProgramResourceiv(prog, iface, GLuint(i), 1, &prop, 1, nullptr, &binding);
+      add(kind, binding, limit, nameOf(iface, GLuint(i)));
+    }
+  }
+  GLint n = 0;
+  glGetProgramInterfaceiv(prog, GL_UNIFORM, GL_ACTIVE_RESOURCES, &n);
+  for (GLint i = 0; i < n; ++i) {
+    const GLenum props[3] = {GL_TYPE, GL_LOCATION, GL_ARRAY_SIZE};
+    GLint v[3] = {0, -1, 1};
+    glGetProgramResourceiv(prog, GL_UNIFORM, GLuint(i), 3, props, 3, nullptr, v);
+    const bool image = isImageType(v[0]), sampler = isSamplerType(v[0]);
+    if ((!image && !sampler) || v[1] < 0) continue;
+    GLint unit = -1;
+    glGetUniformiv(prog, v[1], &unit);
+    add(image ? "image" : "texture", unit, image ? maxImage : maxTex, nameOf(GL_UNIFORM, GLuint(i)));
+  }
 }
 
 std::set<std::string> ShaderLibrary::declaredUniforms(const std::string& source) {

@@ -56,6 +56,12 @@ class ShaderLibrary {
   // The uniform names a GLSL source declares (`uniform T a, b[2];`, blocks excluded).
   static std::set<std::string> declaredUniforms(const std::string& source);
 
+  // Throws if two resources the linked program uses (storage or uniform
+  // buffers, textures, images) share a unit, or a unit exceeds this GL's
+  // limits — from GL's introspection, so every program the library makes is
+  // checked against the binding table's promise (shaders/shared/bindings.glsl).
+  static void checkBindings(unsigned program, const std::string& files);
+
   // Rewrites the "N:L(C)" / "N(L)" prefixes of a driver log into "file:line".
   static std::string mapLog(const std::string& log, const std::vector<std::string>& files);
 

@@ -17,7 +17,8 @@ GatherSettings readGatherParams(ParamSet& p, const std::string& what, bool refle
   GatherSettings s;
   s.reflect = reflect;
   s.rays = p.getInt("rays", 16, what + " rays per gather pixel per frame", 1, 4096);
-  s.resolution = p.getFloat("resolution", 0.5f, what + " resolution: 1, 0.5 or 0.25 of the image", 0.0f, 1.0f);
+  s.resolution =
+      p.getFloat("resolution", 0.5f, what + " resolution: 1, 0.5 or 0.25 of the image", 0.0f, 1.0f);
   if (s.resolution != 1.0f && s.resolution != 0.5f && s.resolution != 0.25f)
     fail("parameter 'resolution': ", s.resolution, " is not one of 1, 0.5, 0.25");
   s.interleave = p.getInt("interleave", 4, "k: k x k pixel blocks share k^2 direction sets", 1, 8);

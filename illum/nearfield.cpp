@@ -142,7 +142,8 @@ void NearFieldMethod::prepareFrame(Frame& f) {
   ShaderLibrary& shaders = f.shaders();
   kit_.prepare(f, p_.gather);
   voxelDiagonal_ = f.resources.voxelDiagonal();
-  direct_ = std::make_unique<DirectPass>(shaders, f.resources.gpuScene(), p_.shadow.bias, p_.shadow.normalOffset);
+  direct_ =
+      std::make_unique<DirectPass>(shaders, f.resources.gpuScene(), p_.shadow.bias, p_.shadow.normalOffset);
   ShaderDefines defs;
   addTracerDefine(defs, p_.tracer);
   indirectProg_ = shaders.program({"illum/nearfield/indirect.comp.glsl"}, defs);

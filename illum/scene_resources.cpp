@@ -43,8 +43,8 @@ void SceneNeeds::check(const std::string& method, bool gl) const {
 
 BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids) {
   BinaryGridNeed g;
-  g.resolution = parseResolution(p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"),
-                                 "parameter 'voxels'");
+  g.resolution = parseResolution(
+      p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"), "parameter 'voxels'");
   std::vector<std::string> voxelizers;
   for (auto& v : voxelizerRegistry()) voxelizers.push_back(v.name);
   g.voxelizer = p.getString("voxelizer", "atlas", "binary voxelizer (see vgi voxelize --help)", voxelizers);

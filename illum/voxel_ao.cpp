@@ -47,15 +47,18 @@ namespace {
 class VoxelAoMethod : public Method {
  public:
   VoxelAoMethod(ParamSet& p, const Scene& scene) {
-    radius_ = p.getFloat("radius", kDefaultAoRadius * scene.bounds().diagonal(),
-                         "ray length r in world units (default 0.1 x scene diagonal, as reference integrator=ao)",
-                         1e-30f, 1e30f);
+    radius_ =
+        p.getFloat("radius", kDefaultAoRadius * scene.bounds().diagonal(),
+                   "ray length r in world units (default 0.1 x scene diagonal, as reference integrator=ao)",
+                   1e-30f, 1e30f);
     gather_ = readGatherParams(p, "AO", false);
     tracer_ = readTracerParam(p);
-    offset_ = p.getFloat("offset", 0.5f, "ray start offset along the normal, in voxel diagonals", 0.0f, 100.0f);
-    passThrough_ = p.getBool("passthrough", true,
-                             "rays go on past a hit within a voxel diagonal of the receiver's plane (it may be "
-                             "the receiver's own voxel)");
+    offset_ =
+        p.getFloat("offset", 0.5f, "ray start offset along the normal, in voxel diagonals", 0.0f, 100.0f);
+    passThrough_ =
+        p.getBool("passthrough", true,
+                  "rays go on past a hit within a voxel diagonal of the receiver's plane (it may be "
+                  "the receiver's own voxel)");
     grid_ = readBinaryGridParams(p, 4);  // static + frame grid (atlas), the pyramid (≈ 4/3 of a grid)
   }
   SceneNeeds needs() const override {

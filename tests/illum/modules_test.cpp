@@ -1,0 +1,218 @@
+// Registry-driven tests of the module framework: every method of the table,
+// with its default parameters and with each non-default value of its choice
+// parameters, builds exactly what its declared needs name; the sample loop's
+// accumulation, checkpoints and sample passes; checked uniforms and bindings.
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "core/error.h"
+#include "core/gl_context.h"
+#include "core/params.h"
+#include "core/scene_loader.h"
+#include "core/shader_library.h"
+#include "illum/render_job.h"
+#include "illum/sample_loop.h"
+#include "render_util.h"
+#include "test_util.h"
+
+namespace vgi {
+
+namespace {
+// The choice parameters (a|b|c, bool) a method read with these settings, with their values.
+std::vector<std::pair<std::string, std::vector<std::string>>> choiceParams(const ParamSet& p) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> out;
+  const nlohmann::json resolved = p.resolved();
+  for (auto& d : p.docs()) {
+    if (!resolved.contains(d.key)) continue;
+    std::vector<std::string> values;
+    if (d.type == "bool")
+      values = {"true", "false"};
+    else if (d.type.find('|') != std::string::npos) {
+      size_t s = 0;
+      for (size_t bar; (bar = d.type.find('|', s)) != std::string::npos; s = bar + 1)
+        values.push_back(d.type.substr(s, bar - s));
+      values.push_back(d.type.substr(s));
+    }
+    if (!values.empty()) out.push_back({d.key, values});
+  }
+  return out;
+}
+
+// Default settings, each non-default choice, and (one level deeper) each
+// non-default choice of a parameter that only those settings made apply
+// (reference integrator=nearfield → visibility=voxels).
+std::vector<std::vector<std::string>> configurations(const MethodInfo& info, const Scene& scene) {
+  std::vector<std::vector<std::string>> configs = {{}};
+  ParamSet base;
+  info.create(base, scene);
+  const nlohmann::json baseResolved = base.resolved();  // items() must not outlive its object
+  std::vector<std::string> baseKeys;
+  for (auto& [k, v] : baseResolved.items()) baseKeys.push_back(k);
+  for (auto& [key, values] : choiceParams(base))
+    for (auto& v : values) {
+      if (v == baseResolved[key].dump() || "\"" + v + "\"" == baseResolved[key].dump()) continue;
+      std::vector<std::string> c = {key + "=" + v};
+      ParamSet p;
+      for (auto& kv : c) p.setFromString(kv);
+      info.create(p, scene);
+      configs.push_back(c);
+      for (auto& [key2, values2] : choiceParams(p)) {
+        if (std::find(baseKeys.begin(), baseKeys.end(), key2) != baseKeys.end()) continue;
+        for (auto& v2 : values2) {
+          const std::string def2 = p.resolved()[key2].dump();
+          if (v2 == def2 || "\"" + v2 + "\"" == def2) continue;
+          configs.push_back({c[0], key2 + "=" + v2});
+        }
+      }
+    }
+  return configs;
+}
+}  // namespace
+
+TEST(Modules, EveryMethodBuildsExactlyWhatItsNeedsDeclare) {
+  const Scene scene = loadScene("builtin:cornell");
+  int renders = 0;
+  for (const MethodInfo& info : methodRegistry()) {
+    for (auto& config : configurations(info, scene)) {
+      std::vector<std::string> set = config;
+      if (info.needsGl) set.push_back("voxels=32");  // small grids: the names, not the images, are tested
+      ParamSet p;
+      for (auto& kv : set) {
+        try {
+          p.setFromString(kv);
+        } catch (const Error&) {
+        }
+      }
+      std::vector<std::string> names;
+      try {
+        names = info.create(p, scene)->needs().names();
+        p.checkAllUsed(info.name);
+      } catch (const Error&) {
+        set = config;  // the method has no `voxels`
+        ParamSet q;
+        for (auto& kv : set) q.setFromString(kv);
+        names = info.create(q, scene)->needs().names();
+      }
+      RenderOutput out = test::render("builtin:cornell", info.name, set, 8, 2);
+      std::vector<std::string> built = out.stats["built"];
+      EXPECT_EQ(built, names) << info.name << " " << nlohmann::json(set).dump();
+      EXPECT_EQ(out.stats["needs"].get<std::vector<std::string>>(), names);
+      // The per-sample passes are timed passes, include the accumulation, and no set-up pass.
+      const nlohmann::json timings = out.stats["timings_ms"];
+      std::vector<std::string> passes = out.stats["sample_passes"];
+      EXPECT_NE(std::find(passes.begin(), passes.end(), "accumulate"), passes.end()) << info.name;
+      for (auto& pass : passes) {
+        EXPECT_TRUE(timings.contains(pass)) << pass;
+        for (const char* setup :
+             {"rsm", "light_maps", "upload", "build_bvh", "pyramid", "atlas_render", "readback"})
+          EXPECT_NE(pass, setup) << info.name;
+      }
+      ++renders;
+    }
+  }
+  EXPECT_GE(renders, 20);  // the configurations were really enumerated
+}
+
+// Kahan summation on the GPU: 10^5 samples of 0.3 average to 0.3 within a
+// few ulp; one float add per sample drifts (this is what makes the test able to fail).
+TEST(SampleLoop, CompensatedAccumulationDoesNotDriftOver1e5Samples) {
+  auto ctx = GlContext::create();
+  ShaderLibrary shaders;
+  const int n = 100000;
+  const float value = 0.3f;
+  double error[2];
+  for (int mode = 0; mode < 2; ++mode) {
+    GlFilm film(4, 4, {"image"}, shaders);
+    const float v[4] = {value, value, value, 1.0f};
+    glClearTexImage(film.sampleImage("image"), 0, GL_RGBA, GL_FLOAT, v);
+    for (int i = 0; i < n; ++i) film.accumulate(mode == 0 ? Accumulation::Compensated : Accumulation::Plain);
+    Image img = film.read("image", n);
+    error[mode] = std::abs(double(img.pixels[5].x) - double(value)) / double(value);
+  }
+  EXPECT_LT(error[0], 1e-6) << "compensated";
+  EXPECT_GT(error[1], 1e-5) << "plain float sums should drift here";
+  EXPECT_EQ(ctx->errorCount(), 0);
+}
+
+TEST(SampleLoop, CheckpointsWriteTheImageSoFarAtThoseSampleCounts) {
+  RenderOptions o;
+  o.method = "direct";
+  o.width = o.height = 8;
+  o.spp = 8;
+  o.progress = false;
+  o.checkpoints = {1, 4};
+  std::vector<int> seen;
+  RenderOutput last = runRender(o, {}, [&](int spp, const RenderOutput& c) {
+    seen.push_back(spp);
+    EXPECT_EQ(c.stats["spp_completed"].get<int>(), spp);
+    EXPECT_TRUE(c.stats["checkpoint"].get<bool>());
+    EXPECT_EQ(c.result.image.width, 8);
+  });
+  EXPECT_EQ(seen, (std::vector<int>{1, 4}));
+  EXPECT_EQ(last.result.sppCompleted, 8);
+  o.checkpoints = {9};
+  test::expectError([&] { runRender(o); }, {"--checkpoints", "9"});
+}
+
+TEST(ShaderLibrary, AnUnknownUniformIsAnErrorNamingProgramAndUniform) {
+  auto ctx = GlContext::create();
+  ShaderLibrary shaders;
+  unsigned prog = shaders.program({"illum/accumulate.comp.glsl"});
+  shaders.setUniform(prog, "uCompensated", 1);
+  test::expectError([&] { shaders.setUniform(prog, "uCompensatd", 1); },
+                    {"uCompensatd", "illum/accumulate.comp.glsl"});
+  EXPECT_EQ(ShaderLibrary::declaredUniforms(
+                "uniform int a, b[2];\nlayout(binding = 0) uniform sampler2D s;\n"
+                "uniform Block { int x; } blk; // uniform float c;\n/* uniform int d; */"),
+            (std::set<std::string>{"a", "b", "s"}));
+}
+
+TEST(ShaderLibrary, TwoResourcesOfAProgramOnOneUnitAreAnError) {
+  auto ctx = GlContext::create();
+  const std::string root = testing::TempDir() + "/vgi_bindings_shaders";
+  std::filesystem::create_directories(root);
+  std::ofstream(root + "/clash.comp.glsl") << "layout(local_size_x = 1) in;\n"
+                                              "layout(std430, binding = 4) buffer A { uint a[]; };\n"
+                                              "layout(std430, binding = 4) buffer B { uint b[]; };\n"
+                                              "void main() { a[0] = b[0] + 1u; }\n";
+  ShaderLibrary shaders(root);
+  test::expectError([&] { shaders.program({"clash.comp.glsl"}); }, {"clash.comp.glsl", "unit 4", "A", "B"});
+}
+
+// Analytic AO: a point under a parallel plane at height h, cosine rays of
+// length r: AO = min(1, (h/r)^2); with nothing above, AO = 1. voxel_ao and
+// its exact counterpart both.
+TEST(Modules, AoUnderAParallelPlaneIsHOverRSquared) {
+  const std::string dir = testing::TempDir() + "/vgi_ao_planes";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/planes.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n"
+                                        "v -2 0.5 -2\nv 2 0.5 -2\nv 2 0.5 2\nv -2 0.5 2\n"
+                                        "f 1 2 3\nf 1 3 4\nf 5 7 6\nf 5 8 7\n";
+  std::ofstream(dir + "/floor.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 2 3\nf 1 3 4\n";
+  for (const char* mesh : {"planes.obj", "floor.obj"}) {
+    std::ofstream(dir + "/" + mesh + ".json") << "{\"meshes\": [{\"path\": \"" << mesh << "\"}],\n"
+                                              << "\"camera\": {\"position\": [0, 0.25, 0], \"target\": [0, "
+                                                 "0, 0.001], \"up\": [0, 0, 1], \"fov_deg\": 20}}\n";
+  }
+  const float expected[2] = {0.25f, 1.0f};  // (0.5 / 1)^2; unoccluded
+  for (int s = 0; s < 2; ++s) {
+    const std::string scene = dir + "/" + (s == 0 ? "planes.obj" : "floor.obj") + ".json";
+    for (const char* method : {"voxel_ao", "reference"}) {
+      std::vector<std::string> set = {"radius=1"};
+      if (std::string(method) == "reference")
+        set.push_back("integrator=ao");
+      else
+        set.push_back("voxels=128x128x128");
+      RenderOutput out = test::render(scene, method, set, 16, 64);
+      double mean = 0;
+      for (auto& p : out.result.image.pixels) mean += p.x;
+      mean /= double(out.result.image.pixels.size());
+      EXPECT_NEAR(mean, expected[s], s == 0 ? 0.03 : 1e-6) << method << " " << scene;
+    }
+  }
+}
+
+}  // namespace vgi
