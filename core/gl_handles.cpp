@@ -6,7 +6,6 @@ namespace vgi {
 
 namespace detail {
 void deleteGlTexture(unsigned name) { glDeleteTextures(1, &name); }
-void deleteGlBuffer(unsigned name) { glDeleteBuffers(1, &name); }
 }  // namespace detail
 
 GlTexture makeTexture2D(int width, int height, unsigned internalFormat) {

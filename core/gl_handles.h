@@ -8,7 +8,6 @@ namespace vgi {
 
 namespace detail {
 void deleteGlTexture(unsigned name);
-void deleteGlBuffer(unsigned name);
 }  // namespace detail
 
 template <void (*Delete)(unsigned)>
@@ -39,7 +38,6 @@ class GlHandle {
 };
 
 using GlTexture = GlHandle<detail::deleteGlTexture>;
-using GlBuffer = GlHandle<detail::deleteGlBuffer>;
 
 // A new 2D texture of one level (glTextureStorage2D), nearest filtering.
 GlTexture makeTexture2D(int width, int height, unsigned internalFormat);

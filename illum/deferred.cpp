@@ -55,16 +55,11 @@ GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H), shaders_(
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
   if (W > maxTex || H > maxTex) fail("--size ", W, "x", H, " exceeds this GL's largest texture (", maxTex, ")");
   prog_ = shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/gbuffer.frag.glsl"});
-  glCreateTextures(GL_TEXTURE_2D, 4, tex_);
-  for (unsigned t : tex_) {
-    glTextureStorage2D(t, 1, GL_RGBA32F, W, H);
-    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  }
+  for (GlTexture& t : tex_) t = makeTexture2D(W, H, GL_RGBA32F);
   glCreateRenderbuffers(1, &depth_);
   glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, W, H);
   glCreateFramebuffers(1, &fbo_);
-  for (int i = 0; i < 4; ++i) glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + i, tex_[i], 0);
+  for (int i = 0; i < 4; ++i) glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + i, tex_[i].get(), 0);
   glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
   const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
   glNamedFramebufferDrawBuffers(fbo_, 4, bufs);
@@ -75,7 +70,6 @@ GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H), shaders_(
 GBuffer::~GBuffer() {
   glDeleteFramebuffers(1, &fbo_);
   glDeleteRenderbuffers(1, &depth_);
-  glDeleteTextures(4, tex_);
 }
 
 void GBuffer::render(const GpuScene& gpu, const FrameCamera& camera) {
@@ -102,7 +96,7 @@ void GBuffer::render(const GpuScene& gpu, const FrameCamera& camera) {
 void GBuffer::bind() const {
   const unsigned units[4] = {TEXUNIT_GBUFFER_POSITION, TEXUNIT_GBUFFER_NORMAL, TEXUNIT_GBUFFER_ALBEDO,
                             TEXUNIT_GBUFFER_GEOMETRIC_NORMAL};
-  for (unsigned i = 0; i < 4; ++i) glBindTextureUnit(units[i], tex_[i]);
+  for (unsigned i = 0; i < 4; ++i) glBindTextureUnit(units[i], tex_[i].get());
 }
 
 DirectPass::DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadowBias, float normalOffset)

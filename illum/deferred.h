@@ -4,6 +4,7 @@
 #pragma once
 #include <glm/glm.hpp>
 
+#include "core/gl_handles.h"
 #include "core/image.h"
 #include "core/scene.h"
 
@@ -41,7 +42,8 @@ class GBuffer {
  private:
   int w_, h_;
   ShaderLibrary& shaders_;
-  unsigned tex_[4] = {0, 0, 0, 0}, depth_ = 0, fbo_ = 0, prog_ = 0;
+  GlTexture tex_[4];
+  unsigned depth_ = 0, fbo_ = 0, prog_ = 0;
 };
 
 // Deferred direct lighting (emission + delta lights through the light maps;

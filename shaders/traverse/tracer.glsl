@@ -3,7 +3,7 @@
 // sets it; any other value fails to compile):
 //   TraceHit traceRay(vec3 origin, vec3 dir, float tmax)
 //   bool visibleBetween(vec3 a, vec3 b)
-//   float exitPastHit(vec3 origin, vec3 dir, float tmax, TraceHit hit, float voxelDiagonal)
+//   ResumableRay: nextHit / passHit (rays that go on past voxels a module passes)
 // The pyramid and its parameters are bound by GlPyramid::bind (traverse/gl_ray_tracer.cpp).
 #include "../shared/tracer_ids.glsl"
 #ifndef VGI_TRACER
@@ -44,12 +44,49 @@ TraceHit traceRay(vec3 origin, vec3 dir, float tmax) {
 
 bool visibleBetween(vec3 a, vec3 b) { return traceRay(a, b - a, 1.0f).hit == 0u; }
 
-// How far along (origin, dir) a ray resumed past the voxel `hit` starts: the
-// voxel's exit distance plus 1e-4 of a voxel diagonal (modules that pass
-// voxels they judge empty or their receiver's own). `precise`: rounded
-// without fused multiply-adds, as the tracers' shared code computes.
-float exitPastHit(vec3 origin, vec3 dir, float tmax, TraceHit hit, float voxelDiagonal) {
-  GridRay gr = prepareGridRay(gridFromUniforms(), origin, dir, tmax);
-  precise float t = voxelExitT(gr, hit.voxel) + 1e-4f * voxelDiagonal;
+// A ray that may go on past voxels its module judges empty (a voxel a light
+// sees through) or the receiver's own: nextHit() traces from where the ray
+// stands; after a hit the module stops, or calls passHit() to resume just
+// past that voxel (its exit distance plus 1e-4 of a voxel diagonal), at most
+// kMaxPasses times. A ray resumed past the radius has no next hit.
+// `precise`: the resumed origins are rounded without fused multiply-adds, the
+// way the tracers' shared code computes.
+const int kMaxPasses = 3;
+struct ResumableRay {
+  vec3 origin, dir;
+  float radius, start;  // start: where the current trace begins, along dir
+  int passes;
+  TraceHit hit;         // of the last nextHit()
+};
+ResumableRay resumableRay(vec3 origin, vec3 dir, float radius) {
+  ResumableRay r;
+  r.origin = origin;
+  r.dir = dir;
+  r.radius = radius;
+  r.start = 0.0f;
+  r.passes = 0;
+  r.hit.hit = 0u;
+  return r;
+}
+bool nextHit(inout ResumableRay r) {
+  if (r.start >= r.radius) return false;
+  precise vec3 from = r.origin + r.start * r.dir;
+  precise float left = r.radius - r.start;
+  r.hit = traceRay(from, r.dir, left);
+  return r.hit.hit != 0u;
+}
+// The last hit's distance from the ray's origin.
+float hitDistance(ResumableRay r) {
+  precise float t = r.start + r.hit.t;
   return t;
+}
+bool passHit(inout ResumableRay r, float voxelDiagonal) {
+  if (r.passes == kMaxPasses) return false;
+  ++r.passes;
+  precise vec3 from = r.origin + r.start * r.dir;
+  precise float left = r.radius - r.start;
+  GridRay gr = prepareGridRay(gridFromUniforms(), from, r.dir, left);
+  precise float step = voxelExitT(gr, r.hit.voxel) + 1e-4f * voxelDiagonal;
+  r.start += step;
+  return true;
 }

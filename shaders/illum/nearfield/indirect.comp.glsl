@@ -146,27 +146,22 @@ void main() {
     // be the receiver's own voxel. (b) is what lets rays start half a diagonal
     // off the surface instead of VGI's full diagonal, so contact light in
     // corners and at small features is not lost (Sibenik: energy 0.82 → 0.88).
-    // `precise`: the resumed origin is rounded without fused multiply-adds,
-    // the way the tracers' shared code computes. (With resumed rays the
-    // hierarchical and dda programs still differ on a few pixels, though the
-    // tracers agree on such rays in tests/traverse — an open question, see
-    // NearField.TracerIsAParameter….)
-    precise float start = 0.0f;
-    for (int k = 0; k < 4; ++k) {
-      precise vec3 from = origin + start * d;
-      precise float left = uRadius - start;
-      TraceHit h = traceRay(from, d, left);
-      if (h.hit == 0u) {
+    // (With resumed rays the hierarchical and dda programs still differ on a
+    // few pixels, though the tracers agree on such rays in tests/traverse — an
+    // open question, see NearField.TracerIsAParameter….) A ray passed on
+    // beyond the radius reads the environment, like one that met nothing.
+    ResumableRay ray = resumableRay(origin, d, uRadius);
+    while (true) {
+      if (!nextHit(ray)) {
         if (uEnv != 0) sum += gpuEnvironmentRadiance(d);
         break;
       }
-      BackProjection b = backProject(origin, d, start + h.t);
+      precise float t = hitDistance(ray);
+      BackProjection b = backProject(origin, d, t);
       sum += b.radiance;
-      precise float height = dot(d, n) * (start + h.t) + uOffset;  // of the hit above the receiver's plane
+      precise float height = dot(d, n) * t + uOffset;  // of the hit above the receiver's plane
       bool ownBand = height < uVoxelDiagonal && b.radiance == vec3(0.0f);
-      if (uPassThrough == 0 || !(b.seenThrough || ownBand) || k == 3) break;
-      start += exitPastHit(from, d, left, h, uVoxelDiagonal);
-      if (start >= uRadius) break;
+      if (uPassThrough == 0 || !(b.seenThrough || ownBand) || !passHit(ray, uVoxelDiagonal)) break;
     }
   }
   imageStore(uIndirect, q, vec4(sum / float(uRays), 1.0f));

@@ -36,22 +36,14 @@ void main() {
   int open = 0;
   for (int r = 0; r < uRays; ++r) {
     vec3 d = gatherDirection(q, r, frame);
-    precise float start = 0.0f;
-    for (int k = 0; k < 4; ++k) {
-      precise vec3 from = origin + start * d;
-      precise float left = uRadius - start;
-      TraceHit h = traceRay(from, d, left);
-      if (h.hit == 0u) {
+    ResumableRay ray = resumableRay(origin, d, uRadius);
+    while (true) {
+      if (!nextHit(ray)) {
         ++open;
         break;
       }
-      precise float height = dot(d, n) * (start + h.t) + uOffset;  // of the hit above the receiver's plane
-      if (uPassThrough == 0 || height >= uVoxelDiagonal || k == 3) break;
-      start += exitPastHit(from, d, left, h, uVoxelDiagonal);
-      if (start >= uRadius) {
-        ++open;
-        break;
-      }
+      precise float height = dot(d, n) * hitDistance(ray) + uOffset;  // of the hit above the receiver's plane
+      if (uPassThrough == 0 || height >= uVoxelDiagonal || !passHit(ray, uVoxelDiagonal)) break;
     }
   }
   imageStore(uAo, q, vec4(vec3(float(open) / float(uRays)), 1.0f));
