@@ -268,8 +268,9 @@ void ShaderLibrary::checkBindings(unsigned prog, const std::string& files) {
     glGetProgramResourceName(prog, iface, i, sizeof name, nullptr, name);
     return std::string(name);
   };
-  for (auto [iface, kind, limit] : {std::tuple<GLenum, const char*, GLint>{GL_SHADER_STORAGE_BLOCK, "storage buffer", maxSsbo},
-                                    std::tuple<GLenum, const char*, GLint>{GL_UNIFORM_BLOCK, "uniform buffer", maxUbo}}) {
+  using Interface = std::tuple<GLenum, const char*, GLint>;
+  for (auto [iface, kind, limit] : {Interface{GL_SHADER_STORAGE_BLOCK, "storage buffer", maxSsbo},
+                                    Interface{GL_UNIFORM_BLOCK, "uniform buffer", maxUbo}}) {
     GLint n = 0;
     glGetProgramInterfaceiv(prog, iface, GL_ACTIVE_RESOURCES, &n);
     for (GLint i = 0; i < n; ++i) {
@@ -282,9 +283,9 @@ void ShaderLibrary::checkBindings(unsigned prog, const std::string& files) {
   GLint n = 0;
   glGetProgramInterfaceiv(prog, GL_UNIFORM, GL_ACTIVE_RESOURCES, &n);
   for (GLint i = 0; i < n; ++i) {
-    const GLenum props[3] = {GL_TYPE, GL_LOCATION, GL_ARRAY_SIZE};
-    GLint v[3] = {0, -1, 1};
-    glGetProgramResourceiv(prog, GL_UNIFORM, GLuint(i), 3, props, 3, nullptr, v);
+    const GLenum props[2] = {GL_TYPE, GL_LOCATION};
+    GLint v[2] = {0, -1};
+    glGetProgramResourceiv(prog, GL_UNIFORM, GLuint(i), 2, props, 2, nullptr, v);
     const bool image = isImageType(v[0]), sampler = isSamplerType(v[0]);
     if ((!image && !sampler) || v[1] < 0) continue;
     GLint unit = -1;

@@ -34,7 +34,6 @@ class GlFilm {
   // sum += sample for every channel (shaders/illum/accumulate.comp.glsl).
   void accumulate(Accumulation mode);
   Image read(const std::string& channel, int samples) const;  // sum / samples, rows top-down
-  bool has(const std::string& channel) const { return channels_.count(channel) > 0; }
 
  private:
   struct Channel {
@@ -54,7 +53,6 @@ class CpuFilm {
   glm::vec3* samplePixels(const std::string& channel);
   void accumulate(int threads);
   Image read(const std::string& channel, int samples) const;
-  bool has(const std::string& channel) const { return channels_.count(channel) > 0; }
 
  private:
   struct Channel {

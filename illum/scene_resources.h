@@ -79,10 +79,7 @@ class SceneResources {
   // whether anything was (re)built.
   bool update(float time, Profiler& profiler);
 
-  const Scene& scene() const { return scene_; }
   const SceneNeeds& needs() const { return needs_; }
-  bool rebuiltThisFrame() const { return rebuilt_; }
-  float time() const { return time_; }
 
   // Each throws if the method did not declare it (a module reads only what it
   // asked for, so `built` stays true).

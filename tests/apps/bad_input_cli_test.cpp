@@ -146,6 +146,11 @@ TEST(BadInputCli, UsageErrorsExitTwoAndNameTheClosestOption) {
   expectRefused(vgi("rendr"), {"did you mean 'vgi render'"});
   expectRefused(vgi("render --help-module nearfeld"), {"--help-module", "nearfeld", "nearfield"});
   expectRefused(vgi("render --spp notanumber"), {"--spp"});
+  expectRefused(vgi("render --accumulate kahan"), {"--accumulate", "kahan", "compensated or plain"});
+  expectRefused(vgi("render --spp 4 --checkpoints 1,x"), {"--checkpoints", "'x'"});
+  expectRefused(vgi("render --spp 4 --checkpoints 1,8"), {"--checkpoints", "8", "--spp 4"});
+  expectRefused(vgi("render --spp 4 --checkpoints 0"), {"--checkpoints", "0"});
+  expectRefused(vgi("render --spp 4 --frames 2 --checkpoints 2"), {"--checkpoints", "--frames 2"});
   EXPECT_EQ(vgi("render --help").code, 0);
 }
 
