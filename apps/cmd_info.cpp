@@ -1,9 +1,11 @@
 // vgi info --scene S [--json]: what a scene contains.
 #include <cstdio>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
+#include "core/emitters.h"
 #include "core/json_text.h"
 #include "core/scene_loader.h"
 
@@ -57,6 +59,27 @@ void addInfoCommand(CLI::App& app) {
       }
       j["lights"].push_back(lj);
     }
+    // Area lights: the emissive meshes (core/emitters.h), per mesh at time 0.
+    struct AreaLight {
+      int triangles = 0;
+      float area = 0;
+      glm::vec3 radiance{0.0f}, power{0.0f};
+    };
+    const Emitters emitters = Emitters::ofScene(s, 0.0f);
+    std::map<int, AreaLight> areaLights;
+    for (size_t e = 0; e < emitters.size(); ++e) {
+      const EmitterTriangle& t = emitters.triangles()[e];
+      AreaLight& a = areaLights[t.mesh];
+      a.triangles++;
+      a.area += t.area;
+      a.radiance = t.radiance;
+      a.power += emitters.power(e);
+    }
+    j["area_lights"] = nlohmann::json::array();
+    for (auto& [mesh, a] : areaLights)
+      j["area_lights"].push_back({{"mesh", s.meshes[size_t(mesh)].name}, {"triangles", a.triangles},
+                                  {"area", a.area}, {"radiance", vec(a.radiance)}, {"power", vec(a.power)}});
+    j["two_sided_emission"] = s.twoSidedEmission;
     j["bounds"] = {{"min", vec(b.lo)}, {"max", vec(b.hi)}, {"diagonal", b.diagonal()}};
     j["camera"] = {{"position", vec(s.camera.position)}, {"target", vec(s.camera.target)},
                    {"up", vec(s.camera.up)}, {"fov_deg", s.camera.fovYDeg}};
@@ -84,6 +107,10 @@ void addInfoCommand(CLI::App& app) {
       if (l.type == LightType::Spot) std::printf(" cone %g deg falloff %g", l.coneHalfAngleDeg, l.falloff);
       std::printf("\n");
     }
+    std::printf("area lights %zu (%s emission)\n", areaLights.size(), s.twoSidedEmission ? "two-sided" : "one-sided");
+    for (auto& [mesh, a] : areaLights)
+      std::printf("  %-20s %d triangles area %g radiance %s power %s W\n", s.meshes[size_t(mesh)].name.c_str(),
+                  a.triangles, a.area, str(a.radiance).c_str(), str(a.power).c_str());
     std::printf("bounds     %s .. %s (diagonal %g)\n", str(b.lo).c_str(), str(b.hi).c_str(), b.diagonal());
     std::printf("camera     position %s target %s up %s fov %g deg\n", str(s.camera.position).c_str(),
                 str(s.camera.target).c_str(), str(s.camera.up).c_str(), s.camera.fovYDeg);

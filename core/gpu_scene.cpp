@@ -19,11 +19,11 @@ shared::PackedLight packLight(const Light& l) {
   return p;
 }
 
-shared::PackedMaterial packMaterial(const Material& m, int layer) {
+shared::PackedMaterial packMaterial(const Material& m, int layer, bool twoSidedEmission) {
   shared::PackedMaterial p;
   p.albedoLayer = glm::vec4(m.albedo, float(layer));
   p.ksExponent = glm::vec4(m.ks, m.exponent);
-  p.emission = glm::vec4(m.emission, 0.0f);
+  p.emission = glm::vec4(m.emission, twoSidedEmission ? 1.0f : 0.0f);
   return p;
 }
 
@@ -107,12 +107,11 @@ GpuScene::GpuScene(const Scene& scene, float time) {
 
   std::vector<shared::PackedMaterial> mats;
   for (auto& m : scene.materials)
-    mats.push_back(packMaterial(m, m.albedoTexture >= 0 ? layerOf[size_t(m.albedoTexture)] : -1));
+    mats.push_back(
+        packMaterial(m, m.albedoTexture >= 0 ? layerOf[size_t(m.albedoTexture)] : -1, scene.twoSidedEmission));
   materials_ = makeSsbo(mats.data(), mats.size() * sizeof(mats[0]));
   triMaterial_ = makeSsbo(f.material.data(), f.material.size() * sizeof(int));
-  std::vector<shared::PackedLight> ls;
-  for (auto& l : scene.lights) ls.push_back(packLight(l));
-  lights_ = makeSsbo(ls.data(), ls.size() * sizeof(ls[0]));
+  setLights(scene.lights);
 
   const Environment& env = scene.environment;
   envColorScale_ = glm::vec4(env.color, env.scale);
@@ -148,6 +147,18 @@ void GpuScene::setTime(const Scene& scene, float time) {
     }
     first += m.triangles.size();
   }
+}
+
+void GpuScene::setLights(const std::vector<Light>& lights) {
+  std::vector<shared::PackedLight> ls;
+  for (auto& l : lights) ls.push_back(packLight(l));
+  if (lights_ && ls.size() == lightCount_) {
+    if (!ls.empty()) glNamedBufferSubData(lights_, 0, GLsizeiptr(ls.size() * sizeof(ls[0])), ls.data());
+    return;
+  }
+  glDeleteBuffers(1, &lights_);
+  lights_ = makeSsbo(ls.data(), ls.size() * sizeof(ls[0]));
+  lightCount_ = ls.size();
 }
 
 GpuScene::~GpuScene() {

@@ -9,7 +9,8 @@
 namespace vgi {
 
 shared::PackedLight packLight(const Light& light);
-shared::PackedMaterial packMaterial(const Material& m, int textureLayer);
+// emission.w = 1 where the material emits from both sides (Scene::twoSidedEmission).
+shared::PackedMaterial packMaterial(const Material& m, int textureLayer, bool twoSidedEmission);
 
 class GpuScene {
  public:
@@ -21,6 +22,10 @@ class GpuScene {
   // Re-uploads the vertices at `time` (the frames of an animation; materials,
   // textures and lights stay). `scene` must be the one it was made from.
   void setTime(const Scene& scene, float time);
+  // Replaces the lights (the scene's delta lights plus the spot lights of a
+  // sample's emitter point, SceneResources::beginSample). A changed count
+  // makes a new buffer: a program must bind() again.
+  void setLights(const std::vector<Light>& lights);
 
   // Binds SSBOs, textures and the environment uniforms of `program`.
   void bind(unsigned program) const;
@@ -31,6 +36,7 @@ class GpuScene {
 
  private:
   unsigned vao_ = 0, vbo_ = 0, materials_ = 0, triMaterial_ = 0, lights_ = 0;
+  size_t lightCount_ = 0;
   unsigned albedoArray_ = 0, envMap_ = 0;
   size_t triangles_ = 0;
   Bounds bounds_;

@@ -101,6 +101,8 @@ struct Scene {
   std::vector<Light> lights;
   Environment environment;
   Camera camera;
+  // Emissive surfaces emit on their front side only (core/emitters.h), or on both.
+  bool twoSidedEmission = false;
   std::map<std::string, std::map<std::string, std::string>> presets;
   LoadReport report;
 

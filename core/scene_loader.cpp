@@ -281,7 +281,8 @@ Scene loadSceneJson(const std::string& path) {
   if (in.bad()) fail("cannot read scene file '", path, "'");
   const json root = parseJsonText(text, path);
   JsonCtx c{path};
-  c.checkKeys(root, "top level", {"meshes", "materials", "lights", "environment", "camera", "presets"});
+  c.checkKeys(root, "top level",
+              {"meshes", "materials", "lights", "environment", "camera", "presets", "two_sided_emission"});
   fs::path dir = fs::path(path).parent_path();
   Scene scene;
   scene.name = fs::path(path).stem().string();
@@ -379,6 +380,9 @@ Scene loadSceneJson(const std::string& path) {
     scene.lights = builtinLights;
     haveLights = !builtinLights.empty();
   }
+
+  if (root.contains("two_sided_emission"))
+    scene.twoSidedEmission = c.boolean(root["two_sided_emission"], "two_sided_emission");
 
   if (root.contains("environment")) {
     const json& ej = root["environment"];

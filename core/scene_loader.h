@@ -20,6 +20,8 @@
 //             | {"type":"point", "position":[…], "intensity":…}
 //             | {"type":"directional", "direction":[…], "irradiance":…} ],
 //   "environment": {"color":[r,g,b]} | {"map":"latlong.exr", "scale": s},
+//   "two_sided_emission": false,   // emissive meshes (area lights) emit on their winding's
+//                                  // front side only, or (true) on both (core/emitters.h)
 //   "camera": {"position":[…], "target":[…], "up":[…], "fov_deg": f},
 //   "presets": { "name": { "key": "value", … } }   (a preset for one method names it:
 //              "method": "reference"; --preset then selects that method)

@@ -72,17 +72,16 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
   return out;
 }
 
-LightMaps::LightMaps(const Scene& scene, const GpuScene& gpu, ShaderLibrary& shaders, int resolution,
-                     bool reflective, Profiler& profiler)
+LightMaps::LightMaps(const std::vector<Light>& lights, const GpuScene& gpu, int resolution, bool reflective)
     : resolution_(resolution), reflective_(reflective) {
   GLint maxTex = 0, maxLayers = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
   if (resolution > maxTex) fail("parameter 'shadow_res': ", resolution, " exceeds GL_MAX_TEXTURE_SIZE ", maxTex);
-  layout_ = layoutLightFaces(scene.lights, gpu.bounds(), resolution);
+  layout_ = layoutLightFaces(lights, gpu.bounds(), resolution);
   const int layers = std::max(1, faceCount());
   if (layers > maxLayers)
-    fail("the scene's ", scene.lights.size(), " lights need ", layers, " light-map faces; this GL allows ", maxLayers);
+    fail("the scene's ", lights.size(), " lights need ", layers, " light-map faces; this GL allows ", maxLayers);
 
   const GLenum formats[4] = {GL_R32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F};
   const int channels = reflective ? 4 : 1;
@@ -96,10 +95,11 @@ LightMaps::LightMaps(const Scene& scene, const GpuScene& gpu, ShaderLibrary& sha
   }
   glCreateBuffers(1, &faceBuffer_);
   glNamedBufferStorage(faceBuffer_, GLsizeiptr(std::max<size_t>(1, layout_.faces.size()) * sizeof(shared::LightFace)),
-                       layout_.faces.empty() ? nullptr : layout_.faces.data(), 0);
+                       nullptr, GL_DYNAMIC_STORAGE_BIT);
   glCreateBuffers(1, &rangeBuffer_);
   glNamedBufferStorage(rangeBuffer_, GLsizeiptr(std::max<size_t>(1, layout_.ranges.size()) * sizeof(glm::ivec4)),
-                       layout_.ranges.empty() ? nullptr : layout_.ranges.data(), 0);
+                       nullptr, GL_DYNAMIC_STORAGE_BIT);
+  uploadLayout();
 
   glCreateFramebuffers(1, &fbo_);
   glCreateRenderbuffers(1, &depth_);
@@ -107,7 +107,23 @@ LightMaps::LightMaps(const Scene& scene, const GpuScene& gpu, ShaderLibrary& sha
   glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
   const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
   glNamedFramebufferDrawBuffers(fbo_, channels, bufs);
-  render(gpu, shaders, profiler);
+}
+
+void LightMaps::uploadLayout() {
+  if (!layout_.faces.empty())
+    glNamedBufferSubData(faceBuffer_, 0, GLsizeiptr(layout_.faces.size() * sizeof(shared::LightFace)),
+                         layout_.faces.data());
+  if (!layout_.ranges.empty())
+    glNamedBufferSubData(rangeBuffer_, 0, GLsizeiptr(layout_.ranges.size() * sizeof(glm::ivec4)),
+                         layout_.ranges.data());
+}
+
+void LightMaps::setLights(const std::vector<Light>& lights, const GpuScene& gpu) {
+  LightFaceLayout l = layoutLightFaces(lights, gpu.bounds(), resolution_);
+  if (l.faces.size() != layout_.faces.size() || l.ranges.size() != layout_.ranges.size())
+    fail("internal: LightMaps::setLights changed the number of light-map faces");
+  layout_ = std::move(l);
+  uploadLayout();
 }
 
 void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler) {

@@ -32,16 +32,19 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
 
 class LightMaps {
  public:
-  // Renders the maps (timed as "light_maps" or "rsm").
-  LightMaps(const Scene& scene, const GpuScene& gpu, ShaderLibrary& shaders, int resolution, bool reflective,
-            Profiler& profiler);
+  // Allocates the maps of `lights` over the scene `gpu` holds; render() draws them.
+  LightMaps(const std::vector<Light>& lights, const GpuScene& gpu, int resolution, bool reflective);
   ~LightMaps();
   LightMaps(const LightMaps&) = delete;
   LightMaps& operator=(const LightMaps&) = delete;
 
-  // Renders the maps again for the scene as `gpu` holds it now (the frames of
-  // an animation); the face layout stays the one made at construction.
+  // Renders the maps (timed as "shadow_maps" or "rsm") for the scene as `gpu`
+  // holds it now (the frames of an animation).
   void render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler);
+  // New positions and directions for lights of the same types as before (a
+  // sample's emitter point, SceneResources::beginSample): the face layout is
+  // made again; render() draws it.
+  void setLights(const std::vector<Light>& lights, const GpuScene& gpu);
 
   // Binds the face table and the map textures (TEXUNIT_LIGHT_*).
   void bind() const;
@@ -50,6 +53,7 @@ class LightMaps {
   nlohmann::json describe() const;  // for the stats
 
  private:
+  void uploadLayout();
   LightFaceLayout layout_;
   int resolution_;
   bool reflective_;

@@ -2,17 +2,26 @@
 // counterparts of the approximate GL modules' integrals.
 //
 //   path       full global illumination (pbrt-style: next-event estimation for
-//              the delta lights, BRDF sampling for emission and environment,
-//              Russian roulette after `rr_depth` bounces)
-//   direct     the path integrator with maxdepth 1: emission + delta lights with
-//              exact visibility (+ environment/emitters seen via one BRDF sample)
+//              the delta lights and the area lights, BRDF sampling for the
+//              environment and, MIS-weighted, the emitters; Russian roulette
+//              after `rr_depth` bounces)
+//   direct     the path integrator with maxdepth 1: emission + delta and area
+//              lights with exact visibility (+ environment via one BRDF sample)
 //   nearfield  direct light at the visible point plus exactly one indirect
 //              bounce gathered from surfaces within distance `radius`; their
-//              outgoing radiance is their emission + exact direct light; rays
+//              outgoing radiance is their exact direct light; rays
 //              that hit nothing within `radius` read the environment (`env`) —
 //              the exact counterpart of VGI §5.1 (Thiedemann et al. 2011)
 //   ao         ambient occlusion: fraction of cosine-weighted rays that travel
 //              `radius` unoccluded (camera misses are 0)
+//
+// Area lights (emissive meshes, core/emitters.h) are sampled by next-event
+// estimation and by the BRDF, combined by multiple importance sampling with
+// the power heuristic (Veach 1997, §9.2; `emitter_sampling=mis`); `light` and
+// `brdf` keep one strategy each (a noisier estimator of the same integral:
+// what the MIS tests compare against). An emitter met by a nearfield bounce
+// ray is direct light (its MIS share goes to `direct`); the bounce's own direct
+// light is estimated by NEE alone, since no BRDF sample follows it.
 //
 // Determinism: every (pixel, sample) owns a PCG32 stream seeded from (seed,
 // pixel, sample), and the framework's sample loop adds the samples of each
@@ -31,6 +40,7 @@
 // | visibility | string | exact              | nearfield: exact, or voxels (see below)              |
 // | voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        |
 // | offset     | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diagonals |
+// | emitter_sampling | string | mis          | path/direct/nearfield: area lights by mis, light (NEE only) or brdf |
 //
 // nearfield with visibility=voxels isolates the voxel-visibility error of the
 // `nearfield` module: the bounce ray starts `offset` voxel diagonals along the
@@ -45,6 +55,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/emitters.h"
 #include "core/error.h"
 #include "core/gpu_scene.h"
 #include "core/parallel.h"
@@ -96,9 +107,13 @@ enum class Integrator { Path, Direct, NearField, Ao };
 struct SurfacePoint {
   vec3 p, ng, n;  // ng and n face the incoming ray
   vec3 wo;
+  float t = 0;  // distance from the ray's origin
   BrdfParams brdf;
-  vec3 emission;
+  vec3 emission;    // Le towards wo (0 behind a one-sided emitter)
+  int emitter = -1;  // index in Emitters, or −1
 };
+
+enum class EmitterSampling { Mis, Light, Brdf };
 
 class ReferenceRenderer : public Method {
  public:
@@ -148,6 +163,11 @@ class ReferenceRenderer : public Method {
     } else params.declare("voxels", "string", "128", voxDoc);
     if (check(voxelVisibility_, "offset")) offset_ = params.getFloat("offset", 1.0f, offDoc, 0.0f, 100.0f);
     else params.declare("offset", "float", "1.0", offDoc);
+    const char* emDoc = "path/direct/nearfield: area lights sampled by mis (light + BRDF), light or brdf";
+    if (check(integrator_ != Integrator::Ao, "emitter_sampling")) {
+      std::string e = params.getString("emitter_sampling", "mis", emDoc, {"mis", "light", "brdf"});
+      emitterSampling_ = e == "mis" ? EmitterSampling::Mis : e == "light" ? EmitterSampling::Light : EmitterSampling::Brdf;
+    } else params.declare("emitter_sampling", "string", "mis", emDoc);
     if (integrator_ == Integrator::Direct) maxDepth_ = 1;
   }
 
@@ -176,7 +196,11 @@ class ReferenceRenderer : public Method {
   vec3 nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const;
   float aoLi(vec3 o, vec3 d, Pcg32& rng) const;
   bool intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) const;
-  vec3 directLight(const SurfacePoint& sp) const;
+  // Delta lights + area lights by NEE; `followed`: a BRDF sample follows this
+  // vertex (then the NEE share is weighted by emitterSampling_, else it is 1).
+  vec3 directLight(const SurfacePoint& sp, Pcg32& rng, bool followed) const;
+  // The weight of emission met by a BRDF sample of density `pdfBrdf` (solid angle).
+  float emissionWeight(const SurfacePoint& hit, float pdfBrdf) const;
   vec3 offsetOrigin(const SurfacePoint& sp, vec3 dir) const;
 
   Integrator integrator_;
@@ -186,11 +210,13 @@ class ReferenceRenderer : public Method {
   bool voxelVisibility_ = false;
   glm::uvec3 voxels_{128};
   float offset_ = 1.0f;
+  EmitterSampling emitterSampling_ = EmitterSampling::Mis;
 
   // Per frame (prepareFrame).
   const Scene* scene_ = nullptr;
   const FlatScene* flat_ = nullptr;
   const EmbreeTracer* tracer_ = nullptr;
+  const Emitters* emitters_ = nullptr;
   std::unique_ptr<RayTracer> voxelTracer_;  // visibility=voxels, over the resources' exact pyramid
   float voxelDiagonal_ = 0;
   std::vector<PackedLight> lights_;
@@ -210,8 +236,11 @@ bool ReferenceRenderer::intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) 
   const vec3* N = &flat_->normals[3 * t];
   const vec2* UV = &flat_->uvs[3 * t];
   sp.p = o + h.t * d;
+  sp.t = h.t;
   sp.wo = -d;
   sp.ng = glm::normalize(glm::cross(P[1] - P[0], P[2] - P[0]));
+  sp.emitter = emitters_->emitterOfTriangle(t);
+  sp.emission = sp.emitter >= 0 ? emitters_->radianceToward(sp.emitter, sp.wo) : vec3(0.0f);
   if (dot(sp.ng, sp.wo) < 0.0f) sp.ng = -sp.ng;  // surfaces are two-sided
   sp.n = glm::normalize(w * N[0] + h.u * N[1] + h.v * N[2]);
   if (!std::isfinite(sp.n.x) || dot(sp.n, sp.ng) < 0.0f) sp.n = -sp.n;
@@ -222,7 +251,6 @@ bool ReferenceRenderer::intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) 
     sp.brdf.albedo *= scene_->textures[size_t(m.albedoTexture)].lookup(w * UV[0] + h.u * UV[1] + h.v * UV[2]);
   sp.brdf.ks = m.ks;
   sp.brdf.exponent = m.exponent;
-  sp.emission = m.emission;
   return true;
 }
 
@@ -233,7 +261,7 @@ vec3 ReferenceRenderer::offsetOrigin(const SurfacePoint& sp, vec3 dir) const {
   return sp.p + (dot(dir, sp.ng) >= 0.0f ? scale : -scale) * sp.ng;
 }
 
-vec3 ReferenceRenderer::directLight(const SurfacePoint& sp) const {
+vec3 ReferenceRenderer::directLight(const SurfacePoint& sp, Pcg32& rng, bool followed) const {
   vec3 sum(0.0f);
   for (const PackedLight& L : lights_) {
     LightSample ls = sampleDeltaLight(L, sp.p);
@@ -245,24 +273,60 @@ vec3 ReferenceRenderer::directLight(const SurfacePoint& sp) const {
     if (tracer_->occluded(o, ls.wi, 0.0f, tfar)) continue;
     sum += f * ls.radiance * dot(ls.wi, sp.n);
   }
-  return sum;
+  if (emitters_->empty() || (followed && emitterSampling_ == EmitterSampling::Brdf)) return sum;
+  // One point of the area lights (chosen by power, uniform on its triangle).
+  const EmitterSample es = emitters_->sample(rng.uniform2());
+  const vec3 d = es.p - sp.p;
+  const float dist2 = dot(d, d);
+  if (!(dist2 > 0.0f)) return sum;
+  const vec3 wi = d / std::sqrt(dist2);
+  const float cosS = dot(wi, sp.n), cosL = std::abs(dot(es.normal, wi));
+  if (cosS <= 0.0f || dot(wi, sp.ng) <= 0.0f || !(cosL > 0.0f)) return sum;
+  const vec3 Le = emitters_->radianceToward(es.emitter, -wi);
+  if (Le == vec3(0.0f)) return sum;
+  const vec3 f = evalBrdf(sp.brdf, sp.n, sp.wo, wi);
+  if (f == vec3(0.0f)) return sum;
+  // The shadow ray runs from the offset origin to the point itself: along wi
+  // from there it would meet the emitter's plane before the point, at grazing
+  // angles, and count the emitter as its own occluder.
+  const vec3 o = offsetOrigin(sp, wi), toPoint = es.p - o;
+  const float len = glm::length(toPoint);
+  if (tracer_->occluded(o, toPoint / len, 0.0f, len * (1.0f - 1e-4f))) return sum;
+  const float pdfLight = es.pdfArea * dist2 / cosL;  // solid angle
+  float w = 1.0f;
+  if (followed && emitterSampling_ == EmitterSampling::Mis) {
+    const float pdfBrdf = brdfPdf(sp.brdf, sp.n, sp.wo, wi);
+    w = pdfLight * pdfLight / (pdfLight * pdfLight + pdfBrdf * pdfBrdf);
+  }
+  return sum + f * Le * (cosS * w / pdfLight);
+}
+
+float ReferenceRenderer::emissionWeight(const SurfacePoint& hit, float pdfBrdf) const {
+  if (hit.emitter < 0 || emitterSampling_ == EmitterSampling::Brdf) return 1.0f;
+  if (emitterSampling_ == EmitterSampling::Light) return 0.0f;
+  const float cosL = std::abs(dot(emitters_->triangles()[size_t(hit.emitter)].normal, hit.wo));
+  if (!(cosL > 0.0f)) return 0.0f;
+  const float pdfLight = emitters_->pdfArea(hit.emitter) * hit.t * hit.t / cosL;
+  return pdfBrdf * pdfBrdf / (pdfBrdf * pdfBrdf + pdfLight * pdfLight);
 }
 
 vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng) const {
   vec3 L(0.0f), beta(1.0f);
+  float pdfBrdf = 0;  // of the direction that led to this vertex (none for the camera ray)
   for (int depth = 0;; ++depth) {
     SurfacePoint sp;
     if (!intersect(o, d, 1e30f, sp)) {
       L += beta * scene_->environmentRadiance(d);
       break;
     }
-    L += beta * sp.emission;
+    if (sp.emission != vec3(0.0f)) L += beta * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
     if (depth == maxDepth_) break;
-    L += beta * directLight(sp);
+    L += beta * directLight(sp, rng, true);
     vec3 wi = sampleBrdf(sp.brdf, sp.n, sp.wo, rng.uniform3());
     float pdf = brdfPdf(sp.brdf, sp.n, sp.wo, wi);
     if (!(pdf > 0.0f) || dot(wi, sp.n) <= 0.0f || dot(wi, sp.ng) <= 0.0f) break;
     beta *= evalBrdf(sp.brdf, sp.n, sp.wo, wi) * (dot(wi, sp.n) / pdf);
+    pdfBrdf = pdf;
     if (depth + 1 >= rrDepth_) {
       float q = std::max(0.05f, 1.0f - std::max({beta.x, beta.y, beta.z}));
       if (rng.uniform() < q) break;
@@ -277,11 +341,17 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng) const {
 vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
   SurfacePoint x;
   if (!intersect(o, d, 1e30f, x)) return scene_->environmentRadiance(d);
-  vec3 L = x.emission + directLight(x);
+  vec3 L = x.emission + directLight(x, rng, true);
   vec3 wi = sampleBrdf(x.brdf, x.n, x.wo, rng.uniform3());
   float pdf = brdfPdf(x.brdf, x.n, x.wo, wi);
   if (!(pdf > 0.0f) || dot(wi, x.n) <= 0.0f || dot(wi, x.ng) <= 0.0f) return L;
   vec3 weight = evalBrdf(x.brdf, x.n, x.wo, wi) * (dot(wi, x.n) / pdf);
+  // The bounce surface y: its emission is direct light at x (the MIS share),
+  // its direct light the one indirect bounce.
+  auto bounce = [&](const SurfacePoint& y) {
+    if (y.emission != vec3(0.0f)) L += weight * y.emission * emissionWeight(y, pdf);
+    indirect = weight * directLight(y, rng, false);
+  };
   SurfacePoint y;
   if (voxelTracer_) {
     TraceRay ray;
@@ -292,13 +362,13 @@ vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) 
     if (!h.hit) {
       if (env_) indirect = weight * scene_->environmentRadiance(wi);
     } else if (intersect(ray.origin, wi, h.t + 2.0f * voxelDiagonal_, y)) {
-      indirect = weight * (y.emission + directLight(y));
+      bounce(y);
     }
     return L + indirect;
   }
   vec3 yo = offsetOrigin(x, wi);
   if (intersect(yo, wi, radius_, y))
-    indirect = weight * (y.emission + directLight(y));
+    bounce(y);
   else if (env_)
     indirect = weight * scene_->environmentRadiance(wi);
   return L + indirect;
@@ -326,6 +396,7 @@ void ReferenceRenderer::prepareFrame(Frame& f) {
   scene_ = &f.scene;
   flat_ = &f.resources.flatScene();
   tracer_ = &f.resources.bvh();
+  emitters_ = &f.resources.emitters();
   voxelTracer_.reset();
   if (voxelVisibility_) {
     TracerInputs in;
@@ -383,6 +454,7 @@ void ReferenceRenderer::finishFrame(Frame& f) {
   f.extra["threads"] = resolveThreads(f.request.threads);
   if (voxelTracer_) f.extra["voxel_diagonal"] = voxelDiagonal_;
   f.extra["triangles"] = flat_->triangleCount();
+  f.extra["emitter_triangles"] = emitters_->size();
 }
 
 }  // namespace

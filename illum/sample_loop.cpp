@@ -233,6 +233,7 @@ RenderResult renderFrame(Method& method, const RenderRequest& req, SceneResource
         targets.gbuffer()->render(res.gpuScene(), frame.camera);
       }
     }
+    res.beginSample(done, req.seed, prof);
     if (!method.addSample(frame, done)) break;  // stopped inside the sample: not counted
     {
       auto s = prof.scope("accumulate");

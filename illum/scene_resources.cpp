@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/emitters.h"
 #include "core/error.h"
 #include "core/gpu_scene.h"
 #include "core/params.h"
@@ -73,20 +74,39 @@ bool SceneResources::update(float time, Profiler& prof) {
   const bool first = first_;
   first_ = false;
 
+  if (needs_.bvh) {
+    auto s = prof.scope("build_bvh");
+    bvh_.reset();
+    flat_ = std::make_unique<FlatScene>(flatten(scene_, time));
+    bvh_ = std::make_unique<EmbreeTracer>(*flat_);
+    emitters_ = std::make_unique<Emitters>(scene_, *flat_);
+  } else {
+    emitters_ = std::make_unique<Emitters>(Emitters::ofScene(scene_, time));
+  }
   const bool gpuScene = needs_.gbuffer || needs_.lightMaps;
+  sampleLights_ = gpuScene && !emitters_->empty();
+  lights_ = scene_.lights;
+  if (sampleLights_) {
+    // Placeholder points (sample 0, seed 0) give the light count and types;
+    // beginSample places them.
+    for (const Light& l : emitters_->spotLights(emitterSequence(0, 0))) lights_.push_back(l);
+    lightsKey_ = -1;
+  }
   if (gpuScene) {
     auto s = prof.scope("upload");
     if (!gpu_)
       gpu_ = std::make_unique<GpuScene>(scene_, time);
     else
       gpu_->setTime(scene_, time);
+    gpu_->setLights(lights_);
   }
   if (needs_.lightMaps) {
     if (!lightMaps_)
-      lightMaps_ = std::make_unique<LightMaps>(scene_, *gpu_, *shaders_, needs_.lightMaps->resolution,
-                                               needs_.lightMaps->reflective, prof);
+      lightMaps_ = std::make_unique<LightMaps>(lights_, *gpu_, needs_.lightMaps->resolution,
+                                               needs_.lightMaps->reflective);
     else
-      lightMaps_->render(*gpu_, *shaders_, prof);
+      lightMaps_->setLights(lights_, *gpu_);
+    if (!sampleLights_) lightMaps_->render(*gpu_, *shaders_, prof);
   }
   if (needs_.binaryGrid) {
     if (first) {
@@ -103,13 +123,21 @@ bool SceneResources::update(float time, Profiler& prof) {
     }
     buildGrid(prof);
   }
-  if (needs_.bvh) {
-    auto s = prof.scope("build_bvh");
-    bvh_.reset();
-    flat_ = std::make_unique<FlatScene>(flatten(scene_, time));
-    bvh_ = std::make_unique<EmbreeTracer>(*flat_);
-  }
   return true;
+}
+
+void SceneResources::beginSample(int k, uint32_t seed, Profiler& prof) {
+  if (!sampleLights_) return;
+  const long long key = (static_cast<long long>(seed) << 31) | k;
+  if (key == lightsKey_) return;
+  lightsKey_ = key;
+  lights_ = scene_.lights;
+  for (const Light& l : emitters_->spotLights(emitterSequence(k, seed))) lights_.push_back(l);
+  gpu_->setLights(lights_);
+  if (lightMaps_) {
+    lightMaps_->setLights(lights_, *gpu_);
+    lightMaps_->render(*gpu_, *shaders_, prof);
+  }
 }
 
 void SceneResources::buildGrid(Profiler& prof) {
@@ -152,6 +180,8 @@ const T& need(const std::unique_ptr<T>& p, const char* what) {
 }
 }  // namespace
 
+const Emitters& SceneResources::emitters() const { return need(emitters_, "area lights (before update)"); }
+const std::vector<Light>& SceneResources::lights() const { return lights_; }
 const GpuScene& SceneResources::gpuScene() const { return need(gpu_, "GPU scene"); }
 const LightMaps& SceneResources::lightMaps() const { return need(lightMaps_, "light maps"); }
 const GridBox& SceneResources::gridBox() const {

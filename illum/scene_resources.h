@@ -7,7 +7,11 @@
 // scene with dynamic meshes, update only what moves (the GPU scene's
 // vertices, the dynamic meshes' voxels — the atlas voxelizer keeps the static
 // meshes' grid, VGI §3.2 —, the pyramid, the light maps, the BVH). Static
-// scenes build once. built() names what was actually allocated, so the
+// scenes build once. Area lights (core/emitters.h) come with every method:
+// the CPU methods sample them from emitters(); for the GL methods
+// beginSample(k) turns one emitter point per sample into spot lights, so the
+// G-buffer's lights and the light maps change per sample (the light maps are
+// then a per-sample pass). built() names what was actually allocated, so the
 // stats, `vgi compare` and the registry tests read facts, not declarations.
 #pragma once
 #include <glm/glm.hpp>
@@ -22,6 +26,8 @@
 namespace vgi {
 
 class AtlasVoxelizer;
+class Emitters;
+struct Light;
 class EmbreeTracer;
 class GlContext;
 class GlPyramid;
@@ -81,6 +87,16 @@ class SceneResources {
 
   const SceneNeeds& needs() const { return needs_; }
 
+  // Before sample k of a run seeded `seed`: with area lights and GL lights
+  // (G-buffer or light maps declared), the lights become the scene's delta
+  // lights plus the spot lights of emitter point emitterSequence(k, seed),
+  // uploaded, and the light maps are rendered for them. No-op otherwise.
+  void beginSample(int k, uint32_t seed, Profiler& profiler);
+  // The area lights at the current time (every method may read them).
+  const Emitters& emitters() const;
+  // The lights the GL programs see now (see beginSample).
+  const std::vector<Light>& lights() const;
+
   // Each throws if the method did not declare it (a module reads only what it
   // asked for, so `built` stays true).
   const GpuScene& gpuScene() const;
@@ -111,6 +127,10 @@ class SceneResources {
   bool first_ = true, rebuilt_ = false;
   float time_ = 0;
 
+  std::unique_ptr<Emitters> emitters_;
+  std::vector<Light> lights_;
+  bool sampleLights_ = false;  // lights_ follow the sample (area lights on GL resources)
+  long long lightsKey_ = -1;   // (seed, k) of the lights uploaded; −1: none yet
   std::unique_ptr<GpuScene> gpu_;
   std::unique_ptr<LightMaps> lightMaps_;
   GridBox box_;

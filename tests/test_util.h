@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "core/image.h"
 #include "core/scene.h"
 
 namespace vgi::test {
@@ -29,6 +30,13 @@ void expectError(Fn fn, std::initializer_list<std::string> needles) {
     std::string msg = e.what();
     for (auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' not in: " << msg;
   }
+}
+
+// Mean of one colour channel over an image.
+inline double meanOf(const Image& img, int channel = 0) {
+  double s = 0;
+  for (auto& p : img.pixels) s += p[channel];
+  return s / double(img.pixels.size());
 }
 
 inline int addMaterial(Scene& s, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
@@ -73,7 +81,8 @@ inline void addFloor(Scene& s, float h, float y, int material) {
   s.meshes.push_back(m);
 }
 
-// Closed axis-aligned box [-h, h]³ (two-sided surfaces: winding does not matter).
+// Closed axis-aligned box [lo, hi]; the faces wind counter-clockwise seen from
+// inside, so one-sided emission lights the inside (the furnace test).
 inline void addBox(Scene& s, glm::vec3 lo, glm::vec3 hi, int material) {
   Mesh m;
   m.name = "box";

@@ -29,12 +29,9 @@ RenderResult renderRef(const Scene& s, std::initializer_list<std::string> set, i
   return renderStill(*m, r, prof);
 }
 
-double meanOf(const Image& img, int channel) {
-  double s = 0;
-  for (auto& p : img.pixels) s += p[channel];
-  return s / double(img.pixels.size());
-}
 }  // namespace
+
+using test::meanOf;
 
 // Closed box, albedo ρ and emission Le everywhere: L = Le / (1 − ρ).
 TEST(Reference, WhiteFurnace) {
@@ -167,7 +164,7 @@ TEST(Reference, ParametersOfOtherIntegratorsAreRejected) {
   test::expectError([&] { createReferenceMethod(p, s); }, {"maxdepth", "integrator=ao"});
   ParamSet docs;
   createReferenceMethod(docs, s);
-  EXPECT_EQ(docs.docs().size(), 8u);  // all parameters documented
+  EXPECT_EQ(docs.docs().size(), 9u);  // all parameters documented
   EXPECT_FALSE(docs.resolved().contains("radius"));  // only the path integrator's resolved
   ParamSet q;
   q.setFromString("integrator=path");

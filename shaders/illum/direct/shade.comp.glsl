@@ -36,11 +36,13 @@ void main() {
     vec3 p = P.xyz;
     vec4 N = texelFetch(gNormal, px, 0);
     vec3 n = normalize(N.xyz);
-    vec3 ng = texelFetch(gGeometricNormal, px, 0).xyz;
+    vec4 NG = texelFetch(gGeometricNormal, px, 0);
+    vec3 ng = NG.xyz;
     int m = int(N.w + 0.5f);
     BrdfParams brdf = gpuMaterialBrdf(m, texelFetch(gAlbedo, px, 0).xyz);
     vec3 wo = normalize(uCameraPosition - p);
-    L = materials[m].emission.xyz;
+    // One-sided emitters (emission.w = 0) emit on their front side (NG.w = 1).
+    if (materials[m].emission.w > 0.5f || NG.w > 0.5f) L = materials[m].emission.xyz;
     for (int i = 0; i < lights.length(); ++i) {
       LightSample ls = sampleDeltaLight(lights[i], p);
       float cosI = dot(ls.wi, n);

@@ -1,7 +1,9 @@
 // G-buffer: world position (w = 1 where a surface was seen), shading normal
 // turned towards the viewer (surfaces are two-sided, as in the reference) with
 // the material index in w, textured albedo, and the triangle's geometric
-// normal (the receiver plane of the shadow test, shaders/shared/light_maps.glsl).
+// normal (the receiver plane of the shadow test, shaders/shared/light_maps.glsl)
+// with w = 1 where the viewer sees the triangle's front (counter-clockwise)
+// side, the side a one-sided emitter emits on (core/emitters.h).
 #include "../../shared/constants.glsl"
 #include "../../shared/sampling.glsl"
 #include "../../shared/brdf.glsl"
@@ -25,5 +27,5 @@ void main() {
   outPosition = vec4(vPosition, 1.0f);
   outNormal = vec4(n, float(m));
   outAlbedo = vec4(albedo, 1.0f);
-  outGeometricNormal = vec4(vGeometricNormal, 0.0f);
+  outGeometricNormal = vec4(vGeometricNormal, gl_FrontFacing ? 1.0f : 0.0f);
 }

@@ -1,0 +1,133 @@
+#include "core/emitters.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace vgi {
+
+namespace {
+float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+}  // namespace
+
+Emitters::Emitters(const Scene& scene, const FlatScene& flat) : twoSided_(scene.twoSidedEmission) {
+  emitterOf_.assign(flat.triangleCount(), -1);
+  double total = 0;
+  std::vector<double> power;
+  for (size_t t = 0; t < flat.triangleCount(); ++t) {
+    const Material& m = scene.materials[size_t(flat.material[t])];
+    if (m.emission == glm::vec3(0.0f)) continue;
+    EmitterTriangle e;
+    e.p0 = flat.positions[3 * t];
+    e.e1 = flat.positions[3 * t + 1] - e.p0;
+    e.e2 = flat.positions[3 * t + 2] - e.p0;
+    glm::vec3 c = glm::cross(e.e1, e.e2);
+    e.area = 0.5f * glm::length(c);
+    if (!(e.area > 0.0f) || !std::isfinite(e.area)) continue;  // degenerate: emits nothing
+    e.normal = c / (2.0f * e.area);
+    e.radiance = m.emission;
+    e.mesh = flat.meshOfTriangle.empty() ? -1 : flat.meshOfTriangle[t];
+    e.flatTriangle = int(t);
+    emitterOf_[t] = int(triangles_.size());
+    triangles_.push_back(e);
+    // A grey-less emitter (luminance 0 but some channel > 0) still gets chosen.
+    double p =
+        std::max(double(luminance(m.emission)), 1e-6 * double(m.emission.x + m.emission.y + m.emission.z)) *
+        double(e.area);
+    power.push_back(p);
+    total += p;
+  }
+  double acc = 0;
+  for (double p : power) {
+    acc += p;
+    cdf_.push_back(float(acc / total));
+  }
+  if (!cdf_.empty()) cdf_.back() = 1.0f;
+}
+
+Emitters Emitters::ofScene(const Scene& scene, float time) {
+  FlatScene flat;
+  for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+    const Mesh& m = scene.meshes[mi];
+    if (scene.materials[size_t(m.material)].emission != glm::vec3(0.0f))
+      flattenMesh(scene, int(mi), time, flat);
+  }
+  return Emitters(scene, flat);
+}
+
+float Emitters::pdfArea(int e) const {
+  const size_t i = size_t(e);
+  const float p = cdf_[i] - (i == 0 ? 0.0f : cdf_[i - 1]);
+  return p / triangles_[i].area;
+}
+
+EmitterSample Emitters::sample(glm::vec2 u) const {
+  VGI_CHECK(!empty());
+  const size_t i = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), u.x) - cdf_.begin());
+  const size_t e = std::min(i, triangles_.size() - 1);
+  const float lo = e == 0 ? 0.0f : cdf_[e - 1], width = cdf_[e] - lo;
+  float ux = width > 0.0f ? std::clamp((u.x - lo) / width, 0.0f, 1.0f - 1e-7f) : 0.5f;
+  // Uniform on the triangle: p0·(1 − √u) + p1·√u(1 − v) + p2·√u·v (Shirley
+  // and Chiu's square-root map), as barycentrics of e1 and e2.
+  const float su = std::sqrt(ux);
+  const float b1 = su * (1.0f - u.y), b2 = su * u.y;
+  const EmitterTriangle& t = triangles_[e];
+  EmitterSample s;
+  s.p = t.p0 + b1 * t.e1 + b2 * t.e2;
+  s.normal = t.normal;
+  s.radiance = t.radiance;
+  s.pdfArea = width / t.area;
+  s.emitter = int(e);
+  return s;
+}
+
+glm::vec3 Emitters::radianceToward(int e, glm::vec3 w) const {
+  const EmitterTriangle& t = triangles_[size_t(e)];
+  const float c = glm::dot(t.normal, w);
+  return (c > 0.0f || (twoSided_ && c < 0.0f)) ? t.radiance : glm::vec3(0.0f);
+}
+
+glm::vec3 Emitters::power(size_t e) const {
+  const EmitterTriangle& t = triangles_[e];
+  return float(M_PI) * t.radiance * t.area * (twoSided_ ? 2.0f : 1.0f);
+}
+
+std::vector<Light> Emitters::spotLights(glm::vec2 u) const {
+  std::vector<Light> out;
+  if (empty()) return out;
+  EmitterSample s = sample(u);
+  Light l;
+  l.type = LightType::Spot;
+  l.position = s.p;
+  l.direction = s.normal;
+  l.intensity = s.radiance / s.pdfArea;  // Le·A/p: I(θ) = Le·A/p·cos θ
+  l.coneHalfAngleDeg = 90.0f;
+  l.falloff = 1.0f;
+  out.push_back(l);
+  if (twoSided_) {
+    l.direction = -s.normal;
+    out.push_back(l);
+  }
+  return out;
+}
+
+glm::vec2 emitterSequence(int k, uint32_t seed) {
+  // R2: u_k = frac(½ + k·(1/g, 1/g²)), g the plastic number.
+  const double g = 1.32471795724474602596;
+  const double a1 = 1.0 / g, a2 = 1.0 / (g * g);
+  // The seed's rotation: two hashes of it (splitmix64's finalizer).
+  auto mix = [](uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  const double r1 = double(mix(uint64_t(seed) * 2 + 1) >> 11) * 0x1.0p-53;
+  const double r2 = double(mix(uint64_t(seed) * 2 + 2) >> 11) * 0x1.0p-53;
+  double x = 0.5 + a1 * double(k) + r1, y = 0.5 + a2 * double(k) + r2;
+  x -= std::floor(x);
+  y -= std::floor(y);
+  return {float(std::min(x, 0x1.fffffep-1)), float(std::min(y, 0x1.fffffep-1))};
+}
+
+}  // namespace vgi
