@@ -1,5 +1,6 @@
 // vgi voxelize: build a binary voxel grid of a scene with one voxelizer and
 // measure it against the exact one.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -27,7 +28,8 @@ nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
 void addVoxelizeCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("voxelize", "Voxelize a scene into a binary grid and compare it with the exact voxelizer");
   struct Options {
-    std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto", kind = "binary";
+    std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto", kind = "binary",
+                textures = "none";
     float time = 0, texelsPerVoxel = kAutoTexelsPerVoxel, footprint = 1.0f;
     int threads = 0, atlasResolution = 0, frames = 1;
     float timeStep = 1.0f / 30.0f;
@@ -40,6 +42,10 @@ void addVoxelizeCommand(CLI::App& app) {
   for (auto& v : voxelizerRegistry()) names += (names.empty() ? "" : "|") + v.name;
   cmd->add_option("--voxelizer", o->voxelizer, names)->capture_default_str();
   cmd->add_option("--kind", o->kind, "grids to build: binary, plus any of normal,albedo,glossy (atlas; comma-separated)")
+      ->capture_default_str();
+  cmd->add_option("--textures", o->textures,
+                  "multi-valued grids also resolved into GL 3D textures (voxelize/value_textures.h): none, level0, "
+                  "isotropic or anisotropic mip chains (timed as value_resolve, value_mips)")
       ->capture_default_str();
   cmd->add_option("--time", o->time, "animation time")->capture_default_str();
   cmd->add_option("--threads", o->threads, "CPU threads (0 = all cores)")->capture_default_str();
@@ -100,6 +106,11 @@ void addVoxelizeCommand(CLI::App& app) {
       req.valueGrids = parseValueChannels(kinds);
       if (info.name != "atlas") fail("--kind ", o->kind, ": multi-valued grids are built by --voxelizer atlas only");
     }
+    const std::vector<std::string> textureKinds = {"none", "level0", "isotropic", "anisotropic"};
+    if (std::find(textureKinds.begin(), textureKinds.end(), o->textures) == textureKinds.end())
+      fail("--textures '", o->textures, "': must be none, level0, isotropic or anisotropic");
+    if (o->textures != "none" && req.valueGrids.empty())
+      fail("--textures ", o->textures, ": needs multi-valued grids (--kind binary,normal,…)");
     nlohmann::json s;
     Profiler prof(gl != nullptr);
     BinaryGrid grid(req.box);
@@ -121,6 +132,14 @@ void addVoxelizeCommand(CLI::App& app) {
           frames.push_back({{"time", t}, {"timings_ms", frameProf.timingsMs()}, {"total_ms", frameProf.totalMs()}});
         }
         req.time = t;
+      }
+      if (o->textures != "none") {
+        const ValueMips mips = o->textures == "level0"      ? ValueMips::None
+                               : o->textures == "isotropic" ? ValueMips::Isotropic
+                                                            : ValueMips::Anisotropic;
+        ValueTextures tex(req.box, req.valueGrids, mips);
+        tex.resolve(v.valueBuffers(), *shaders, prof);
+        s["value_textures"] = tex.describe();
       }
       {
         auto sc = prof.scope("readback");

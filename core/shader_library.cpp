@@ -347,6 +347,9 @@ void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::ivec3 v) {
 void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::uvec3 v) {
   glProgramUniform3ui(p, uniformLocation(p, n), v.x, v.y, v.z);
 }
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::uvec4 v) {
+  glProgramUniform4ui(p, uniformLocation(p, n), v.x, v.y, v.z, v.w);
+}
 void ShaderLibrary::setUniform(unsigned p, const std::string& n, const glm::mat4& v) {
   glProgramUniformMatrix4fv(p, uniformLocation(p, n), 1, GL_FALSE, &v[0][0]);
 }

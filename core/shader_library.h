@@ -50,6 +50,7 @@ class ShaderLibrary {
   void setUniform(unsigned program, const std::string& name, glm::ivec2 v);
   void setUniform(unsigned program, const std::string& name, glm::ivec3 v);
   void setUniform(unsigned program, const std::string& name, glm::uvec3 v);
+  void setUniform(unsigned program, const std::string& name, glm::uvec4 v);
   void setUniform(unsigned program, const std::string& name, const glm::mat4& v);
   // The location, with the check above (−1 for a dropped one).
   int uniformLocation(unsigned program, const std::string& name);

@@ -14,6 +14,7 @@
 #include "traverse/or_mip_pyramid.h"
 #include "voxelize/atlas.h"
 #include "voxelize/atlas_voxelizer.h"
+#include "voxelize/value_grids.h"
 #include "voxelize/voxelizer.h"
 
 namespace vgi {
@@ -23,6 +24,10 @@ std::vector<std::string> SceneNeeds::names() const {
   if (gbuffer) n.push_back("gbuffer");
   if (lightMaps) n.push_back(lightMaps->reflective ? "rsm" : "light_maps");
   if (binaryGrid) n.push_back("binary_grid");
+  if (valueGrids) {
+    n.push_back("value_grids");
+    if (valueGrids->mips != ValueMips::None) n.push_back("value_mips");
+  }
   if (orMipPyramid) n.push_back("or_mip_pyramid");
   if (bvh) n.push_back("bvh");
   return n;
@@ -36,6 +41,15 @@ void SceneNeeds::check(const std::string& method, bool gl) const {
          "' asks for a GL binary grid without its pyramid (GLSL reads the grid as its level 0)");
   if (!gl && (gbuffer || lightMaps))
     fail("method '", method, "' runs on the CPU but asks for GL resources (G-buffer, light maps)");
+  if (valueGrids) {
+    if (!gl) fail("method '", method, "' runs on the CPU but asks for value-grid 3D textures");
+    if (!binaryGrid || binaryGrid->voxelizer != "atlas")
+      fail("method '", method, "' asks for multi-valued grids without the atlas voxelizer's binary grid (",
+           binaryGrid ? "voxelizer=" + binaryGrid->voxelizer : std::string("no binary grid"),
+           "): their values come from its atlas points");
+    if (valueGrids->channels.empty()) fail("method '", method, "' asks for multi-valued grids with no channel");
+    for (auto& c : valueGrids->channels) valueChannelIndex(c);
+  }
   if (binaryGrid) {
     const VoxelizerInfo& v = findVoxelizer(binaryGrid->voxelizer);
     if (v.needsGl && !gl) fail("method '", method, "' runs on the CPU but voxelizer '", v.name, "' needs GL");
@@ -150,12 +164,18 @@ void SceneResources::buildGrid(Profiler& prof) {
   vreq.gl = gl_;
   vreq.shaders = shaders_;
   vreq.atlasCacheDir = defaultAtlasCacheDir();
+  if (needs_.valueGrids) vreq.valueGrids = needs_.valueGrids->channels;
   voxelsCounted_ = false;
   if (!voxelizerStats_) voxelizerStats_ = std::make_unique<nlohmann::json>(nlohmann::json::object());
   if (gl_ && g.voxelizer == "atlas") {
     // The atlas voxelizer keeps the static meshes' grid on the GPU and re-inserts the dynamic ones.
     if (!atlas_) atlas_ = std::make_unique<AtlasVoxelizer>(vreq, prof);
     atlas_->voxelizeFrame(time_, prof);
+    if (needs_.valueGrids) {
+      if (!valueTextures_)
+        valueTextures_ = std::make_unique<ValueTextures>(box_, needs_.valueGrids->channels, needs_.valueGrids->mips);
+      valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
+    }
     if (!glPyramid_) glPyramid_ = std::make_unique<GlPyramid>(box_);
     auto s = prof.scope("pyramid");
     glPyramid_->build(atlas_->frameGrid(), *shaders_);
@@ -190,6 +210,7 @@ const GridBox& SceneResources::gridBox() const {
 }
 float SceneResources::voxelDiagonal() const { return glm::length(gridBox().voxelSize()); }
 const GlPyramid& SceneResources::glPyramid() const { return need(glPyramid_, "GL pyramid"); }
+const ValueTextures& SceneResources::valueTextures() const { return need(valueTextures_, "value-grid textures"); }
 const OrMipPyramid& SceneResources::cpuPyramid() const { return need(cpuPyramid_, "CPU pyramid"); }
 const EmbreeTracer& SceneResources::bvh() const { return need(bvh_, "BVH"); }
 const FlatScene& SceneResources::flatScene() const { return need(flat_, "flattened scene"); }
@@ -197,10 +218,12 @@ const FlatScene& SceneResources::flatScene() const { return need(flat_, "flatten
 std::vector<std::string> SceneResources::built() const {
   std::vector<std::string> n;
   if (lightMaps_) n.push_back(lightMaps_->reflective() ? "rsm" : "light_maps");
-  if (glPyramid_ || cpuPyramid_) {
-    n.push_back("binary_grid");  // the pyramid's level 0
-    n.push_back("or_mip_pyramid");
+  if (glPyramid_ || cpuPyramid_) n.push_back("binary_grid");  // the pyramid's level 0
+  if (valueTextures_) {
+    n.push_back("value_grids");
+    if (valueTextures_->mips() != ValueMips::None) n.push_back("value_mips");
   }
+  if (glPyramid_ || cpuPyramid_) n.push_back("or_mip_pyramid");
   if (bvh_) n.push_back("bvh");
   return n;
 }
@@ -221,11 +244,13 @@ nlohmann::json SceneResources::gridStats() {
     voxelsCounted_ = true;
   }
   const glm::uvec3 r = needs_.binaryGrid->resolution;
-  return {{"resolution", {r.x, r.y, r.z}},
-          {"voxelizer", needs_.binaryGrid->voxelizer},
-          {"voxels_set", voxelsSet_},
-          {"stats", *voxelizerStats_},
-          {"rebuilt_this_frame", rebuilt_}};
+  nlohmann::json j = {{"resolution", {r.x, r.y, r.z}},
+                      {"voxelizer", needs_.binaryGrid->voxelizer},
+                      {"voxels_set", voxelsSet_},
+                      {"stats", *voxelizerStats_},
+                      {"rebuilt_this_frame", rebuilt_}};
+  if (valueTextures_) j["value_grids"] = valueTextures_->describe();
+  return j;
 }
 
 nlohmann::json SceneResources::lightMapStats() const {

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "voxelize/value_textures.h"
 #include "voxelize/voxel_grid.h"
 
 namespace vgi {
@@ -50,17 +51,26 @@ struct BinaryGridNeed {
   std::string voxelizer = "atlas";  // a name of voxelizerRegistry()
 };
 
+// Multi-valued grids as 3D textures (voxelize/value_textures.h) over the
+// binary grid's box: built by the atlas voxelizer's insertion, so they need
+// binaryGrid with voxelizer "atlas" (its points are where the values come from).
+struct ValueGridNeed {
+  std::vector<std::string> channels;  // of valueChannelNames(): normal, albedo, glossy
+  ValueMips mips = ValueMips::None;
+};
+
 // The resources one render of a method uses. GL methods get GL resources (the
 // grid voxelized into GPU memory, a GPU pyramid); CPU methods get host ones.
 struct SceneNeeds {
   bool gbuffer = false;                   // GL: the per-pixel G-buffer (a render target of the image size)
   std::optional<LightMapNeed> lightMaps;  // GL: shadow maps / RSMs of every delta light
   std::optional<BinaryGridNeed> binaryGrid;
+  std::optional<ValueGridNeed> valueGrids;  // GL: the channels' 3D textures (+ mips)
   bool orMipPyramid = false;  // over binaryGrid (required with it on GL: GLSL reads level 0)
   bool bvh = false;           // CPU: the flattened scene in an Embree BVH
 
   // The resource names of the stats ("gbuffer", "light_maps" or "rsm",
-  // "binary_grid", "or_mip_pyramid", "bvh"), in that order.
+  // "binary_grid", "value_grids", "value_mips", "or_mip_pyramid", "bvh"), in that order.
   std::vector<std::string> names() const;
   // Throws if the combination cannot be built (a pyramid without a grid, …),
   // naming `method`.
@@ -104,6 +114,7 @@ class SceneResources {
   const GridBox& gridBox() const;  // the grid's box: the union of the animation's bounds
   float voxelDiagonal() const;
   const GlPyramid& glPyramid() const;
+  const ValueTextures& valueTextures() const;
   const OrMipPyramid& cpuPyramid() const;
   const EmbreeTracer& bvh() const;
   const FlatScene& flatScene() const;  // the triangles the BVH holds
@@ -137,6 +148,7 @@ class SceneResources {
   bool hasBox_ = false;
   std::unique_ptr<AtlasVoxelizer> atlas_;  // holds the static meshes' grid between frames
   std::unique_ptr<GlPyramid> glPyramid_;
+  std::unique_ptr<ValueTextures> valueTextures_;
   std::unique_ptr<OrMipPyramid> cpuPyramid_;
   std::unique_ptr<FlatScene> flat_;
   std::unique_ptr<EmbreeTracer> bvh_;

@@ -424,6 +424,14 @@ BinaryGrid AtlasVoxelizer::readFrame() const {
   return grid;
 }
 
+ValueSumBuffers AtlasVoxelizer::valueBuffers() const {
+  ValueSumBuffers b;
+  if (!frameValues_) return b;
+  b.counts = frameValues_->counts;
+  for (int k = 0; k < 3; ++k) b.sums[k] = frameValues_->sums[k];
+  return b;
+}
+
 ValueGrids AtlasVoxelizer::readValues() const {
   ValueGrids g;
   g.box = request_.box;

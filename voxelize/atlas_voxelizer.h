@@ -4,6 +4,7 @@
 
 #include "voxelize/gpu_grid.h"
 #include "voxelize/value_grids.h"
+#include "voxelize/value_textures.h"
 #include "voxelize/voxelizer.h"
 
 namespace vgi {
@@ -35,6 +36,8 @@ class AtlasVoxelizer {
   BinaryGrid readFrame() const;
   // The multi-valued grids of the last frame (those the request asked for).
   ValueGrids readValues() const;
+  // Their GL sum buffers, for ValueTextures::resolve (all 0 without value grids).
+  ValueSumBuffers valueBuffers() const;
 
   // "points" (of the last frame, static included), "atlas_resolution",
   // "atlases" (per mesh), "triangles_without_texels", "static_meshes", "dynamic_meshes".

@@ -32,19 +32,20 @@ std::vector<std::string> parseValueChannels(const std::string& list) {
 std::vector<glm::vec4> decodeMeans(const std::vector<uint32_t>& sums, const std::vector<uint32_t>& counts,
                                    const std::string& channel) {
   std::vector<glm::vec4> means(counts.size(), glm::vec4(0.0f));
-  const bool normal = channel == "normal", glossy = channel == "glossy";
+  const uint32_t ch = valueChannelIndex(channel);
   for (size_t i = 0; i < counts.size(); ++i) {
     if (counts[i] == 0) continue;
-    for (uint32_t c = 0; c < 4; ++c) {
-      if (c == 3 && !glossy) continue;
-      if (glossy && c == 3) {
-        means[i][3] = shared::decodeExponent(shared::fromFixedMean(sums[4 * i + 3], counts[i], 0.0f, shared::exponentCodeMax()));
-        continue;
-      }
-      means[i][int(c)] = shared::fromFixedMean(sums[4 * i + c], counts[i], normal ? -1.0f : 0.0f, 1.0f);
-    }
+    const glm::uvec4 s(sums[4 * i], sums[4 * i + 1], sums[4 * i + 2], sums[4 * i + 3]);
+    means[i] = shared::decodeValueMean(s, counts[i], ch);
+    if (ch == shared::VALUE_CHANNEL_GLOSSY) means[i].w = shared::decodeExponent(means[i].w);
   }
   return means;
+}
+
+uint32_t valueChannelIndex(const std::string& channel) {
+  for (size_t k = 0; k < valueChannelNames().size(); ++k)
+    if (valueChannelNames()[k] == channel) return uint32_t(k);
+  fail("unknown value channel '", channel, "'");
 }
 
 const std::vector<glm::vec4>& ValueGrids::channel(const std::string& name) const {

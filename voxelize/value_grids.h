@@ -13,6 +13,8 @@ namespace vgi {
 
 // The channels a multi-valued voxelization can build, in a fixed order.
 const std::vector<std::string>& valueChannelNames();
+// Index of a channel in valueChannelNames() (= shared::VALUE_CHANNEL_*); throws if unknown.
+uint32_t valueChannelIndex(const std::string& channel);
 // "normal,albedo" → validated list (throws naming the bad entry).
 std::vector<std::string> parseValueChannels(const std::string& list);
 

@@ -41,6 +41,13 @@
 #define TEXUNIT_LIGHT_RADIANCE 13           // sampler2DArray RGBA16F, reflected direct radiance (diffuse)
 #define TEXUNIT_ATLAS_ALBEDO 14             // atlas voxelizer: albedo (multi-valued grids)
 #define TEXUNIT_ATLAS_GLOSSY 15             // … glossy
+#define TEXUNIT_VALUE_OCCUPANCY 16          // sampler3D R8: 1 where a cell has atlas points (voxelize/value_textures.h)
+#define TEXUNIT_VALUE_NORMAL 17             // sampler3D RGBA16F mean normal (xyz)
+#define TEXUNIT_VALUE_ALBEDO 18             // sampler3D RGBA8 mean albedo (rgb)
+#define TEXUNIT_VALUE_GLOSSY 19             // sampler3D RGBA16F mean ks (rgb), exponent code (w)
+#define TEXUNIT_VALUE_COUNT 20              // usampler3D R32UI atlas points per cell
+#define TEXUNIT_VALUE_ANISO 21              // 21…26: the six faces of one channel's anisotropic chain
+#define TEXUNIT_PASS_INPUT2 27              // a pass's second input texture
 
 // ---- images
 #define IMAGE_OUTPUT 0                 // a pass's output
@@ -50,3 +57,8 @@
 #define IMAGE_ACCUMULATE_SAMPLE 0      // shaders/illum/accumulate.comp
 #define IMAGE_ACCUMULATE_SUM 1
 #define IMAGE_ACCUMULATE_COMPENSATION 2
+#define IMAGE_VALUE_OCCUPANCY 1        // voxelize/value_resolve.comp: the textures it writes
+#define IMAGE_VALUE_NORMAL 2
+#define IMAGE_VALUE_ALBEDO 3
+#define IMAGE_VALUE_GLOSSY 4
+#define IMAGE_VALUE_COUNT 5

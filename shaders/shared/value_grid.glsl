@@ -9,6 +9,7 @@
 #pragma once
 #include "cpp_prelude.h"
 #endif
+#include "voxel_grid.glsl"
 SHARED_BEGIN
 
 const float FIXED_ONE = 65535.0f;
@@ -31,5 +32,69 @@ SHARED_FN float exponentCodeMax() { return log2(1.0f + GLOSSY_MAX_EXPONENT); }
 SHARED_FN uint valueIndex(uvec3 cell, uvec4 resolution, uint c) {
   return ((cell.z * resolution.y + cell.y) * resolution.x + cell.x) * 4u + c;
 }
+
+const uint VALUE_CHANNEL_NORMAL = 0u;
+const uint VALUE_CHANNEL_ALBEDO = 1u;
+const uint VALUE_CHANNEL_GLOSSY = 2u;
+
+// The mean of a cell's sums (count > 0) of channel ch: normal in −1…1 (not
+// renormalised: its length < 1 measures the spread), albedo and ks in 0…1, the
+// glossy exponent as its code log2(1 + e) (decodeExponent gives e), so means
+// and filtering happen in that log space. The CPU decode and the GPU resolve
+// both call this: their means are the same floats.
+SHARED_FN vec4 decodeValueMean(uvec4 sums, uint count, uint ch) {
+  float lo = ch == VALUE_CHANNEL_NORMAL ? -1.0f : 0.0f;
+  vec4 m = vec4(fromFixedMean(sums.x, count, lo, 1.0f), fromFixedMean(sums.y, count, lo, 1.0f),
+                fromFixedMean(sums.z, count, lo, 1.0f), 0.0f);
+  if (ch == VALUE_CHANNEL_GLOSSY) m.w = fromFixedMean(sums.w, count, 0.0f, exponentCodeMax());
+  return m;
+}
+
+// ---- The 3D textures (voxelize/value_textures.h) and their mip chains.
+
+// Texture coordinates of world point p in the grid's 3D textures.
+SHARED_FN vec3 valueUvw(SHARED_IN(GridParams) g, vec3 p) {
+  vec3 q = worldToGrid(g, p);
+  return vec3(q.x / float(g.resolution.x), q.y / float(g.resolution.y), q.z / float(g.resolution.z));
+}
+
+// One isotropic mip texel: the plain mean of its 2×2×2 children (empty
+// children are 0 in every channel and in the occupancy, so channel / occupancy
+// is the occupancy-weighted mean at every level).
+SHARED_FN vec4 boxMean8(vec4 a, vec4 b, vec4 c, vec4 d, vec4 e, vec4 f, vec4 g, vec4 h) {
+  SHARED_PRECISE vec4 s = ((a + b) + (c + d)) + ((e + f) + (g + h));
+  return s * 0.125f;
+}
+
+// Front-to-back composition of premultiplied colours with alpha in w.
+SHARED_FN vec4 frontToBack(vec4 front, vec4 back) {
+  SHARED_PRECISE vec4 r = front + (1.0f - front.w) * back;
+  return r;
+}
+
+// Six-direction anisotropic mip texel (Crassin et al. 2011; Dinse 2015,
+// §3.2): for travel along face f's direction (f = 2·axis, +1 for the negative
+// direction), each of the four lines of children along that axis is composed
+// front to back, and the four results are averaged. Children are indexed
+// x + 2y + 4z.
+SHARED_FN vec4 anisoReduce(vec4 c[8], uint face) {
+  uint bit = 1u << (face >> 1u);
+  bool positive = (face & 1u) == 0u;
+  vec4 sum = vec4(0.0f);
+  for (uint i = 0u; i < 8u; ++i) {
+    if ((i & bit) != 0u) continue;  // i: the line's lower child
+    vec4 lo = c[i];
+    vec4 hi = c[i | bit];
+    sum = sum + (positive ? frontToBack(lo, hi) : frontToBack(hi, lo));
+  }
+  return sum * 0.25f;
+}
+
+// Looking up an anisotropic chain along unit direction d: the three faces
+// facing d (anisoFaces) weighted by d² (anisoWeights, summing to 1).
+SHARED_FN uvec3 anisoFaces(vec3 d) {
+  return uvec3(d.x >= 0.0f ? 0u : 1u, d.y >= 0.0f ? 2u : 3u, d.z >= 0.0f ? 4u : 5u);
+}
+SHARED_FN vec3 anisoWeights(vec3 d) { return d * d; }
 
 SHARED_END

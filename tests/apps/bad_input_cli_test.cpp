@@ -151,6 +151,8 @@ TEST(BadInputCli, UsageErrorsExitTwoAndNameTheClosestOption) {
   expectRefused(vgi("render --spp 4 --checkpoints 1,8"), {"--checkpoints", "8", "--spp 4"});
   expectRefused(vgi("render --spp 4 --checkpoints 0"), {"--checkpoints", "0"});
   expectRefused(vgi("render --spp 4 --frames 2 --checkpoints 2"), {"--checkpoints", "--frames 2"});
+  expectRefused(vgi("voxelize --kind binary,normal --textures cubic"), {"--textures", "'cubic'"});
+  expectRefused(vgi("voxelize --textures isotropic"), {"--textures", "multi-valued"});
   EXPECT_EQ(vgi("render --help").code, 0);
 }
 

@@ -1,0 +1,42 @@
+// Multi-valued grids, resolve: per cell the mean of each built channel from the
+// insertion's fixed-point sums (shared/value_grid.glsl: decodeValueMean, the
+// CPU decode's own function), written into the channel's 3D texture (level 0),
+// with the point count and the occupancy (1 where the cell has points).
+// Channels compiled in: VALUE_NORMAL, VALUE_ALBEDO, VALUE_GLOSSY.
+#include "../shared/value_grid.glsl"
+#include "../shared/bindings.glsl"
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+uniform uvec4 uResolution;
+layout(std430, binding = BINDING_VALUE_COUNTS) readonly buffer Counts { uint counts[]; };
+layout(r32ui, binding = IMAGE_VALUE_COUNT) uniform writeonly uimage3D oCount;
+layout(r8, binding = IMAGE_VALUE_OCCUPANCY) uniform writeonly image3D oOccupancy;
+#ifdef VALUE_NORMAL
+layout(std430, binding = BINDING_VALUE_NORMAL) readonly buffer NormalSums { uint normalSums[]; };
+layout(rgba16f, binding = IMAGE_VALUE_NORMAL) uniform writeonly image3D oNormal;
+#endif
+#ifdef VALUE_ALBEDO
+layout(std430, binding = BINDING_VALUE_ALBEDO) readonly buffer AlbedoSums { uint albedoSums[]; };
+layout(rgba8, binding = IMAGE_VALUE_ALBEDO) uniform writeonly image3D oAlbedo;
+#endif
+#ifdef VALUE_GLOSSY
+layout(std430, binding = BINDING_VALUE_GLOSSY) readonly buffer GlossySums { uint glossySums[]; };
+layout(rgba16f, binding = IMAGE_VALUE_GLOSSY) uniform writeonly image3D oGlossy;
+#endif
+void main() {
+  uvec3 cell = gl_GlobalInvocationID;
+  if (cell.x >= uResolution.x || cell.y >= uResolution.y || cell.z >= uResolution.z) return;
+  uint i = valueIndex(cell, uResolution, 0u);
+  uint n = counts[i / 4u];
+  ivec3 c = ivec3(cell);
+  imageStore(oCount, c, uvec4(n));
+  imageStore(oOccupancy, c, vec4(n > 0u ? 1.0f : 0.0f));
+#ifdef VALUE_NORMAL
+  imageStore(oNormal, c, n > 0u ? decodeValueMean(uvec4(normalSums[i], normalSums[i + 1u], normalSums[i + 2u], normalSums[i + 3u]), n, VALUE_CHANNEL_NORMAL) : vec4(0.0f));
+#endif
+#ifdef VALUE_ALBEDO
+  imageStore(oAlbedo, c, n > 0u ? decodeValueMean(uvec4(albedoSums[i], albedoSums[i + 1u], albedoSums[i + 2u], albedoSums[i + 3u]), n, VALUE_CHANNEL_ALBEDO) : vec4(0.0f));
+#endif
+#ifdef VALUE_GLOSSY
+  imageStore(oGlossy, c, n > 0u ? decodeValueMean(uvec4(glossySums[i], glossySums[i + 1u], glossySums[i + 2u], glossySums[i + 3u]), n, VALUE_CHANNEL_GLOSSY) : vec4(0.0f));
+#endif
+}
