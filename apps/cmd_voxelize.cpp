@@ -9,11 +9,13 @@
 #include "core/build_info.h"
 #include "core/error.h"
 #include "core/gl_context.h"
+#include "core/gpu_scene.h"
 #include "core/json_text.h"
 #include "core/output_files.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
 #include "voxelize/atlas.h"
+#include "illum/light_maps.h"
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"
 #include "voxelize/grid_metrics.h"
@@ -41,7 +43,7 @@ void addVoxelizeCommand(CLI::App& app) {
   std::string names;
   for (auto& v : voxelizerRegistry()) names += (names.empty() ? "" : "|") + v.name;
   cmd->add_option("--voxelizer", o->voxelizer, names)->capture_default_str();
-  cmd->add_option("--kind", o->kind, "grids to build: binary, plus any of normal,albedo,glossy (atlas; comma-separated)")
+  cmd->add_option("--kind", o->kind, "grids to build: binary, plus any of normal,albedo,glossy,radiance (atlas; comma-separated; radiance: diffuse direct light of the delta lights)")
       ->capture_default_str();
   cmd->add_option("--textures", o->textures,
                   "multi-valued grids also resolved into GL 3D textures (voxelize/value_textures.h): none, level0, "
@@ -132,6 +134,19 @@ void addVoxelizeCommand(CLI::App& app) {
           frames.push_back({{"time", t}, {"timings_ms", frameProf.timingsMs()}, {"total_ms", frameProf.totalMs()}});
         }
         req.time = t;
+      }
+      // The radiance channel: direct light through 1024² light maps of the scene's delta lights.
+      if (v.hasRadiance()) {
+        GpuScene lit(scene, req.time);
+        LightMaps maps(scene.lights, lit, 1024, false);
+        maps.render(lit, *shaders, prof);
+        v.insertRadiance(
+            req.time,
+            [&](unsigned program) {
+              lit.bind(program);
+              maps.bind();
+            },
+            prof);
       }
       if (o->textures != "none") {
         const ValueMips mips = o->textures == "level0"      ? ValueMips::None

@@ -14,6 +14,7 @@
 #include "traverse/or_mip_pyramid.h"
 #include "voxelize/atlas.h"
 #include "voxelize/atlas_voxelizer.h"
+#include "shaders/shared/value_grid.glsl"
 #include "voxelize/value_grids.h"
 #include "voxelize/voxelizer.h"
 
@@ -48,7 +49,9 @@ void SceneNeeds::check(const std::string& method, bool gl) const {
            binaryGrid ? "voxelizer=" + binaryGrid->voxelizer : std::string("no binary grid"),
            "): their values come from its atlas points");
     if (valueGrids->channels.empty()) fail("method '", method, "' asks for multi-valued grids with no channel");
-    for (auto& c : valueGrids->channels) valueChannelIndex(c);
+    for (auto& c : valueGrids->channels)
+      if (valueChannelIndex(c) == shared::VALUE_CHANNEL_RADIANCE && !lightMaps)
+        fail("method '", method, "' asks for the radiance channel without light maps (its direct light comes from them)");
   }
   if (binaryGrid) {
     const VoxelizerInfo& v = findVoxelizer(binaryGrid->voxelizer);
@@ -152,6 +155,20 @@ void SceneResources::beginSample(int k, uint32_t seed, Profiler& prof) {
     lightMaps_->setLights(lights_, *gpu_);
     lightMaps_->render(*gpu_, *shaders_, prof);
   }
+  if (atlas_ && atlas_->hasRadiance()) {
+    insertRadiance(prof);
+    valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
+  }
+}
+
+void SceneResources::insertRadiance(Profiler& prof) {
+  atlas_->insertRadiance(
+      time_,
+      [this](unsigned program) {
+        gpu_->bind(program);
+        lightMaps_->bind();
+      },
+      prof);
 }
 
 void SceneResources::buildGrid(Profiler& prof) {
@@ -174,6 +191,8 @@ void SceneResources::buildGrid(Profiler& prof) {
     if (needs_.valueGrids) {
       if (!valueTextures_)
         valueTextures_ = std::make_unique<ValueTextures>(box_, needs_.valueGrids->channels, needs_.valueGrids->mips);
+      // With area lights the radiance follows the sample's lights: beginSample inserts and resolves it.
+      if (atlas_->hasRadiance() && !sampleLights_) insertRadiance(prof);
       valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
     }
     if (!glPyramid_) glPyramid_ = std::make_unique<GlPyramid>(box_);

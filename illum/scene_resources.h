@@ -55,7 +55,7 @@ struct BinaryGridNeed {
 // binary grid's box: built by the atlas voxelizer's insertion, so they need
 // binaryGrid with voxelizer "atlas" (its points are where the values come from).
 struct ValueGridNeed {
-  std::vector<std::string> channels;  // of valueChannelNames(): normal, albedo, glossy
+  std::vector<std::string> channels;  // of valueChannelNames(): normal, albedo, glossy, radiance (needs lightMaps)
   ValueMips mips = ValueMips::None;
 };
 
@@ -129,6 +129,7 @@ class SceneResources {
 
  private:
   void buildGrid(Profiler& profiler);
+  void insertRadiance(Profiler& profiler);  // the atlas voxelizer's radiance pass with these lights
   const Scene& scene_;
   SceneNeeds needs_;
   GlContext* gl_;

@@ -26,6 +26,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
 #include "core/error.h"
 #include "core/gl_context.h"
 #include "core/shader_library.h"
@@ -34,6 +38,7 @@
 #include "voxelize/gpu_grid.h"
 #include "shaders/shared/atlas_footprint.glsl"
 #include "shaders/shared/bindings.glsl"
+#include "shaders/shared/value_grid.glsl"
 
 namespace vgi {
 
@@ -128,17 +133,35 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   setGridUniforms(insertProg_, req.box);
   if (values) {
     const uint64_t cells = req.box.cellCount();
-    const double bytes = double(cells) * (4.0 + 16.0 * double(req.valueGrids.size())) * 2.0;  // static + frame
+    const double bytes = double(cells) * (4.0 + 16.0 * double(req.valueGrids.size())) * 2.0;  // static + frame (+ radiance)
     const double phys = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
     if (bytes > 0.5 * phys)
       fail("multi-valued grids (", req.valueGrids.size(), " channels) at ", req.box.resolution.x, "x",
            req.box.resolution.y, "x", req.box.resolution.z, " need ", bytes / (1 << 20), " MiB; this machine has ",
            phys / (1 << 20), " MiB (at most half is used)");
     ShaderDefines valueDefs;
-    for (auto& ch : req.valueGrids) valueDefs["VALUE_" + std::string(ch == "normal" ? "NORMAL" : ch == "albedo" ? "ALBEDO" : "GLOSSY")] = "1";
+    for (auto& ch : req.valueGrids)
+      if (ch != "radiance")
+        valueDefs["VALUE_" + std::string(ch == "normal" ? "NORMAL" : ch == "albedo" ? "ALBEDO" : "GLOSSY")] = "1";
     valueDefs["ATLAS_VERTEX_FLOATS"] = std::to_string(kVertexFloats);
     valueProg_ = req.shaders->program({"voxelize/atlas_insert_values.comp.glsl"}, valueDefs);
     setGridUniforms(valueProg_, req.box);
+    if (std::find(req.valueGrids.begin(), req.valueGrids.end(), "radiance") != req.valueGrids.end()) {
+      ShaderDefines rd = renderDefs;
+      rd["VALUE_RADIANCE"] = "1";
+      radianceRenderProg_ = req.shaders->program(
+          {"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"}, rd);
+      radianceInsertProg_ = req.shaders->program(
+          {"voxelize/atlas_insert_values.comp.glsl"},
+          {{"VALUE_RADIANCE", "1"}, {"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}});
+      setGridUniforms(radianceInsertProg_, req.box);
+      const uint32_t zero = 0;
+      glCreateBuffers(1, &radianceSums_);
+      glNamedBufferStorage(radianceSums_, GLsizeiptr(cells * 16), nullptr, GL_DYNAMIC_STORAGE_BIT);
+      glClearNamedBufferData(radianceSums_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      glCreateBuffers(1, &radianceMaxBuffer_);
+      glNamedBufferStorage(radianceMaxBuffer_, 4, &zero, GL_DYNAMIC_STORAGE_BIT);
+    }
     staticValues_ = std::make_unique<ValueBuffers>(size_t(cells), req.valueGrids);
     frameValues_ = std::make_unique<ValueBuffers>(size_t(cells), req.valueGrids);
     materials_ = std::make_unique<GpuScene>(*req.scene, 0.0f);
@@ -247,6 +270,11 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
       glTextureStorage2D(valueTargets_[k], 1, GL_RGBA32F, R, R);
       glNamedFramebufferTexture(fbo_, GLenum(GL_COLOR_ATTACHMENT2 + k), valueTargets_[k], 0);
     }
+    if (radianceSums_) {
+      glCreateTextures(GL_TEXTURE_2D, 1, &radianceTarget_);
+      glTextureStorage2D(radianceTarget_, 1, GL_RGBA32F, R, R);
+      glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT5, radianceTarget_, 0);
+    }
   }
   const GLenum bufs[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
                           GL_COLOR_ATTACHMENT4};
@@ -312,6 +340,9 @@ AtlasVoxelizer::~AtlasVoxelizer() {
   glDeleteFramebuffers(1, &fbo_);
   glDeleteTextures(2, targets_);
   if (valueTargets_[0]) glDeleteTextures(3, valueTargets_);
+  if (radianceTarget_) glDeleteTextures(1, &radianceTarget_);
+  if (radianceSums_) glDeleteBuffers(1, &radianceSums_);
+  if (radianceMaxBuffer_) glDeleteBuffers(1, &radianceMaxBuffer_);
   glDeleteBuffers(1, &staticCounter_);
   glDeleteBuffers(1, &frameCounter_);
 }
@@ -327,42 +358,90 @@ void AtlasVoxelizer::setPointCellInputs(unsigned program, const MeshGpu& m, floa
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
 }
 
+void AtlasVoxelizer::renderAtlas(const MeshGpu& m, float time, unsigned prog, int targets) const {
+  const int R = m.resolution;
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  const GLenum bufs[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                          GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
+  glNamedFramebufferDrawBuffers(fbo_, targets, bufs);
+  glViewport(0, 0, R, R);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  const float clearPos[4] = {0, 0, 0, 0};
+  const int clearId[4] = {-1, -1, -1, -1};
+  glClearBufferfv(GL_COLOR, 0, clearPos);
+  glClearBufferiv(GL_COLOR, 1, clearId);
+  for (int k = 2; k < targets; ++k) glClearBufferfv(GL_COLOR, k, clearPos);
+  glm::mat4 model = m.mesh->objectToWorld(time);
+  glUniformMatrix4fv(glGetUniformLocation(prog, "uModel"), 1, GL_FALSE, &model[0][0]);
+  glBindVertexArray(m.vao);
+  // Corners and edges first, the fill last: a texel whose centre a triangle
+  // covers keeps that centre's point (the regular lattice the resolution
+  // rule relies on); the others hold edge or corner points of slivers.
+  const int clampLoc = glGetUniformLocation(prog, "uClampToTriangle");
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
+  glUniform1i(clampLoc, 0);
+  glDrawArrays(GL_POINTS, 0, m.corners);
+  glUniform1i(clampLoc, 1);  // line fragments overshoot the edge's ends
+  glDrawElements(GL_LINES, m.lineIndices, GL_UNSIGNED_INT, nullptr);
+  glUniform1i(clampLoc, 0);
+  glDrawArrays(GL_TRIANGLES, 0, m.corners);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void AtlasVoxelizer::insertRadiance(float time, const std::function<void(unsigned)>& bindLights, Profiler& prof) {
+  if (!radianceSums_) fail("internal: insertRadiance without a requested radiance channel");
+  const uint32_t zero = 0;
+  {
+    // Pass 1: the largest radiance of any atlas point (the fixed-point range).
+    auto s = prof.scope("radiance_max");
+    glClearNamedBufferData(radianceMaxBuffer_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glUseProgram(radianceRenderProg_);
+    materials_->bind(radianceRenderProg_);
+    bindLights(radianceRenderProg_);
+    request_.shaders->setUniform(radianceRenderProg_, "uShadowBias", 1.0f);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, radianceMaxBuffer_);
+    for (auto& m : meshes_) {
+      request_.shaders->setUniform(radianceRenderProg_, "uMaterial", m->material);
+      renderAtlas(*m, time, radianceRenderProg_, 6);
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    uint32_t bits = 0;
+    glGetNamedBufferSubData(radianceMaxBuffer_, 0, 4, &bits);
+    std::memcpy(&radianceMax_, &bits, 4);
+    // An unlit scene keeps a positive range (its sums are 0 anyway).
+    if (!(radianceMax_ > 0.0f) || !std::isfinite(radianceMax_)) radianceMax_ = 1.0f;
+  }
+  auto s = prof.scope("radiance_insert");
+  glClearNamedBufferData(radianceSums_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  for (auto& m : meshes_) {
+    glUseProgram(radianceRenderProg_);
+    request_.shaders->setUniform(radianceRenderProg_, "uMaterial", m->material);
+    renderAtlas(*m, time, radianceRenderProg_, 6);
+    glUseProgram(radianceInsertProg_);
+    request_.shaders->setUniform(radianceInsertProg_, "uAtlasSize", glm::ivec2(m->resolution));
+    request_.shaders->setUniform(radianceInsertProg_, "uRadianceMax", radianceMax_);
+    setPointCellInputs(radianceInsertProg_, *m, time);
+    glBindTextureUnit(TEXUNIT_ATLAS_RADIANCE, radianceTarget_);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, radianceSums_);
+    glDispatchCompute(unsigned(m->resolution + 7) / 8, unsigned(m->resolution + 7) / 8, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  stats_["radiance_max"] = radianceMax_;
+}
+
 void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGridBuffer& target,
                                      const ValueBuffers* values, unsigned counter, Profiler& prof,
                                      std::vector<int>* ids, AtlasSamples* points) {
   const int R = m.resolution;
   {
     auto s = prof.scope("atlas_render");
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-    glViewport(0, 0, R, R);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_CULL_FACE);
-    const float clearPos[4] = {0, 0, 0, 0};
-    const int clearId[4] = {-1, -1, -1, -1};
-    glClearBufferfv(GL_COLOR, 0, clearPos);
-    glClearBufferiv(GL_COLOR, 1, clearId);
-    if (values)
-      for (int k = 0; k < 3; ++k) glClearBufferfv(GL_COLOR, 2 + k, clearPos);
     glUseProgram(renderProg_);
     if (values) {
       materials_->bind(renderProg_);
       glUniform1i(glGetUniformLocation(renderProg_, "uMaterial"), m.material);
     }
-    glm::mat4 model = m.mesh->objectToWorld(time);
-    glUniformMatrix4fv(glGetUniformLocation(renderProg_, "uModel"), 1, GL_FALSE, &model[0][0]);
-    glBindVertexArray(m.vao);
-    // Corners and edges first, the fill last: a texel whose centre a triangle
-    // covers keeps that centre's point (the regular lattice the resolution
-    // rule relies on); the others hold edge or corner points of slivers.
-    const int clampLoc = glGetUniformLocation(renderProg_, "uClampToTriangle");
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
-    glUniform1i(clampLoc, 0);
-    glDrawArrays(GL_POINTS, 0, m.corners);
-    glUniform1i(clampLoc, 1);  // line fragments overshoot the edge's ends
-    glDrawElements(GL_LINES, m.lineIndices, GL_UNSIGNED_INT, nullptr);
-    glUniform1i(clampLoc, 0);
-    glDrawArrays(GL_TRIANGLES, 0, m.corners);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    renderAtlas(m, time, renderProg_, values ? 5 : 2);
   }
   {
     auto s = prof.scope("insertion");
@@ -429,6 +508,8 @@ ValueSumBuffers AtlasVoxelizer::valueBuffers() const {
   if (!frameValues_) return b;
   b.counts = frameValues_->counts;
   for (int k = 0; k < 3; ++k) b.sums[k] = frameValues_->sums[k];
+  b.sums[3] = radianceSums_;
+  b.radianceMax = radianceMax_;
   return b;
 }
 
@@ -443,10 +524,10 @@ ValueGrids AtlasVoxelizer::readValues() const {
   glGetNamedBufferSubData(frameValues_->counts, 0, GLsizeiptr(cells * 4), g.counts.data());
   std::vector<uint32_t> sums(cells * 4);
   for (auto& ch : g.channels) {
-    size_t k = 0;
-    while (valueChannelNames()[k] != ch) ++k;
-    glGetNamedBufferSubData(frameValues_->sums[k], 0, GLsizeiptr(cells * 16), sums.data());
-    g.means.push_back(decodeMeans(sums, g.counts, ch));
+    const uint32_t k = valueChannelIndex(ch);
+    glGetNamedBufferSubData(k == shared::VALUE_CHANNEL_RADIANCE ? radianceSums_ : frameValues_->sums[k], 0,
+                            GLsizeiptr(cells * 16), sums.data());
+    g.means.push_back(decodeMeans(sums, g.counts, ch, radianceMax_));
   }
   return g;
 }

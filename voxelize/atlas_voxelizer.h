@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -39,6 +40,15 @@ class AtlasVoxelizer {
   // Their GL sum buffers, for ValueTextures::resolve (all 0 without value grids).
   ValueSumBuffers valueBuffers() const;
 
+  // The radiance channel (requested in valueGrids): every mesh's atlas
+  // rendered again at `time` with the diffuse direct light of the lights and
+  // light maps `bindLights(program)` binds (SSBO BINDING_LIGHTS, the
+  // TEXUNIT_LIGHT_* maps), into sums cleared first — after voxelizeFrame of
+  // the same time, whose counts it shares. Two passes: the maximum (the
+  // fixed-point range), then the insertion ("radiance_max", "radiance_insert").
+  void insertRadiance(float time, const std::function<void(unsigned program)>& bindLights, Profiler& profiler);
+  bool hasRadiance() const { return radianceSums_ != 0; }
+
   // "points" (of the last frame, static included), "atlas_resolution",
   // "atlases" (per mesh), "triangles_without_texels", "static_meshes", "dynamic_meshes".
   nlohmann::json stats() const;
@@ -50,6 +60,8 @@ class AtlasVoxelizer {
   void renderAndInsert(const MeshGpu& mesh, float time, const GpuGridBuffer& target, const ValueBuffers* values,
                        unsigned counter, Profiler& profiler, std::vector<int>* ids, AtlasSamples* points);
   void setPointCellInputs(unsigned program, const MeshGpu& mesh, float time) const;
+  // Draws the mesh's atlas at `time` with `program` into the first `targets` attachments.
+  void renderAtlas(const MeshGpu& mesh, float time, unsigned program, int targets) const;
   VoxelizeRequest request_;
   std::vector<std::unique_ptr<MeshGpu>> meshes_;
   std::unique_ptr<GpuGridBuffer> static_, frame_;
@@ -57,7 +69,10 @@ class AtlasVoxelizer {
   std::unique_ptr<class GpuScene> materials_;  // material SSBO + textures, for multi-valued grids
   unsigned valueProg_ = 0, valueTargets_[3] = {0, 0, 0};
   unsigned renderProg_ = 0, insertProg_ = 0, fbo_ = 0, targets_[2] = {0, 0};
-  unsigned staticCounter_ = 0, frameCounter_ = 0;  // atlas points of the static meshes / this frame's dynamic ones
+  unsigned staticCounter_ = 0, frameCounter_ = 0;
+  unsigned radianceRenderProg_ = 0, radianceInsertProg_ = 0, radianceTarget_ = 0, radianceSums_ = 0,
+           radianceMaxBuffer_ = 0;
+  float radianceMax_ = 0;  // atlas points of the static meshes / this frame's dynamic ones
   int maxResolution_ = 0;
   nlohmann::json stats_;
 };

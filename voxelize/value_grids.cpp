@@ -7,7 +7,7 @@
 namespace vgi {
 
 const std::vector<std::string>& valueChannelNames() {
-  static const std::vector<std::string> names = {"normal", "albedo", "glossy"};
+  static const std::vector<std::string> names = {"normal", "albedo", "glossy", "radiance"};
   return names;
 }
 
@@ -19,7 +19,7 @@ std::vector<std::string> parseValueChannels(const std::string& list) {
     std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     bool known = false;
     for (auto& n : valueChannelNames()) known |= n == name;
-    if (!known) fail("--kind: unknown grid '", name, "' (binary, normal, albedo, glossy; comma-separated)");
+    if (!known) fail("--kind: unknown grid '", name, "' (binary, normal, albedo, glossy, radiance; comma-separated)");
     bool dup = false;
     for (auto& o : out) dup |= o == name;
     if (!dup) out.push_back(name);
@@ -30,12 +30,16 @@ std::vector<std::string> parseValueChannels(const std::string& list) {
 }
 
 std::vector<glm::vec4> decodeMeans(const std::vector<uint32_t>& sums, const std::vector<uint32_t>& counts,
-                                   const std::string& channel) {
+                                   const std::string& channel, float radianceMax) {
   std::vector<glm::vec4> means(counts.size(), glm::vec4(0.0f));
   const uint32_t ch = valueChannelIndex(channel);
   for (size_t i = 0; i < counts.size(); ++i) {
     if (counts[i] == 0) continue;
     const glm::uvec4 s(sums[4 * i], sums[4 * i + 1], sums[4 * i + 2], sums[4 * i + 3]);
+    if (ch == shared::VALUE_CHANNEL_RADIANCE) {
+      means[i] = shared::decodeRadianceMean(s, counts[i], radianceMax);
+      continue;
+    }
     means[i] = shared::decodeValueMean(s, counts[i], ch);
     if (ch == shared::VALUE_CHANNEL_GLOSSY) means[i].w = shared::decodeExponent(means[i].w);
   }

@@ -32,8 +32,9 @@ struct ValueGrids {
 };
 
 // Decodes sums (4 uints per cell) for a channel: lo/hi per component.
+// radianceMax: the radiance sums' fixed-point range (AtlasVoxelizer::insertRadiance).
 std::vector<glm::vec4> decodeMeans(const std::vector<uint32_t>& sums, const std::vector<uint32_t>& counts,
-                                   const std::string& channel);
+                                   const std::string& channel, float radianceMax = 0.0f);
 
 // Picture of a channel: per column (looking along depth), the value of the first cell with points.
 void writeValuePicture(const ValueGrids& grids, const std::string& channel, const std::string& path);

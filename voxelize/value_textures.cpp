@@ -19,7 +19,8 @@ const char* valueMipsName(ValueMips m) {
 }
 
 namespace {
-constexpr GLenum kChannelFormat[3] = {GL_RGBA16F, GL_RGBA8, GL_RGBA16F};  // normal, albedo, glossy
+constexpr GLenum kChannelFormat[4] = {GL_RGBA16F, GL_RGBA8, GL_RGBA16F,
+                                      GL_RGBA16F};  // normal, albedo, glossy, radiance
 const char* formatName(GLenum f) {
   return f == GL_RGBA16F ? "rgba16f" : f == GL_RGBA8 ? "rgba8" : f == GL_R8 ? "r8" : "r32ui";
 }
@@ -133,11 +134,16 @@ void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders,
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, sums.counts);
     glBindImageTexture(IMAGE_VALUE_COUNT, count_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(IMAGE_VALUE_OCCUPANCY, occupancy_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8);
-    const unsigned images[3] = {IMAGE_VALUE_NORMAL, IMAGE_VALUE_ALBEDO, IMAGE_VALUE_GLOSSY};
+    shaders.setUniform(prog, "uRadianceMax", sums.radianceMax);
+    const unsigned images[4] = {IMAGE_VALUE_NORMAL, IMAGE_VALUE_ALBEDO, IMAGE_VALUE_GLOSSY,
+                                IMAGE_VALUE_RADIANCE};
     for (auto& ch : channels_) {
       const uint32_t k = valueChannelIndex(ch);
       if (!sums.sums[k]) fail("internal: value channel '", ch, "' has no sums to resolve");
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_NORMAL + k, sums.sums[k]);
+      glBindBufferBase(
+          GL_SHADER_STORAGE_BUFFER,
+          k == shared::VALUE_CHANNEL_RADIANCE ? BINDING_VALUE_RADIANCE : BINDING_VALUE_NORMAL + k,
+          sums.sums[k]);
       glBindImageTexture(images[k], channel_[k].get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kChannelFormat[k]);
     }
     dispatch3D(r);
@@ -186,7 +192,8 @@ void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders,
 void ValueTextures::bind() const {
   glBindTextureUnit(TEXUNIT_VALUE_COUNT, count_.get());
   glBindTextureUnit(TEXUNIT_VALUE_OCCUPANCY, occupancy_.get());
-  const unsigned units[3] = {TEXUNIT_VALUE_NORMAL, TEXUNIT_VALUE_ALBEDO, TEXUNIT_VALUE_GLOSSY};
+  const unsigned units[4] = {TEXUNIT_VALUE_NORMAL, TEXUNIT_VALUE_ALBEDO, TEXUNIT_VALUE_GLOSSY,
+                             TEXUNIT_VALUE_RADIANCE};
   for (auto& ch : channels_)
     glBindTextureUnit(units[valueChannelIndex(ch)], channel_[valueChannelIndex(ch)].get());
 }

@@ -15,15 +15,16 @@
 // | normal    | RGBA16F  | mean normal xyz (not renormalised: length < 1 = spread), w 0 |
 // | albedo    | RGBA8    | mean albedo rgb (linear; 1/255 steps), a 0                 |
 // | glossy    | RGBA16F  | mean ks rgb, w the mean exponent code log2(1 + e)          |
+// | radiance  | RGBA16F  | mean diffuse direct radiance rgb (VGI §3, Table 2), w 0     |
 // Half floats keep 11 significant bits (normals to 5·10⁻⁴); albedo is 8-bit
 // as in the atlas' source textures. The count texture has no mips.
 //
 // Mips: `isotropic` gives every texture (count excepted) a full chain of
-// 2×2×2 means; `anisotropic` gives occupancy an isotropic chain and normal
-// and albedo six direction textures from the grid's level 1 on (level L of
-// the grid is level L−1 of a face texture), RGBA16F with the occupancy
-// composed front to back as alpha. Glossy has no anisotropic chain (its four
-// components leave no room for the alpha).
+// 2×2×2 means; `anisotropic` adds six direction textures for normal, albedo
+// and radiance from the grid's level 1 on (level L of the grid is level L−1
+// of a face texture), RGBA16F with the occupancy composed front to back as
+// alpha. Glossy has no anisotropic chain (its four components leave no room
+// for the alpha).
 #pragma once
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
@@ -44,7 +45,8 @@ const char* valueMipsName(ValueMips m);
 // The GL buffers of a multi-valued insertion (AtlasVoxelizer::valueBuffers()).
 struct ValueSumBuffers {
   unsigned counts = 0;
-  unsigned sums[3] = {0, 0, 0};  // normal, albedo, glossy (0 = not built)
+  unsigned sums[4] = {0, 0, 0, 0};  // normal, albedo, glossy, radiance (0 = not built)
+  float radianceMax = 0;            // the radiance sums' fixed-point range
 };
 
 class ValueTextures {
@@ -81,8 +83,8 @@ class ValueTextures {
   std::vector<std::string> channels_;
   ValueMips mips_;
   int levels_ = 1;
-  GlTexture count_, occupancy_, channel_[3];
-  GlTexture aniso_[3][6];  // normal, albedo (glossy unused)
+  GlTexture count_, occupancy_, channel_[4];
+  GlTexture aniso_[4][6];  // normal, albedo, radiance (glossy unused)
   size_t bytes_ = 0;
 };
 

@@ -35,7 +35,7 @@ struct VoxelizeRequest {
   float atlasFootprint = 1.0f;
   std::string atlasCacheDir;
   // Multi-valued grids to build as well (atlas voxelizer): "normal", "albedo",
-  // "glossy". Only these are built.
+  // "glossy", "radiance" (AtlasVoxelizer::insertRadiance). Only these are built.
   std::vector<std::string> valueGrids;
 };
 

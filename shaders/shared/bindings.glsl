@@ -23,6 +23,8 @@
 #define BINDING_VALUE_GLOSSY 12    // SSBO multi-valued grid: glossy sums
 #define BINDING_TRACE_RAYS 13      // SSBO rays of a batch trace (traverse/trace_rays.comp)
 #define BINDING_TRACE_HITS 14      // SSBO their hits
+#define BINDING_VALUE_RADIANCE 15  // SSBO multi-valued grid: radiance sums
+#define BINDING_VALUE_RADIANCE_MAX 16  // SSBO uint: the radiance pass's maximum (float bits)
 
 // ---- textures (samplers)
 #define TEXUNIT_GBUFFER_POSITION 0          // world position, w = 1 where a surface was seen
@@ -48,6 +50,8 @@
 #define TEXUNIT_VALUE_COUNT 20              // usampler3D R32UI atlas points per cell
 #define TEXUNIT_VALUE_ANISO 21              // 21…26: the six faces of one channel's anisotropic chain
 #define TEXUNIT_PASS_INPUT2 27              // a pass's second input texture
+#define TEXUNIT_VALUE_RADIANCE 28           // sampler3D RGBA16F mean diffuse direct radiance (rgb)
+#define TEXUNIT_ATLAS_RADIANCE 29           // atlas voxelizer: radiance (multi-valued grids)
 
 // ---- images
 #define IMAGE_OUTPUT 0                 // a pass's output
@@ -62,3 +66,4 @@
 #define IMAGE_VALUE_ALBEDO 3
 #define IMAGE_VALUE_GLOSSY 4
 #define IMAGE_VALUE_COUNT 5
+#define IMAGE_VALUE_RADIANCE 6

@@ -4,7 +4,9 @@
 // Channels: normal (range −1…1), albedo (0…1), glossy (ks 0…1; the Phong
 // exponent as log2(1 + e) over 0…log2(1 + GLOSSY_MAX_EXPONENT), so small and
 // large exponents keep the same relative precision; its mean is taken in that
-// log space).
+// log space), radiance (VGI §3, Table 2: the diffuse direct light leaving each
+// atlas point; 0…the measured maximum of the pass in 20-bit steps, so a cell
+// holds up to 4096 points before its 32-bit sum could overflow).
 #ifdef __cplusplus
 #pragma once
 #include "cpp_prelude.h"
@@ -14,6 +16,8 @@ SHARED_BEGIN
 
 const float FIXED_ONE = 65535.0f;
 const float GLOSSY_MAX_EXPONENT = 100000.0f;
+const float RADIANCE_FIXED_ONE = 1048575.0f;  // 2^20 − 1
+const uint RADIANCE_MAX_POINTS_PER_CELL = 4096u;
 
 // v in [lo, hi] → 0 … 65535.
 SHARED_FN uint toFixed(float v, float lo, float hi) {
@@ -22,6 +26,15 @@ SHARED_FN uint toFixed(float v, float lo, float hi) {
 
 SHARED_FN float fromFixedMean(uint sum, uint count, float lo, float hi) {
   return lo + (hi - lo) * (float(sum) / (float(count) * FIXED_ONE));
+}
+
+// Radiance v in [0, maxRadiance] → 0 … 2^20 − 1 (clamped), and the mean back.
+SHARED_FN uint toFixedRadiance(float v, float maxRadiance) {
+  return uint(clamp(v / maxRadiance, 0.0f, 1.0f) * RADIANCE_FIXED_ONE + 0.5f);
+}
+SHARED_FN vec4 decodeRadianceMean(uvec4 sums, uint count, float maxRadiance) {
+  float k = maxRadiance / (float(count) * RADIANCE_FIXED_ONE);
+  return vec4(float(sums.x) * k, float(sums.y) * k, float(sums.z) * k, 0.0f);
 }
 
 SHARED_FN float encodeExponent(float e) { return log2(1.0f + max(e, 0.0f)); }
@@ -36,6 +49,7 @@ SHARED_FN uint valueIndex(uvec3 cell, uvec4 resolution, uint c) {
 const uint VALUE_CHANNEL_NORMAL = 0u;
 const uint VALUE_CHANNEL_ALBEDO = 1u;
 const uint VALUE_CHANNEL_GLOSSY = 2u;
+const uint VALUE_CHANNEL_RADIANCE = 3u;  // decoded by decodeRadianceMean
 
 // The mean of a cell's sums (count > 0) of channel ch: normal in −1…1 (not
 // renormalised: its length < 1 measures the spread), albedo and ks in 0…1, the

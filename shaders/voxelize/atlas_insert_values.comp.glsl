@@ -2,7 +2,9 @@
 // adds its values (shaders/shared/value_grid.glsl) to its cell and, with a
 // footprint, to the other cells it sets in the binary grid
 // (atlas_point_cells.glsl), so every set cell has values. Only the channels a
-// caller asked for are compiled in (VALUE_NORMAL, VALUE_ALBEDO, VALUE_GLOSSY).
+// caller asked for are compiled in (VALUE_NORMAL, VALUE_ALBEDO, VALUE_GLOSSY;
+// VALUE_RADIANCE alone in the radiance pass, which leaves the counts to the
+// pass that inserted the same points).
 #include "grid_uniforms.glsl"
 #include "../shared/value_grid.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -14,8 +16,18 @@ layout(std430, binding = BINDING_VALUE_COUNTS) buffer Counts { uint counts[]; };
 layout(std430, binding = BINDING_VALUE_NORMAL) buffer NormalSums { uint normalSums[]; };
 layout(std430, binding = BINDING_VALUE_ALBEDO) buffer AlbedoSums { uint albedoSums[]; };
 layout(std430, binding = BINDING_VALUE_GLOSSY) buffer GlossySums { uint glossySums[]; };
+#ifdef VALUE_RADIANCE
+layout(binding = TEXUNIT_ATLAS_RADIANCE) uniform sampler2D atlasRadiance;
+layout(std430, binding = BINDING_VALUE_RADIANCE) buffer RadianceSums { uint radianceSums[]; };
+uniform float uRadianceMax;
+#endif
 void visitCell(ivec2 t, uvec3 cell) {
+#ifdef VALUE_RADIANCE
+  vec4 r = texelFetch(atlasRadiance, t, 0);
+  for (uint c = 0u; c < 3u; ++c) atomicAdd(radianceSums[valueIndex(cell, uResolution, c)], toFixedRadiance(r[c], uRadianceMax));
+#else
   atomicAdd(counts[valueIndex(cell, uResolution, 0u) / 4u], 1u);
+#endif
 #ifdef VALUE_NORMAL
   vec4 n = texelFetch(atlasNormal, t, 0);
   for (uint c = 0u; c < 3u; ++c) atomicAdd(normalSums[valueIndex(cell, uResolution, c)], toFixed(n[c], -1.0f, 1.0f));

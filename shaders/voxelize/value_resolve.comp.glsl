@@ -2,7 +2,7 @@
 // insertion's fixed-point sums (shared/value_grid.glsl: decodeValueMean, the
 // CPU decode's own function), written into the channel's 3D texture (level 0),
 // with the point count and the occupancy (1 where the cell has points).
-// Channels compiled in: VALUE_NORMAL, VALUE_ALBEDO, VALUE_GLOSSY.
+// Channels compiled in: VALUE_NORMAL, VALUE_ALBEDO, VALUE_GLOSSY, VALUE_RADIANCE.
 #include "../shared/value_grid.glsl"
 #include "../shared/bindings.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
@@ -22,6 +22,11 @@ layout(rgba8, binding = IMAGE_VALUE_ALBEDO) uniform writeonly image3D oAlbedo;
 layout(std430, binding = BINDING_VALUE_GLOSSY) readonly buffer GlossySums { uint glossySums[]; };
 layout(rgba16f, binding = IMAGE_VALUE_GLOSSY) uniform writeonly image3D oGlossy;
 #endif
+#ifdef VALUE_RADIANCE
+layout(std430, binding = BINDING_VALUE_RADIANCE) readonly buffer RadianceSums { uint radianceSums[]; };
+layout(rgba16f, binding = IMAGE_VALUE_RADIANCE) uniform writeonly image3D oRadiance;
+uniform float uRadianceMax;
+#endif
 void main() {
   uvec3 cell = gl_GlobalInvocationID;
   if (cell.x >= uResolution.x || cell.y >= uResolution.y || cell.z >= uResolution.z) return;
@@ -38,5 +43,8 @@ void main() {
 #endif
 #ifdef VALUE_GLOSSY
   imageStore(oGlossy, c, n > 0u ? decodeValueMean(uvec4(glossySums[i], glossySums[i + 1u], glossySums[i + 2u], glossySums[i + 3u]), n, VALUE_CHANNEL_GLOSSY) : vec4(0.0f));
+#endif
+#ifdef VALUE_RADIANCE
+  imageStore(oRadiance, c, n > 0u ? decodeRadianceMean(uvec4(radianceSums[i], radianceSums[i + 1u], radianceSums[i + 2u], 0u), n, uRadianceMax) : vec4(0.0f));
 #endif
 }

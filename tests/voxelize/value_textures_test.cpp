@@ -277,3 +277,81 @@ TEST(ValueTextures, SceneResourcesBuildThemOnlyWithTheAtlasGrid) {
 }
 
 }  // namespace vgi
+
+namespace vgi {
+
+// The radiance channel (VGI §3, Table 2): a Lambert floor (ρ = 0.5) under a
+// point light, with a floating quad whose shadow falls on the floor's edge.
+// Each floor cell holds the mean diffuse direct radiance of its points:
+// ρ/π·I·cos θ/d² averaged over the cell, and 0 in the shadow.
+TEST(ValueTextures, RadianceChannelIsTheDirectLightOfEachCell) {
+  std::unique_ptr<GlContext> gl = GlContext::create();
+  ShaderLibrary shaders;
+  Scene s;
+  test::addFloor(s, 1.0f, 0.0f, test::addMaterial(s, glm::vec3(0.5f)));
+  Mesh occ;
+  occ.name = "occluder";
+  occ.source = "test";
+  occ.positions = {{0.4f, 0.25f, -0.2f}, {0.8f, 0.25f, -0.2f}, {0.8f, 0.25f, 0.2f}, {0.4f, 0.25f, 0.2f}};
+  occ.triangles = {{0, 2, 1}, {0, 3, 2}};
+  occ.material = test::addMaterial(s, glm::vec3(0.5f));
+  s.meshes.push_back(occ);
+  Light l;
+  l.type = LightType::Point;
+  l.position = {0.0f, 0.5f, 0.0f};
+  l.intensity = glm::vec3(1.0f);
+  s.lights = {l};
+  SceneNeeds n;
+  n.lightMaps = LightMapNeed{1024, false};
+  n.binaryGrid = BinaryGridNeed{{64, 64, 128}, "atlas"};
+  n.orMipPyramid = true;
+  n.valueGrids = ValueGridNeed{{"albedo", "radiance"}, ValueMips::None};
+  n.check("test", true);
+  SceneNeeds noMaps = n;
+  noMaps.lightMaps.reset();
+  test::expectError([&] { noMaps.check("m", true); }, {"m", "radiance", "light maps"});
+  SceneResources res(s, n, gl.get(), &shaders, {0.0f}, 0);
+  Profiler prof(true);
+  res.update(0.0f, prof);
+  const ValueTextures& tex = res.valueTextures();
+  const std::vector<glm::vec4> rad = tex.read("radiance");
+  const std::vector<uint32_t> counts = tex.readCounts();
+  const GridBox& box = tex.box();
+  const glm::uvec3 r = box.resolution;
+  const glm::vec3 cell = box.voxelSize();
+  int lit = 0, shadowed = 0;
+  for (uint32_t z = 0; z < r.z; z += 3)
+    for (uint32_t x = 0; x < r.x; x += 3) {
+      const size_t i = (size_t(z) * r.y + 0) * r.x + x;  // y = 0: the floor's cells
+      if (!counts[i]) continue;
+      const glm::vec3 lo = box.origin + glm::vec3(x, 0, z) * cell;
+      // The cell's floor area, 8×8 sub-samples; a cell half in shadow is skipped.
+      double expected = 0;
+      int inShadow = 0;
+      for (int b = 0; b < 8; ++b)
+        for (int a = 0; a < 8; ++a) {
+          const glm::vec3 p(lo.x + (a + 0.5f) / 8 * cell.x, 0.0f, lo.z + (b + 0.5f) / 8 * cell.z);
+          const glm::vec3 d = l.position - p;
+          const float d2 = glm::dot(d, d), cosT = d.y / std::sqrt(d2);
+          // The ray to the light crosses y = 0.25 halfway up: inside the occluder?
+          const glm::vec3 m = 0.5f * (p + l.position);
+          const bool blocked = m.x > 0.4f && m.x < 0.8f && std::abs(m.z) < 0.2f;
+          inShadow += blocked;
+          expected += blocked ? 0.0 : 0.5 / M_PI * cosT / d2 / 64.0;
+        }
+      if (inShadow == 64) {
+        EXPECT_LT(rad[i].x, 1e-3f) << x << "," << z;
+        ++shadowed;
+      } else if (inShadow == 0) {
+        EXPECT_NEAR(rad[i].x, expected, 0.03 * expected) << x << "," << z;
+        EXPECT_EQ(rad[i].x, rad[i].z) << x << "," << z;  // a white light on grey: equal channels
+        ++lit;
+      }
+    }
+  EXPECT_GT(lit, 200);
+  EXPECT_GT(shadowed, 3);
+  EXPECT_TRUE(res.gridStats()["stats"].contains("radiance_max"));
+  EXPECT_EQ(gl->errorCount(), 0);
+}
+
+}  // namespace vgi
