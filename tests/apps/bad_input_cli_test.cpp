@@ -160,8 +160,10 @@ TEST(BadInputCli, AStillInterruptedBeforeItsFirstSampleWritesNothing) {
   const std::string out = tmp("first.exr");
   std::filesystem::remove(out);
   std::filesystem::remove(tmp("first.json"));
-  CliRun r = vgi("render --method reference --set integrator=path --size 2048x2048 --spp 1 --quiet -o " +
-                 out + " 2>&1 & pid=$!; sleep 1; kill -INT $pid; wait $pid");
+  // A background job of a non-interactive shell ignores SIGINT until vgi installs its handler: the
+  // signal must come after start-up (2 s, with a render long enough to still be running on a loaded machine).
+  CliRun r = vgi("render --method reference --set integrator=path --size 3072x3072 --spp 1 --quiet -o " +
+                 out + " 2>&1 & pid=$!; sleep 2; kill -INT $pid; wait $pid");
   ASSERT_EQ(r.code, 130) << r.output;
   EXPECT_NE(r.output.find("nothing written"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(out));
