@@ -141,7 +141,7 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
   const float far = 1e30f, zero[4] = {0, 0, 0, 0}, farv[4] = {far, far, far, far};
   for (size_t li = 0; li < layout_.ranges.size(); ++li) {
     const glm::ivec4 r = layout_.ranges[li];
-    glUniform1i(glGetUniformLocation(prog, "uLight"), int(li));
+    shaders.setUniform(prog, "uLight", int(li));
     for (int f = r.x; f < r.x + r.y; ++f) {
       const shared::LightFace& face = layout_.faces[size_t(f)];
       for (int c = 0; c < channels; ++c)
@@ -152,10 +152,10 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
       for (int c = 1; c < channels; ++c) glClearBufferfv(GL_COLOR, c, zero);
       if (!layout_.drawn[size_t(f)]) continue;
       glClear(GL_DEPTH_BUFFER_BIT);
-      glUniform3fv(glGetUniformLocation(prog, "uEye"), 1, &face.eyeOrtho.x);
-      glUniform3fv(glGetUniformLocation(prog, "uAxis"), 1, &face.axisTexel.x);
-      glUniform1i(glGetUniformLocation(prog, "uOrthographic"), face.eyeOrtho.w > 0.5f ? 1 : 0);
-      glUniformMatrix4fv(glGetUniformLocation(prog, "uViewProj"), 1, GL_FALSE, glm::value_ptr(face.viewProj));
+      shaders.setUniform(prog, "uEye", glm::vec3(face.eyeOrtho));
+      shaders.setUniform(prog, "uAxis", glm::vec3(face.axisTexel));
+      shaders.setUniform(prog, "uOrthographic", face.eyeOrtho.w > 0.5f ? 1 : 0);
+      shaders.setUniform(prog, "uViewProj", face.viewProj);
       gpu.draw();
     }
   }

@@ -350,9 +350,9 @@ AtlasVoxelizer::~AtlasVoxelizer() {
 // What shaders/voxelize/atlas_point_cells.glsl reads: the atlas targets, the
 // mesh's corners and model matrix, the footprint radius.
 void AtlasVoxelizer::setPointCellInputs(unsigned program, const MeshGpu& m, float time) const {
-  glProgramUniform1f(program, glGetUniformLocation(program, "uFootprint"), request_.atlasFootprint * m.texelWorld);
+  request_.shaders->setUniform(program, "uFootprint", request_.atlasFootprint * m.texelWorld);
   glm::mat4 model = m.mesh->objectToWorld(time);
-  glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "uModel"), 1, GL_FALSE, &model[0][0]);
+  request_.shaders->setUniform(program, "uModel", model);
   glBindTextureUnit(TEXUNIT_ATLAS_POSITION, targets_[0]);
   glBindTextureUnit(TEXUNIT_ATLAS_TRIANGLE, targets_[1]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
@@ -373,18 +373,18 @@ void AtlasVoxelizer::renderAtlas(const MeshGpu& m, float time, unsigned prog, in
   glClearBufferiv(GL_COLOR, 1, clearId);
   for (int k = 2; k < targets; ++k) glClearBufferfv(GL_COLOR, k, clearPos);
   glm::mat4 model = m.mesh->objectToWorld(time);
-  glUniformMatrix4fv(glGetUniformLocation(prog, "uModel"), 1, GL_FALSE, &model[0][0]);
+  request_.shaders->setUniform(prog, "uModel", model);
   glBindVertexArray(m.vao);
   // Corners and edges first, the fill last: a texel whose centre a triangle
   // covers keeps that centre's point (the regular lattice the resolution
   // rule relies on); the others hold edge or corner points of slivers.
-  const int clampLoc = glGetUniformLocation(prog, "uClampToTriangle");
+  ShaderLibrary& sh = *request_.shaders;
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
-  glUniform1i(clampLoc, 0);
+  sh.setUniform(prog, "uClampToTriangle", 0);
   glDrawArrays(GL_POINTS, 0, m.corners);
-  glUniform1i(clampLoc, 1);  // line fragments overshoot the edge's ends
+  sh.setUniform(prog, "uClampToTriangle", 1);  // line fragments overshoot the edge's ends
   glDrawElements(GL_LINES, m.lineIndices, GL_UNSIGNED_INT, nullptr);
-  glUniform1i(clampLoc, 0);
+  sh.setUniform(prog, "uClampToTriangle", 0);
   glDrawArrays(GL_TRIANGLES, 0, m.corners);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -439,14 +439,14 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     glUseProgram(renderProg_);
     if (values) {
       materials_->bind(renderProg_);
-      glUniform1i(glGetUniformLocation(renderProg_, "uMaterial"), m.material);
+      request_.shaders->setUniform(renderProg_, "uMaterial", m.material);
     }
     renderAtlas(m, time, renderProg_, values ? 5 : 2);
   }
   {
     auto s = prof.scope("insertion");
     glUseProgram(insertProg_);
-    glProgramUniform2i(insertProg_, glGetUniformLocation(insertProg_, "uAtlasSize"), R, R);
+    request_.shaders->setUniform(insertProg_, "uAtlasSize", glm::ivec2(R));
     setPointCellInputs(insertProg_, m, time);
     target.bind(BINDING_GRID_WORDS);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VOXEL_COUNTER, counter);
@@ -456,7 +456,7 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
   if (values) {
     auto s = prof.scope("insertion_values");
     glUseProgram(valueProg_);
-    glProgramUniform2i(valueProg_, glGetUniformLocation(valueProg_, "uAtlasSize"), R, R);
+    request_.shaders->setUniform(valueProg_, "uAtlasSize", glm::ivec2(R));
     setPointCellInputs(valueProg_, m, time);
     const unsigned units[3] = {TEXUNIT_ATLAS_NORMAL, TEXUNIT_ATLAS_ALBEDO, TEXUNIT_ATLAS_GLOSSY};
     for (unsigned k = 0; k < 3; ++k) glBindTextureUnit(units[k], valueTargets_[k]);
