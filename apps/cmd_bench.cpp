@@ -86,10 +86,11 @@ Agreement agreement(const std::vector<TraceResult>& r, const std::vector<TraceRe
 }
 
 void addTraverseBench(CLI::App& bench) {
-  auto* cmd = bench.add_subcommand("traverse", "Tracers on the near-field ray population: speed against agreement");
+  auto* cmd =
+      bench.add_subcommand("traverse", "Tracers on the near-field ray population: speed against agreement");
   struct Options {
-    std::string scene = "builtin:cornell", voxels = "256", voxelizer = "atlas", tracers = "hierarchical,dda,march,embree",
-                maxDist = "0.1", gl = "auto", stats;
+    std::string scene = "builtin:cornell", voxels = "256", voxelizer = "atlas",
+                tracers = "hierarchical,dda,march,embree", maxDist = "0.1", gl = "auto", stats;
     size_t rays = 1000000;
     int threads = 0, repeat = 3;
     uint32_t seed = 1;
@@ -97,16 +98,19 @@ void addTraverseBench(CLI::App& bench) {
     bool json = false, noGl = false;
   };
   auto o = std::make_shared<Options>();
-  cmd->add_option("--scene", o->scene, "builtin:cornell, a scene .json, or a model file")->capture_default_str();
+  cmd->add_option("--scene", o->scene, "builtin:cornell, a scene .json, or a model file")
+      ->capture_default_str();
   cmd->add_option("--voxels", o->voxels, "N (N×N×N) or WxHxD")->capture_default_str();
   cmd->add_option("--voxelizer", o->voxelizer, "which voxelizer builds the grid")->capture_default_str();
   cmd->add_option("--tracers", o->tracers, "comma-separated tracers to run")->capture_default_str();
   cmd->add_option("--rays", o->rays, "number of rays")->capture_default_str();
   cmd->add_option("--max-dist", o->maxDist, "ray length as a fraction of the scene diagonal, or 'inf'")
       ->capture_default_str();
-  cmd->add_option("--offset", o->offset, "ray start offset along the normal, in voxel diagonals")->capture_default_str();
+  cmd->add_option("--offset", o->offset, "ray start offset along the normal, in voxel diagonals")
+      ->capture_default_str();
   cmd->add_option("--threads", o->threads, "CPU threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--repeat", o->repeat, "timed CPU runs per tracer (the fastest counts)")->capture_default_str();
+  cmd->add_option("--repeat", o->repeat, "timed CPU runs per tracer (the fastest counts)")
+      ->capture_default_str();
   cmd->add_option("--seed", o->seed, "ray population seed")->capture_default_str();
   cmd->add_option("--gl", o->gl, "GL backend: auto|egl|osmesa")->capture_default_str();
   cmd->add_flag("--no-gl", o->noGl, "skip the GLSL runs (the voxelizer may still need GL)");
@@ -195,7 +199,8 @@ void addTraverseBench(CLI::App& bench) {
         bool same = true;
         const auto& c = results[name];
         for (size_t i = 0; i < r.size() && same; ++i)
-          same = r[i].hit == c[i].hit && r[i].steps == c[i].steps && (!r[i].hit || (r[i].t == c[i].t && r[i].voxel == c[i].voxel));
+          same = r[i].hit == c[i].hit && r[i].steps == c[i].steps &&
+                 (!r[i].hit || (r[i].t == c[i].t && r[i].voxel == c[i].voxel));
         glMatchesCpu[name] = same;
       }
       if (gl->errorCount() > 0) fail("bench traverse: ", gl->errorCount(), " GL error(s)");
@@ -256,18 +261,21 @@ void addTraverseBench(CLI::App& bench) {
       std::printf("%s\n", jsonText(s, 2).c_str());
       return;
     }
-    std::printf("%s, %ux%ux%u (%s), %zu rays, max-dist %s (%.4g world), %d threads, %s\n", o->scene.c_str(), res.x,
-                res.y, res.z, vox.name.c_str(), rays.size(), o->maxDist.c_str(), double(pop.tmax), threads,
-                gl ? gl->renderer().c_str() : "no GL");
-    std::printf("%-13s %10s %10s %8s %9s %10s %10s %10s\n", "tracer", "Mrays/s", "GL Mrays/s", "hits", "agree_dda",
-                "agree_emb", "err_mean", "err_p95");
+    std::printf("%s, %ux%ux%u (%s), %zu rays, max-dist %s (%.4g world), %d threads, %s\n", o->scene.c_str(),
+                res.x, res.y, res.z, vox.name.c_str(), rays.size(), o->maxDist.c_str(), double(pop.tmax),
+                threads, gl ? gl->renderer().c_str() : "no GL");
+    std::printf("%-13s %10s %10s %8s %9s %10s %10s %10s\n", "tracer", "Mrays/s", "GL Mrays/s", "hits",
+                "agree_dda", "agree_emb", "err_mean", "err_p95");
     for (const std::string& name : tracers) {
       const auto& j = per[name];
-      std::printf("%-13s %10.3f %10s %8.4f %9.5f %10.5f %10.3f %10.3f\n", name.c_str(), j["mrays_per_s"].get<double>(),
-                  j.contains("gl_mrays_per_s") ? std::to_string(j["gl_mrays_per_s"].get<double>()).substr(0, 8).c_str()
-                                                : "-",
-                  j["hit_rate"].get<double>(), j["agree_dda"].get<double>(), j["agree_embree_hit"].get<double>(),
-                  j["dist_err_mean_voxels"].get<double>(), j["dist_err_p95_voxels"].get<double>());
+      std::printf("%-13s %10.3f %10s %8.4f %9.5f %10.5f %10.3f %10.3f\n", name.c_str(),
+                  j["mrays_per_s"].get<double>(),
+                  j.contains("gl_mrays_per_s")
+                      ? std::to_string(j["gl_mrays_per_s"].get<double>()).substr(0, 8).c_str()
+                      : "-",
+                  j["hit_rate"].get<double>(), j["agree_dda"].get<double>(),
+                  j["agree_embree_hit"].get<double>(), j["dist_err_mean_voxels"].get<double>(),
+                  j["dist_err_p95_voxels"].get<double>());
     }
   });
 }

@@ -1,7 +1,6 @@
 // vgi info --scene S [--json]: what a scene contains.
 #include <cstdio>
 #include <map>
-
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
@@ -24,7 +23,8 @@ std::string str(glm::vec3 v) {
 }  // namespace
 
 void addInfoCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("info", "Print what a scene contains (triangles, meshes, materials, lights, bounds)");
+  auto* cmd = app.add_subcommand(
+      "info", "Print what a scene contains (triangles, meshes, materials, lights, bounds)");
   auto scene = std::make_shared<std::string>("builtin:cornell");
   auto json = std::make_shared<bool>(false);
   cmd->add_option("--scene", *scene, "builtin:cornell, a scene .json, or an .obj/.gltf/.glb/.ply file")
@@ -42,9 +42,13 @@ void addInfoCommand(CLI::App& app) {
     j["dynamic_meshes"] = dyn;
     j["materials"] = nlohmann::json::array();
     for (auto& m : s.materials)
-      j["materials"].push_back({{"name", m.name}, {"albedo", vec(m.albedo)}, {"ks", vec(m.ks)},
-                                {"exponent", m.exponent}, {"emission", vec(m.emission)},
-                                {"texture", m.albedoTexture >= 0 ? s.textures[size_t(m.albedoTexture)].path : ""}});
+      j["materials"].push_back(
+          {{"name", m.name},
+           {"albedo", vec(m.albedo)},
+           {"ks", vec(m.ks)},
+           {"exponent", m.exponent},
+           {"emission", vec(m.emission)},
+           {"texture", m.albedoTexture >= 0 ? s.textures[size_t(m.albedoTexture)].path : ""}});
     j["lights"] = nlohmann::json::array();
     // Each light with the fields its type has: a point light has no direction
     // or cone, a directional light no position (and irradiance, not intensity).
@@ -77,12 +81,17 @@ void addInfoCommand(CLI::App& app) {
     }
     j["area_lights"] = nlohmann::json::array();
     for (auto& [mesh, a] : areaLights)
-      j["area_lights"].push_back({{"mesh", s.meshes[size_t(mesh)].name}, {"triangles", a.triangles},
-                                  {"area", a.area}, {"radiance", vec(a.radiance)}, {"power", vec(a.power)}});
+      j["area_lights"].push_back({{"mesh", s.meshes[size_t(mesh)].name},
+                                  {"triangles", a.triangles},
+                                  {"area", a.area},
+                                  {"radiance", vec(a.radiance)},
+                                  {"power", vec(a.power)}});
     j["two_sided_emission"] = s.twoSidedEmission;
     j["bounds"] = {{"min", vec(b.lo)}, {"max", vec(b.hi)}, {"diagonal", b.diagonal()}};
-    j["camera"] = {{"position", vec(s.camera.position)}, {"target", vec(s.camera.target)},
-                   {"up", vec(s.camera.up)}, {"fov_deg", s.camera.fovYDeg}};
+    j["camera"] = {{"position", vec(s.camera.position)},
+                   {"target", vec(s.camera.target)},
+                   {"up", vec(s.camera.up)},
+                   {"fov_deg", s.camera.fovYDeg}};
     j["presets"] = s.presets;
     j["degenerate_triangles_dropped"] = s.report.degenerateTrianglesDropped;
     j["warnings"] = s.report.warnings;
@@ -91,26 +100,30 @@ void addInfoCommand(CLI::App& app) {
       return;
     }
     std::printf("scene      %s\n", scene->c_str());
-    std::printf("triangles  %zu (%ld degenerate dropped)\n", s.triangleCount(), s.report.degenerateTrianglesDropped);
+    std::printf("triangles  %zu (%ld degenerate dropped)\n", s.triangleCount(),
+                s.report.degenerateTrianglesDropped);
     std::printf("meshes     %zu (%zu dynamic)\n", s.meshes.size(), dyn);
     std::printf("materials  %zu\n", s.materials.size());
     for (auto& m : s.materials)
-      std::printf("  %-20s albedo %s ks %s exponent %g emission %s %s\n", m.name.c_str(), str(m.albedo).c_str(),
-                  str(m.ks).c_str(), m.exponent, str(m.emission).c_str(),
+      std::printf("  %-20s albedo %s ks %s exponent %g emission %s %s\n", m.name.c_str(),
+                  str(m.albedo).c_str(), str(m.ks).c_str(), m.exponent, str(m.emission).c_str(),
                   m.albedoTexture >= 0 ? s.textures[size_t(m.albedoTexture)].path.c_str() : "");
     std::printf("lights     %zu\n", s.lights.size());
     for (auto& l : s.lights) {
       std::printf("  %-11s", lightTypeName(l.type));
       if (l.type != LightType::Directional) std::printf(" position %s", str(l.position).c_str());
       if (l.type != LightType::Point) std::printf(" direction %s", str(l.direction).c_str());
-      std::printf(" %s %s", l.type == LightType::Directional ? "irradiance" : "intensity", str(l.intensity).c_str());
+      std::printf(" %s %s", l.type == LightType::Directional ? "irradiance" : "intensity",
+                  str(l.intensity).c_str());
       if (l.type == LightType::Spot) std::printf(" cone %g deg falloff %g", l.coneHalfAngleDeg, l.falloff);
       std::printf("\n");
     }
-    std::printf("area lights %zu (%s emission)\n", areaLights.size(), s.twoSidedEmission ? "two-sided" : "one-sided");
+    std::printf("area lights %zu (%s emission)\n", areaLights.size(),
+                s.twoSidedEmission ? "two-sided" : "one-sided");
     for (auto& [mesh, a] : areaLights)
-      std::printf("  %-20s %d triangles area %g radiance %s power %s W\n", s.meshes[size_t(mesh)].name.c_str(),
-                  a.triangles, a.area, str(a.radiance).c_str(), str(a.power).c_str());
+      std::printf("  %-20s %d triangles area %g radiance %s power %s W\n",
+                  s.meshes[size_t(mesh)].name.c_str(), a.triangles, a.area, str(a.radiance).c_str(),
+                  str(a.power).c_str());
     std::printf("bounds     %s .. %s (diagonal %g)\n", str(b.lo).c_str(), str(b.hi).c_str(), b.diagonal());
     std::printf("camera     position %s target %s up %s fov %g deg\n", str(s.camera.position).c_str(),
                 str(s.camera.target).c_str(), str(s.camera.up).c_str(), s.camera.fovYDeg);

@@ -20,11 +20,13 @@ void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args) {
   cmd->add_option("--spp", opt.spp, "samples per pixel (GL methods: jittered frames)")->capture_default_str();
   cmd->add_option("--seed", opt.seed, "random seed")->capture_default_str();
   cmd->add_option("--threads", opt.threads, "CPU threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--time", opt.time, "animation time for dynamic meshes (of the first frame)")->capture_default_str();
+  cmd->add_option("--time", opt.time, "animation time for dynamic meshes (of the first frame)")
+      ->capture_default_str();
   cmd->add_option("--gl", args.gl, "GL backend: auto|egl|osmesa")->capture_default_str();
-  cmd->add_option("--accumulate", args.accumulate,
-                  "sample accumulation: compensated (Kahan sums on the GPU: no drift over 10^5 samples) or plain "
-                  "(one float add per sample)")
+  cmd->add_option(
+         "--accumulate", args.accumulate,
+         "sample accumulation: compensated (Kahan sums on the GPU: no drift over 10^5 samples) or plain "
+         "(one float add per sample)")
       ->capture_default_str();
   cmd->add_flag("--quiet", args.quiet, "no progress bars");
 }
@@ -33,9 +35,12 @@ void applyRenderArgs(const RenderArgs& args, RenderOptions& opt) {
   parseSize(args.size, opt.width, opt.height);
   opt.gl = parseGlBackend(args.gl);
   opt.progress = !args.quiet;
-  if (args.accumulate == "compensated") opt.accumulation = Accumulation::Compensated;
-  else if (args.accumulate == "plain") opt.accumulation = Accumulation::Plain;
-  else fail("--accumulate '", args.accumulate, "': expected compensated or plain");
+  if (args.accumulate == "compensated")
+    opt.accumulation = Accumulation::Compensated;
+  else if (args.accumulate == "plain")
+    opt.accumulation = Accumulation::Plain;
+  else
+    fail("--accumulate '", args.accumulate, "': expected compensated or plain");
 }
 
 void addRenderCommand(CLI::App& app) {
@@ -49,9 +54,10 @@ void addRenderCommand(CLI::App& app) {
   opt->method = defaultMethodName();
   args->size = "512x512";
   addRenderOptions(cmd, *opt, *args);
-  cmd->add_option("--frames", opt->frames,
-                  "render an animation of N frames from --time: <stem>_NNNN.exr/.png per frame, one <stem>.json "
-                  "with per-frame stats")
+  cmd->add_option(
+         "--frames", opt->frames,
+         "render an animation of N frames from --time: <stem>_NNNN.exr/.png per frame, one <stem>.json "
+         "with per-frame stats")
       ->capture_default_str();
   cmd->add_option("--time-step", opt->timeStep, "time between frames")->capture_default_str();
   cmd->add_option("-o,--output", *out, "output image (.exr or .png; both are written, plus .json)")
@@ -59,12 +65,14 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--stats", *stats, "also write the stats JSON here");
   cmd->add_option("--exposure", *exposure, "PNG exposure multiplier")->capture_default_str();
   auto aovs = std::make_shared<std::string>();
-  cmd->add_option("--aov", *aovs, "extra outputs, comma-separated (e.g. indirect,direct): <stem>.<aov>.exr/.png");
+  cmd->add_option("--aov", *aovs,
+                  "extra outputs, comma-separated (e.g. indirect,direct): <stem>.<aov>.exr/.png");
   cmd->add_option("--help-module", *helpModule, "print a method's parameters and exit");
   auto checkpoints = std::make_shared<std::string>();
-  cmd->add_option("--checkpoints", *checkpoints,
-                  "sample counts (comma-separated, e.g. 1,4,16,64) at which the image so far and its stats are "
-                  "written too: <stem>.sppNNNNN.exr/.png/.json (convergence plots)");
+  cmd->add_option(
+      "--checkpoints", *checkpoints,
+      "sample counts (comma-separated, e.g. 1,4,16,64) at which the image so far and its stats are "
+      "written too: <stem>.sppNNNNN.exr/.png/.json (convergence plots)");
   cmd->callback([=] {
     if (!helpModule->empty()) {
       std::printf("%s", describeMethod(*helpModule, opt->scene).c_str());
@@ -90,7 +98,8 @@ void addRenderCommand(CLI::App& app) {
         for (auto& file : writeCheckpointOutputs(c, *out, spp, *exposure)) files.push_back(file);
       });
       if (result.result.sppCompleted == 0) {
-        std::fprintf(stderr, "interrupted before the first sample of every pixel was done: nothing written\n");
+        std::fprintf(stderr,
+                     "interrupted before the first sample of every pixel was done: nothing written\n");
         throw Interrupted{};
       }
       std::vector<std::string> last = writeRenderOutputs(result, *out, *exposure);
@@ -105,17 +114,19 @@ void addRenderCommand(CLI::App& app) {
     if (!stats->empty()) writeJsonFile(result.stats, *stats);
     if (opt->frames > 1) {
       if (result.stats["interrupted"].get<bool>())
-        std::fprintf(stderr, "interrupted: wrote %d of %d frames\n", result.stats["frames_completed"].get<int>(),
-                     opt->frames);
-      std::fprintf(stderr, "%s %s %dx%d %d spp, %d frames: %.1f ms (%s)\n", opt->method.c_str(), opt->scene.c_str(),
-                   opt->width, opt->height, opt->spp, result.stats["frames_completed"].get<int>(),
-                   result.stats["wall_ms"].get<double>(), result.stats["gl_renderer"].get<std::string>().c_str());
+        std::fprintf(stderr, "interrupted: wrote %d of %d frames\n",
+                     result.stats["frames_completed"].get<int>(), opt->frames);
+      std::fprintf(stderr, "%s %s %dx%d %d spp, %d frames: %.1f ms (%s)\n", opt->method.c_str(),
+                   opt->scene.c_str(), opt->width, opt->height, opt->spp,
+                   result.stats["frames_completed"].get<int>(), result.stats["wall_ms"].get<double>(),
+                   result.stats["gl_renderer"].get<std::string>().c_str());
       std::fprintf(stderr, "wrote %s and %zu frame files\n", files[0].c_str(), files.size() - 1);
       if (result.stats["interrupted"].get<bool>()) throw Interrupted{};
       return;
     }
     if (result.result.interrupted)
-      std::fprintf(stderr, "interrupted: wrote %d of %d samples per pixel\n", result.result.sppCompleted, opt->spp);
+      std::fprintf(stderr, "interrupted: wrote %d of %d samples per pixel\n", result.result.sppCompleted,
+                   opt->spp);
     std::fprintf(stderr, "%s %s %dx%d %d spp: %.1f ms (%s)\n", opt->method.c_str(), opt->scene.c_str(),
                  opt->width, opt->height, result.result.sppCompleted, result.stats["wall_ms"].get<double>(),
                  result.stats["gl_renderer"].get<std::string>().c_str());

@@ -14,8 +14,8 @@
 #include "core/output_files.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
-#include "voxelize/atlas.h"
 #include "illum/light_maps.h"
+#include "voxelize/atlas.h"
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"
 #include "voxelize/grid_metrics.h"
@@ -28,40 +28,48 @@ nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
 void addVoxelizeCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("voxelize", "Voxelize a scene into a binary grid and compare it with the exact voxelizer");
+  auto* cmd = app.add_subcommand(
+      "voxelize", "Voxelize a scene into a binary grid and compare it with the exact voxelizer");
   struct Options {
-    std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto", kind = "binary",
-                textures = "none";
+    std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto",
+                kind = "binary", textures = "none";
     float time = 0, texelsPerVoxel = kAutoTexelsPerVoxel, footprint = 1.0f;
     int threads = 0, atlasResolution = 0, frames = 1;
     float timeStep = 1.0f / 30.0f;
     bool noCache = false;
   };
   auto o = std::make_shared<Options>();
-  cmd->add_option("--scene", o->scene, "builtin:cornell, a scene .json, or a model file")->capture_default_str();
-  cmd->add_option("--voxels", o->voxels, "N (N×N×N) or WxHxD; D = 128, 256, 512 or 1024")->capture_default_str();
+  cmd->add_option("--scene", o->scene, "builtin:cornell, a scene .json, or a model file")
+      ->capture_default_str();
+  cmd->add_option("--voxels", o->voxels, "N (N×N×N) or WxHxD; D = 128, 256, 512 or 1024")
+      ->capture_default_str();
   std::string names;
   for (auto& v : voxelizerRegistry()) names += (names.empty() ? "" : "|") + v.name;
   cmd->add_option("--voxelizer", o->voxelizer, names)->capture_default_str();
-  cmd->add_option("--kind", o->kind, "grids to build: binary, plus any of normal,albedo,glossy,radiance (atlas; comma-separated; radiance: diffuse direct light of the delta lights)")
+  cmd->add_option("--kind", o->kind,
+                  "grids to build: binary, plus any of normal,albedo,glossy,radiance (atlas; "
+                  "comma-separated; radiance: diffuse direct light of the delta lights)")
       ->capture_default_str();
-  cmd->add_option("--textures", o->textures,
-                  "multi-valued grids also resolved into GL 3D textures (voxelize/value_textures.h): none, level0, "
-                  "isotropic or anisotropic mip chains (timed as value_resolve, value_mips)")
+  cmd->add_option(
+         "--textures", o->textures,
+         "multi-valued grids also resolved into GL 3D textures (voxelize/value_textures.h): none, level0, "
+         "isotropic or anisotropic mip chains (timed as value_resolve, value_mips)")
       ->capture_default_str();
   cmd->add_option("--time", o->time, "animation time")->capture_default_str();
   cmd->add_option("--threads", o->threads, "CPU threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--gl", o->gl, "GL backend: auto|egl|osmesa")->capture_default_str();
   cmd->add_option("--texels-per-voxel", o->texelsPerVoxel, "atlas: texel = smallest voxel edge / this")
       ->capture_default_str();
-  cmd->add_option("--atlas-resolution", o->atlasResolution, "atlas: manual resolution per mesh (0 = automatic)")
+  cmd->add_option("--atlas-resolution", o->atlasResolution,
+                  "atlas: manual resolution per mesh (0 = automatic)")
       ->capture_default_str();
   cmd->add_option("--atlas-footprint", o->footprint,
                   "atlas: each point also sets the cells within this many texels that its triangle overlaps "
                   "(0 = the paper's single point)")
       ->capture_default_str();
   cmd->add_flag("--no-cache", o->noCache, "atlas: do not read or write the atlas cache");
-  cmd->add_option("--frames", o->frames, "atlas: voxelize N frames from --time (static once, dynamic per frame)")
+  cmd->add_option("--frames", o->frames,
+                  "atlas: voxelize N frames from --time (static once, dynamic per frame)")
       ->capture_default_str();
   cmd->add_option("--time-step", o->timeStep, "time between frames")->capture_default_str();
   cmd->add_option("--stats", o->stats, "write the stats JSON here");
@@ -102,11 +110,14 @@ void addVoxelizeCommand(CLI::App& app) {
       fail("--time ", o->time, " / --time-step ", o->timeStep, ": must be finite numbers");
     if (o->frames > 1 && info.name != "atlas") fail("--frames applies to --voxelizer atlas only");
     std::string kinds = o->kind;
-    if (kinds == "binary") kinds.clear();
-    else if (kinds.rfind("binary,", 0) == 0) kinds = kinds.substr(7);
+    if (kinds == "binary")
+      kinds.clear();
+    else if (kinds.rfind("binary,", 0) == 0)
+      kinds = kinds.substr(7);
     if (!kinds.empty()) {
       req.valueGrids = parseValueChannels(kinds);
-      if (info.name != "atlas") fail("--kind ", o->kind, ": multi-valued grids are built by --voxelizer atlas only");
+      if (info.name != "atlas")
+        fail("--kind ", o->kind, ": multi-valued grids are built by --voxelizer atlas only");
     }
     const std::vector<std::string> textureKinds = {"none", "level0", "isotropic", "anisotropic"};
     if (std::find(textureKinds.begin(), textureKinds.end(), o->textures) == textureKinds.end())
@@ -131,7 +142,8 @@ void addVoxelizeCommand(CLI::App& app) {
           Profiler frameProf(true);
           v.voxelizeFrame(t, frameProf);
           frameProf.resolve(true);
-          frames.push_back({{"time", t}, {"timings_ms", frameProf.timingsMs()}, {"total_ms", frameProf.totalMs()}});
+          frames.push_back(
+              {{"time", t}, {"timings_ms", frameProf.timingsMs()}, {"total_ms", frameProf.totalMs()}});
         }
         req.time = t;
       }
@@ -168,7 +180,8 @@ void addVoxelizeCommand(CLI::App& app) {
     s["built"] = nlohmann::json::array({"binary"});
     for (auto& ch : req.valueGrids) s["built"].push_back(ch);
     if (!req.valueGrids.empty()) s["value_grids"] = values.summary();
-    if (gl && gl->errorCount() > 0) fail("voxelizer '", info.name, "' raised ", gl->errorCount(), " GL error(s)");
+    if (gl && gl->errorCount() > 0)
+      fail("voxelizer '", info.name, "' raised ", gl->errorCount(), " GL error(s)");
     GridComparison cmp, interior;
     if (info.name == "exact") {
       cmp = compareGrids(grid, grid);
@@ -179,7 +192,8 @@ void addVoxelizeCommand(CLI::App& app) {
     s["voxelizer"] = info.name;
     s["scene"] = o->scene;
     s["resolution"] = {res.x, res.y, res.z};
-    s["box"] = {{"origin", vec(req.box.origin)}, {"extent", vec(req.box.extent)},
+    s["box"] = {{"origin", vec(req.box.origin)},
+                {"extent", vec(req.box.extent)},
                 {"axes", {vec(req.box.axes[0]), vec(req.box.axes[1]), vec(req.box.axes[2])}}};
     s["voxel_size"] = vec(req.box.voxelSize());
     s["voxels_set"] = grid.count();

@@ -1,9 +1,8 @@
 #pragma once
+#include <CLI/CLI.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "core/image_metrics.h"
 #include "illum/render_job.h"

@@ -21,8 +21,7 @@ namespace vgi {
 std::vector<std::string> builtinSceneNames() { return {"cornell"}; }
 
 namespace {
-void addQuads(Scene& scene, const std::string& name, int material,
-              const std::vector<glm::vec3>& cornersMm) {
+void addQuads(Scene& scene, const std::string& name, int material, const std::vector<glm::vec3>& cornersMm) {
   Mesh m;
   m.name = name;
   m.source = "builtin:cornell";
@@ -37,8 +36,7 @@ void addQuads(Scene& scene, const std::string& name, int material,
 }
 }  // namespace
 
-void appendBuiltin(const std::string& name, Scene& scene, std::vector<Light>& lights,
-                   Camera& camera) {
+void appendBuiltin(const std::string& name, Scene& scene, std::vector<Light>& lights, Camera& camera) {
   if (name != "cornell") {
     std::string known;
     for (auto& n : builtinSceneNames()) known += " builtin:" + n;
@@ -56,28 +54,24 @@ void appendBuiltin(const std::string& name, Scene& scene, std::vector<Light>& li
   mat("green", {0.14f, 0.45f, 0.091f});
   const int white = base, red = base + 1, green = base + 2;
 
-  addQuads(scene, "floor", white,
-           {{552.8f, 0, 0}, {0, 0, 0}, {0, 0, 559.2f}, {549.6f, 0, 559.2f}});
+  addQuads(scene, "floor", white, {{552.8f, 0, 0}, {0, 0, 0}, {0, 0, 559.2f}, {549.6f, 0, 559.2f}});
   addQuads(scene, "ceiling", white,
            {{556, 548.8f, 0}, {556, 548.8f, 559.2f}, {0, 548.8f, 559.2f}, {0, 548.8f, 0}});
   addQuads(scene, "back_wall", white,
            {{549.6f, 0, 559.2f}, {0, 0, 559.2f}, {0, 548.8f, 559.2f}, {556, 548.8f, 559.2f}});
-  addQuads(scene, "right_wall", green,
-           {{0, 0, 559.2f}, {0, 0, 0}, {0, 548.8f, 0}, {0, 548.8f, 559.2f}});
+  addQuads(scene, "right_wall", green, {{0, 0, 559.2f}, {0, 0, 0}, {0, 548.8f, 0}, {0, 548.8f, 559.2f}});
   addQuads(scene, "left_wall", red,
            {{552.8f, 0, 0}, {549.6f, 0, 559.2f}, {556, 548.8f, 559.2f}, {556, 548.8f, 0}});
   addQuads(scene, "short_block", white,
-           {{130, 165, 65},  {82, 165, 225},  {240, 165, 272}, {290, 165, 114},
-            {290, 0, 114},   {290, 165, 114}, {240, 165, 272}, {240, 0, 272},
-            {130, 0, 65},    {130, 165, 65},  {290, 165, 114}, {290, 0, 114},
-            {82, 0, 225},    {82, 165, 225},  {130, 165, 65},  {130, 0, 65},
-            {240, 0, 272},   {240, 165, 272}, {82, 165, 225},  {82, 0, 225}});
+           {{130, 165, 65},  {82, 165, 225},  {240, 165, 272}, {290, 165, 114}, {290, 0, 114},
+            {290, 165, 114}, {240, 165, 272}, {240, 0, 272},   {130, 0, 65},    {130, 165, 65},
+            {290, 165, 114}, {290, 0, 114},   {82, 0, 225},    {82, 165, 225},  {130, 165, 65},
+            {130, 0, 65},    {240, 0, 272},   {240, 165, 272}, {82, 165, 225},  {82, 0, 225}});
   addQuads(scene, "tall_block", white,
-           {{423, 330, 247}, {265, 330, 296}, {314, 330, 456}, {472, 330, 406},
-            {423, 0, 247},   {423, 330, 247}, {472, 330, 406}, {472, 0, 406},
-            {472, 0, 406},   {472, 330, 406}, {314, 330, 456}, {314, 0, 456},
-            {314, 0, 456},   {314, 330, 456}, {265, 330, 296}, {265, 0, 296},
-            {265, 0, 296},   {265, 330, 296}, {423, 330, 247}, {423, 0, 247}});
+           {{423, 330, 247}, {265, 330, 296}, {314, 330, 456}, {472, 330, 406}, {423, 0, 247},
+            {423, 330, 247}, {472, 330, 406}, {472, 0, 406},   {472, 0, 406},   {472, 330, 406},
+            {314, 330, 456}, {314, 0, 456},   {314, 0, 456},   {314, 330, 456}, {265, 330, 296},
+            {265, 0, 296},   {265, 0, 296},   {265, 330, 296}, {423, 330, 247}, {423, 0, 247}});
 
   Light spot;
   spot.type = LightType::Spot;

@@ -32,9 +32,9 @@ template <typename... Args>
 
 }  // namespace vgi
 
-#define VGI_CHECK(cond)                                                                  \
-  do {                                                                                   \
-    if (!(cond))                                                                         \
-      throw std::logic_error(std::string("internal check failed: " #cond " at ") +      \
-                             __FILE__ + ":" + std::to_string(__LINE__));                 \
+#define VGI_CHECK(cond)                                                                             \
+  do {                                                                                              \
+    if (!(cond))                                                                                    \
+      throw std::logic_error(std::string("internal check failed: " #cond " at ") + __FILE__ + ":" + \
+                             std::to_string(__LINE__));                                             \
   } while (0)

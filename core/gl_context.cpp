@@ -26,8 +26,8 @@ namespace {
 // stacks name the driver, and scripts/lsan.supp suppresses exactly Mesa's.
 void keepMesaLoaded() {
   static const bool once = [] {
-    for (const char* lib : {"libEGL_mesa.so.0", "swrast_dri.so", "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so",
-                            "libOSMesa.so.8", "libglapi.so.0"})
+    for (const char* lib : {"libEGL_mesa.so.0", "swrast_dri.so",
+                            "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so", "libOSMesa.so.8", "libglapi.so.0"})
       dlopen(lib, RTLD_NOW | RTLD_GLOBAL | RTLD_NODELETE);
     return true;
   }();
@@ -56,8 +56,7 @@ std::unique_ptr<GlContext> GlContext::create(GlBackend backend) {
 }
 
 bool GlContext::isSoftware() const {
-  return renderer_.find("llvmpipe") != std::string::npos ||
-         renderer_.find("softpipe") != std::string::npos ||
+  return renderer_.find("llvmpipe") != std::string::npos || renderer_.find("softpipe") != std::string::npos ||
          renderer_.find("lavapipe") != std::string::npos;
 }
 
@@ -83,8 +82,8 @@ void GlContext::finishInit(const std::string& backend) {
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DEBUG_SEVERITY_NOTIFICATION, 0, nullptr, GL_FALSE);
 }
 
-void GlContext::debugCallback(unsigned source, unsigned type, unsigned id, unsigned severity,
-                              int length, const char* message, const void* user) {
+void GlContext::debugCallback(unsigned source, unsigned type, unsigned id, unsigned severity, int length,
+                              const char* message, const void* user) {
   auto* self = const_cast<GlContext*>(static_cast<const GlContext*>(user));
   // Shader compile errors arrive here too; ShaderLibrary reports those with file
   // and line, so they do not count as API errors.

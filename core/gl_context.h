@@ -33,8 +33,8 @@ class GlContext {
 
  protected:
   void finishInit(const std::string& backend);  // loads GL, checks 4.5, installs the callback
-  static void debugCallback(unsigned source, unsigned type, unsigned id, unsigned severity,
-                            int length, const char* message, const void* user);
+  static void debugCallback(unsigned source, unsigned type, unsigned id, unsigned severity, int length,
+                            const char* message, const void* user);
   std::string renderer_, version_, backend_;
   mutable std::mutex mutex_;
   long errors_ = 0;

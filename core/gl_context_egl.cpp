@@ -1,10 +1,9 @@
 // EGL: the device platform (EGL_EXT_platform_device) on a hardware device, else
 // Mesa's surfaceless platform. Contexts are made current without a surface
 // (EGL_KHR_surfaceless_context).
-#include <glad/gl.h>
-
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
+#include <glad/gl.h>
 
 #include <cstring>
 
@@ -67,13 +66,20 @@ EGLContext createContext(EGLDisplay dpy, std::string& why) {
     why = "EGL_KHR_surfaceless_context is not supported";
     return EGL_NO_CONTEXT;
   }
-  const EGLint ctxAttrs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                             EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                             EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE, EGL_NONE};
+  const EGLint ctxAttrs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                             4,
+                             EGL_CONTEXT_MINOR_VERSION,
+                             5,
+                             EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                             EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                             EGL_CONTEXT_OPENGL_DEBUG,
+                             EGL_TRUE,
+                             EGL_NONE};
   EGLContext ctx = eglCreateContext(dpy, config, EGL_NO_CONTEXT, ctxAttrs);
   if (ctx == EGL_NO_CONTEXT) {
     char buf[128];
-    std::snprintf(buf, sizeof buf, "eglCreateContext(4.5 core) failed (EGL error 0x%x): the driver may not offer OpenGL 4.5",
+    std::snprintf(buf, sizeof buf,
+                  "eglCreateContext(4.5 core) failed (EGL error 0x%x): the driver may not offer OpenGL 4.5",
                   eglGetError());
     why = buf;
   }

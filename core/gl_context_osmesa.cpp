@@ -1,8 +1,10 @@
 // OSMesa: Mesa's off-screen renderer. Needs a (1×1) colour buffer to be made
 // current; everything else renders into FBOs.
+// glad must come before any GL header (include sorting would swap them).
+// clang-format off
 #include <glad/gl.h>
-
 #include <GL/osmesa.h>
+// clang-format on
 
 #include <vector>
 
@@ -34,9 +36,12 @@ class OsmesaContext : public GlContext {
 }  // namespace
 
 std::unique_ptr<GlContext> createOsmesaContext() {
+  // Key, value pairs.
+  // clang-format off
   const int attrs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24, OSMESA_PROFILE,
                        OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 4,
                        OSMESA_CONTEXT_MINOR_VERSION, 5, 0};
+  // clang-format on
   OSMesaContext ctx = OSMesaCreateContextAttribs(attrs, nullptr);
   if (!ctx) fail("OSMesa: could not create a 4.5 core context (Mesa too old, or OSMesa missing)");
   return std::make_unique<OsmesaContext>(ctx);

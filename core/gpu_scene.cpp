@@ -10,7 +10,7 @@ namespace vgi {
 
 shared::PackedLight packLight(const Light& l) {
   shared::PackedLight p;
-  float type = l.type == LightType::Point ? float(shared::LIGHT_POINT)
+  float type = l.type == LightType::Point  ? float(shared::LIGHT_POINT)
                : l.type == LightType::Spot ? float(shared::LIGHT_SPOT)
                                            : float(shared::LIGHT_DIRECTIONAL);
   p.positionType = glm::vec4(l.position, type);
@@ -107,8 +107,8 @@ GpuScene::GpuScene(const Scene& scene, float time) {
 
   std::vector<shared::PackedMaterial> mats;
   for (auto& m : scene.materials)
-    mats.push_back(
-        packMaterial(m, m.albedoTexture >= 0 ? layerOf[size_t(m.albedoTexture)] : -1, scene.twoSidedEmission));
+    mats.push_back(packMaterial(m, m.albedoTexture >= 0 ? layerOf[size_t(m.albedoTexture)] : -1,
+                                scene.twoSidedEmission));
   materials_ = makeSsbo(mats.data(), mats.size() * sizeof(mats[0]));
   triMaterial_ = makeSsbo(f.material.data(), f.material.size() * sizeof(int));
   setLights(scene.lights);

@@ -1,10 +1,10 @@
 #include "core/image.h"
 
+#include <OpenImageIO/imageio.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-
-#include <OpenImageIO/imageio.h>
 
 #include "core/error.h"
 #include "core/scene_loader.h"

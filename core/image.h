@@ -1,9 +1,8 @@
 // Linear HDR RGB images; EXR (float) and tone-mapped sRGB PNG through OpenImageIO.
 #pragma once
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace vgi {
 

@@ -11,9 +11,15 @@ namespace vgi {
 
 nlohmann::json ImageDiff::toJson() const {
   auto rgb = [](const double* v) { return nlohmann::json{v[0], v[1], v[2]}; };
-  return {{"rmse", rmse},       {"relmse", relMse},           {"relmse_epsilon", epsilon},
-          {"mae", mae},         {"rel_mae", relMae},          {"rel_mae_rgb", rgb(relMaeRgb)},
-          {"energy_rgb", rgb(energyRgb)}, {"mean_a_rgb", rgb(meanA)}, {"mean_b_rgb", rgb(meanB)},
+  return {{"rmse", rmse},
+          {"relmse", relMse},
+          {"relmse_epsilon", epsilon},
+          {"mae", mae},
+          {"rel_mae", relMae},
+          {"rel_mae_rgb", rgb(relMaeRgb)},
+          {"energy_rgb", rgb(energyRgb)},
+          {"mean_a_rgb", rgb(meanA)},
+          {"mean_b_rgb", rgb(meanB)},
           {"ssim", ssim}};
 }
 
@@ -62,14 +68,14 @@ double meanSsim(const Image& a, const Image& b) {
 namespace {
 void checkComparable(const Image& a, const Image& b, const std::string& nameA, const std::string& nameB) {
   if (a.width != b.width || a.height != b.height)
-    fail("cannot compare images of different sizes: ", nameA, " is ", a.width, "x", a.height,
-         ", ", nameB, " is ", b.width, "x", b.height);
+    fail("cannot compare images of different sizes: ", nameA, " is ", a.width, "x", a.height, ", ", nameB,
+         " is ", b.width, "x", b.height);
   if (a.pixels.empty()) fail("cannot compare empty images (", nameA, ")");
 }
 }  // namespace
 
-ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA,
-                        const std::string& nameB, const DiffOptions& options) {
+ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA, const std::string& nameB,
+                        const DiffOptions& options) {
   checkComparable(a, b, nameA, nameB);
   if (!(options.epsilon > 0) || !(options.relativeEpsilon >= 0) || !std::isfinite(options.relativeEpsilon))
     fail("relMSE epsilon ", options.epsilon, " / relative ", options.relativeEpsilon,
@@ -79,8 +85,8 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
     for (int k = 0; k < 3; ++k) {
       double x = a.pixels[i][k], r = b.pixels[i][k];
       if (!std::isfinite(x) || !std::isfinite(r))
-        fail("image ", std::isfinite(x) ? nameB : nameA, " has a non-finite value at pixel (",
-             i % a.width, ", ", i / a.width, ")");
+        fail("image ", std::isfinite(x) ? nameB : nameA, " has a non-finite value at pixel (", i % a.width,
+             ", ", i / a.width, ")");
       sumA[k] += x;
       sumB[k] += std::abs(r);
       absErr[k] += std::abs(x - r);

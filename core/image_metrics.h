@@ -19,14 +19,14 @@
 namespace vgi {
 
 struct DiffOptions {
-  double epsilon = 0.01;        // relMSE's ε, used when relativeEpsilon is 0
-  double relativeEpsilon = 0;   // > 0: ε = (relativeEpsilon · mean(b))²
+  double epsilon = 0.01;       // relMSE's ε, used when relativeEpsilon is 0
+  double relativeEpsilon = 0;  // > 0: ε = (relativeEpsilon · mean(b))²
 };
 
 struct ImageDiff {
   double rmse = 0, relMse = 0, mae = 0, ssim = 1;
   double relMae = 0;
-  double epsilon = 0.01;        // the ε relMSE used
+  double epsilon = 0.01;  // the ε relMSE used
   double relMaeRgb[3] = {0, 0, 0};
   double energyRgb[3] = {1, 1, 1};
   double meanA[3] = {0, 0, 0}, meanB[3] = {0, 0, 0};  // per colour channel

@@ -16,8 +16,7 @@ void ParamSet::set(const std::string& key, const std::string& value, const std::
 
 void ParamSet::setFromString(const std::string& kv, const std::string& origin) {
   auto eq = kv.find('=');
-  if (eq == std::string::npos || eq == 0)
-    fail(origin, " '", kv, "': expected key=value");
+  if (eq == std::string::npos || eq == 0) fail(origin, " '", kv, "': expected key=value");
   set(kv.substr(0, eq), kv.substr(eq + 1), origin);
 }
 
@@ -56,8 +55,7 @@ int ParamSet::getInt(const std::string& key, int def, const std::string& doc, in
   return v;
 }
 
-float ParamSet::getFloat(const std::string& key, float def, const std::string& doc, float lo,
-                         float hi) {
+float ParamSet::getFloat(const std::string& key, float def, const std::string& doc, float lo, float hi) {
   const Value* p = lookup(key, "float", std::to_string(def), doc);
   float v = p ? parseNumber(key, p->origin, p->text, lo, hi) : def;
   resolved_[key] = v;
@@ -68,16 +66,19 @@ bool ParamSet::getBool(const std::string& key, bool def, const std::string& doc)
   bool v = def;
   if (auto* p = lookup(key, "bool", def ? "true" : "false", doc)) {
     const std::string& t = p->text;
-    if (t == "true" || t == "on" || t == "1") v = true;
-    else if (t == "false" || t == "off" || t == "0") v = false;
-    else fail("parameter '", key, "' (", p->origin, "): '", t, "' is not a boolean (true/false/on/off/1/0)");
+    if (t == "true" || t == "on" || t == "1")
+      v = true;
+    else if (t == "false" || t == "off" || t == "0")
+      v = false;
+    else
+      fail("parameter '", key, "' (", p->origin, "): '", t, "' is not a boolean (true/false/on/off/1/0)");
   }
   resolved_[key] = v;
   return v;
 }
 
-std::string ParamSet::getString(const std::string& key, const std::string& def,
-                                const std::string& doc, const std::vector<std::string>& allowed) {
+std::string ParamSet::getString(const std::string& key, const std::string& def, const std::string& doc,
+                                const std::vector<std::string>& allowed) {
   std::string v = def;
   std::string type = "string";
   if (!allowed.empty()) {

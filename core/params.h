@@ -3,10 +3,9 @@
 // reads is an error, so a typo never silently falls back to a default.
 #pragma once
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace vgi {
 

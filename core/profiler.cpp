@@ -39,7 +39,8 @@ Profiler::Scope::~Scope() {
     glQueryCounter(end, GL_TIMESTAMP);
     p_.pending_.push_back({name_, queryBegin_, end});
   }
-  p_.addCpu(name_, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count());
+  p_.addCpu(name_,
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count());
 }
 
 void Profiler::addCpu(const std::string& name, double ms) {

@@ -1,9 +1,10 @@
 #include "core/progress.h"
 
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
 #include <mutex>
-#include <unistd.h>
 
 namespace vgi {
 

@@ -1,7 +1,6 @@
 #include "core/scene.h"
 
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "shaders/shared/cpp_prelude.h"
@@ -21,8 +20,8 @@ glm::vec3 Texture::lookup(glm::vec2 uv, bool wrapV) const {
     j = wrapV ? ((j % height) + height) % height : glm::clamp(j, 0, height - 1);
     return texels[size_t(j) * width + i];
   };
-  return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx),
-                  glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
+  return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx), glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx),
+                  fy);
 }
 
 glm::mat4 Mesh::objectToWorld(float time) const {

@@ -2,12 +2,11 @@
 // environment and camera. The GL modules and the Embree reference read the
 // same structures, so both render the same scene with the same definitions.
 #pragma once
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
-#include <glm/gtc/quaternion.hpp>
 
 namespace vgi {
 
@@ -82,7 +81,10 @@ struct Camera {
 
 struct Bounds {
   glm::vec3 lo{1e30f}, hi{-1e30f};
-  void extend(glm::vec3 p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
+  void extend(glm::vec3 p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
   bool empty() const { return lo.x > hi.x; }
   float diagonal() const { return empty() ? 0.0f : glm::length(hi - lo); }
 };

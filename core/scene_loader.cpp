@@ -1,18 +1,18 @@
 #include "core/scene_loader.h"
 
-#include <cmath>
-#include <limits>
-#include <filesystem>
-#include <fstream>
-#include <set>
-
 #include <OpenImageIO/imageio.h>
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+
+#include <assimp/Importer.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "core/builtin_scenes.h"
 #include "core/error.h"
@@ -32,9 +32,7 @@ std::string lower(std::string s) {
   return s;
 }
 
-float srgbToLinear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 // albedo + ks > 1 reflects more light than arrives (and breaks the furnace
 // test); scale ks down so each channel sums to at most 1, and say so.
@@ -141,8 +139,8 @@ glm::mat4 readTransform(const JsonCtx& c, const json& j, const std::string& wher
   return trsMatrix(readTrs(c, j, where));
 }
 
-void readMaterialOverride(const JsonCtx& c, const json& j, const std::string& where,
-                          Material& m, Scene& scene, const fs::path& dir) {
+void readMaterialOverride(const JsonCtx& c, const json& j, const std::string& where, Material& m,
+                          Scene& scene, const fs::path& dir) {
   c.checkKeys(j, where, {"albedo", "texture", "ks", "exponent", "emission"});
   if (j.contains("albedo")) m.albedo = c.color(j["albedo"], where + ".albedo");
   if (j.contains("ks")) m.ks = c.color(j["ks"], where + ".ks");
@@ -166,7 +164,8 @@ void readMaterialOverride(const JsonCtx& c, const json& j, const std::string& wh
 }
 
 Light readLight(const JsonCtx& c, const json& j, const std::string& where) {
-  if (!j.is_object() || !j.contains("type")) c.error(where, "a light needs a \"type\" (spot, point, directional)");
+  if (!j.is_object() || !j.contains("type"))
+    c.error(where, "a light needs a \"type\" (spot, point, directional)");
   std::string type = c.string(j["type"], where + ".type");
   Light l;
   auto intensity = [&](const char* key) {
@@ -429,9 +428,12 @@ Scene loadSceneJson(const std::string& path) {
     for (auto& [name, kv] : pj.items()) {
       if (!kv.is_object()) c.error("presets." + name, "expected an object of key → value");
       for (auto& [k, v] : kv.items()) {
-        if (v.is_string()) scene.presets[name][k] = v.get<std::string>();
-        else if (v.is_number() || v.is_boolean()) scene.presets[name][k] = jsonText(v);
-        else c.error("presets." + name + "." + k, "expected a string, number or boolean, got " + jsonExcerpt(v));
+        if (v.is_string())
+          scene.presets[name][k] = v.get<std::string>();
+        else if (v.is_number() || v.is_boolean())
+          scene.presets[name][k] = jsonText(v);
+        else
+          c.error("presets." + name + "." + k, "expected a string, number or boolean, got " + jsonExcerpt(v));
       }
     }
   }
@@ -552,14 +554,16 @@ struct AssimpReader {
 void validateMesh(Mesh& m, LoadReport& report) {
   for (size_t v = 0; v < m.positions.size(); ++v)
     if (!finite3(m.positions[v]))
-      fail(m.source, ": mesh '", m.name, "': vertex ", v, " has a non-finite coordinate (",
-           m.positions[v].x, ", ", m.positions[v].y, ", ", m.positions[v].z, ")");
+      fail(m.source, ": mesh '", m.name, "': vertex ", v, " has a non-finite coordinate (", m.positions[v].x,
+           ", ", m.positions[v].y, ", ", m.positions[v].z, ")");
   if (!m.normals.empty() && m.normals.size() != m.positions.size())
-    fail(m.source, ": mesh '", m.name, "': ", m.normals.size(), " normals for ", m.positions.size(), " vertices");
+    fail(m.source, ": mesh '", m.name, "': ", m.normals.size(), " normals for ", m.positions.size(),
+         " vertices");
   if (!m.uvs.empty() && m.uvs.size() != m.positions.size())
     fail(m.source, ": mesh '", m.name, "': ", m.uvs.size(), " uvs for ", m.positions.size(), " vertices");
   for (auto& n : m.normals)
-    if (!finite3(n) || glm::length(n) < 1e-20f) n = glm::vec3(0.0f);  // flatten() falls back to the face normal
+    if (!finite3(n) || glm::length(n) < 1e-20f)
+      n = glm::vec3(0.0f);  // flatten() falls back to the face normal
   for (auto& uv : m.uvs)
     if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
   std::vector<glm::uvec3> kept;
@@ -587,8 +591,7 @@ void validateMesh(Mesh& m, LoadReport& report) {
 void requireRegularFile(const std::string& path, const std::string& what) {
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
-  if (ec && ec != std::errc::no_such_file_or_directory)
-    fail(what, " '", path, "': ", ec.message());
+  if (ec && ec != std::errc::no_such_file_or_directory) fail(what, " '", path, "': ", ec.message());
   if (!fs::exists(st)) fail(what, " '", path, "' does not exist");
   if (fs::is_directory(st)) fail(what, " '", path, "' is a directory");
   if (!fs::is_regular_file(st))
@@ -601,8 +604,7 @@ Texture loadTexture(const std::string& path, const std::string& what) {
   auto in = ImageInput::open(path);
   if (!in) fail("cannot read ", what, " '", path, "': ", OIIO::geterror());
   const ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    fail(what, " '", path, "' has no pixels");
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(what, " '", path, "' has no pixels");
   if (size_t(spec.width) * spec.height > (size_t(1) << 28))
     fail(what, " '", path, "' is too large (", spec.width, "x", spec.height, ")");
   std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);

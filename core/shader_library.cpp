@@ -55,7 +55,9 @@ struct Expander {
 
   void expand(const std::string& path, const std::string& includedFrom) {
     std::ifstream in(path);
-    if (!in) fail("shader '", path, "' not found", includedFrom.empty() ? "" : " (included from " + includedFrom + ")");
+    if (!in)
+      fail("shader '", path, "' not found",
+           includedFrom.empty() ? "" : " (included from " + includedFrom + ")");
     included.insert(path);
     int index = int(files.size());
     files.push_back(fs::relative(path, root).string());
@@ -69,11 +71,14 @@ struct Expander {
     int lineNo = 0, cppDepth = 0, glslDepth = 0;
     while (std::getline(in, line)) {
       ++lineNo;
-      std::string t = line.substr(line.find_first_not_of(" \t") == std::string::npos ? line.size() : line.find_first_not_of(" \t"));
+      std::string t = line.substr(
+          line.find_first_not_of(" \t") == std::string::npos ? line.size() : line.find_first_not_of(" \t"));
       const bool opens = t.rfind("#if", 0) == 0, closes = t.rfind("#endif", 0) == 0;
       if (cppDepth > 0) {
-        if (opens) ++cppDepth;
-        else if (closes) --cppDepth;
+        if (opens)
+          ++cppDepth;
+        else if (closes)
+          --cppDepth;
         else if (cppDepth == 1 && t.rfind("#elif", 0) == 0)
           fail(files[index], ":", lineNo, ": #elif after #ifdef __cplusplus is not supported (use #else)");
         else if (cppDepth == 1 && t.rfind("#else", 0) == 0) {
@@ -84,14 +89,16 @@ struct Expander {
         continue;
       }
       if (glslDepth > 0) {
-        if (opens) ++glslDepth;
+        if (opens)
+          ++glslDepth;
         else if (closes && --glslDepth == 0) {
           out << "\n";
           continue;
         }
       }
       if (t.rfind("#ifdef __cplusplus", 0) == 0) {
-        if (glslDepth > 0) fail(files[index], ":", lineNo, ": nested #ifdef __cplusplus inside its own #else");
+        if (glslDepth > 0)
+          fail(files[index], ":", lineNo, ": nested #ifdef __cplusplus inside its own #else");
         cppDepth = 1;
         out << "\n";
         continue;
@@ -99,8 +106,7 @@ struct Expander {
       std::smatch m;
       if (std::regex_match(line, m, includeRe)) {
         std::string target = resolve(m[1], path);
-        if (target.empty())
-          fail(files[index], ":", lineNo, ": cannot find include \"", m[1].str(), "\"");
+        if (target.empty()) fail(files[index], ":", lineNo, ": cannot find include \"", m[1].str(), "\"");
         if (!included.count(target)) expand(target, files[index] + ":" + std::to_string(lineNo));
         out << "#line " << lineDirective(index, lineNo + 1) << "\n";
         continue;
@@ -127,7 +133,8 @@ ShaderLibrary::Source ShaderLibrary::preprocess(const std::string& file, const S
   Expander e;
   e.root = fs::weakly_canonical(root_).string();
   e.out << "#version 450 core\n#define SHARED_BEGIN\n#define SHARED_END\n#define SHARED_FN\n"
-           "#define SHARED_PRECISE precise\n#define SHARED_IN(T) T\n#define PYRAMID_PARAM\n#define PYRAMID_ARG\n";
+           "#define SHARED_PRECISE precise\n#define SHARED_IN(T) T\n#define PYRAMID_PARAM\n#define "
+           "PYRAMID_ARG\n";
   for (auto& [k, v] : defines) e.out << "#define " << k << " " << v << "\n";
   e.expand(fs::weakly_canonical(fs::path(root_) / file).string(), "");
   return {e.out.str(), e.files};
@@ -229,19 +236,40 @@ unsigned ShaderLibrary::program(const std::vector<std::string>& files, const Sha
 namespace {
 bool isImageType(GLint t) {
   switch (t) {
-    case GL_IMAGE_2D: case GL_IMAGE_3D: case GL_IMAGE_2D_ARRAY: case GL_IMAGE_CUBE: case GL_INT_IMAGE_2D:
-    case GL_INT_IMAGE_3D: case GL_UNSIGNED_INT_IMAGE_2D: case GL_UNSIGNED_INT_IMAGE_3D:
-    case GL_UNSIGNED_INT_IMAGE_2D_ARRAY: case GL_INT_IMAGE_2D_ARRAY: return true;
-    default: return false;
+    case GL_IMAGE_2D:
+    case GL_IMAGE_3D:
+    case GL_IMAGE_2D_ARRAY:
+    case GL_IMAGE_CUBE:
+    case GL_INT_IMAGE_2D:
+    case GL_INT_IMAGE_3D:
+    case GL_UNSIGNED_INT_IMAGE_2D:
+    case GL_UNSIGNED_INT_IMAGE_3D:
+    case GL_UNSIGNED_INT_IMAGE_2D_ARRAY:
+    case GL_INT_IMAGE_2D_ARRAY:
+      return true;
+    default:
+      return false;
   }
 }
 bool isSamplerType(GLint t) {
   switch (t) {
-    case GL_SAMPLER_1D: case GL_SAMPLER_2D: case GL_SAMPLER_3D: case GL_SAMPLER_CUBE: case GL_SAMPLER_2D_ARRAY:
-    case GL_SAMPLER_2D_SHADOW: case GL_SAMPLER_2D_ARRAY_SHADOW: case GL_INT_SAMPLER_2D: case GL_INT_SAMPLER_3D:
-    case GL_UNSIGNED_INT_SAMPLER_2D: case GL_UNSIGNED_INT_SAMPLER_3D: case GL_INT_SAMPLER_2D_ARRAY:
-    case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY: case GL_SAMPLER_BUFFER: return true;
-    default: return false;
+    case GL_SAMPLER_1D:
+    case GL_SAMPLER_2D:
+    case GL_SAMPLER_3D:
+    case GL_SAMPLER_CUBE:
+    case GL_SAMPLER_2D_ARRAY:
+    case GL_SAMPLER_2D_SHADOW:
+    case GL_SAMPLER_2D_ARRAY_SHADOW:
+    case GL_INT_SAMPLER_2D:
+    case GL_INT_SAMPLER_3D:
+    case GL_UNSIGNED_INT_SAMPLER_2D:
+    case GL_UNSIGNED_INT_SAMPLER_3D:
+    case GL_INT_SAMPLER_2D_ARRAY:
+    case GL_UNSIGNED_INT_SAMPLER_2D_ARRAY:
+    case GL_SAMPLER_BUFFER:
+      return true;
+    default:
+      return false;
   }
 }
 }  // namespace
@@ -256,12 +284,12 @@ void ShaderLibrary::checkBindings(unsigned prog, const std::string& files) {
   glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &maxUbo);
   auto add = [&](const std::string& kind, int unit, int limit, const std::string& name) {
     if (unit < 0 || unit >= limit)
-      fail("program (", files, "): ", kind, " '", name, "' is bound to unit ", unit, ", outside this GL's 0..",
-           limit - 1);
+      fail("program (", files, "): ", kind, " '", name, "' is bound to unit ", unit,
+           ", outside this GL's 0..", limit - 1);
     auto [it, fresh] = used[kind].emplace(unit, name);
     if (!fresh)
-      fail("program (", files, ") binds ", kind, "s '", it->second, "' and '", name, "' to the same unit ", unit,
-           " (shaders/shared/bindings.glsl lists the units)");
+      fail("program (", files, ") binds ", kind, "s '", it->second, "' and '", name, "' to the same unit ",
+           unit, " (shaders/shared/bindings.glsl lists the units)");
   };
   auto nameOf = [&](GLenum iface, GLuint i) {
     char name[256] = {0};
@@ -324,23 +352,34 @@ int ShaderLibrary::uniformLocation(unsigned program, const std::string& name) {
   auto loc = p.locations.find(name);
   if (loc != p.locations.end()) return loc->second;
   if (!p.declared.count(name))
-    fail("program (", p.files, ") declares no uniform '", name, "': a misspelt name or a uniform removed from the shader");
+    fail("program (", p.files, ") declares no uniform '", name,
+         "': a misspelt name or a uniform removed from the shader");
   const int l = glGetUniformLocation(program, name.c_str());
   p.locations[name] = l;
   return l;
 }
 
-void ShaderLibrary::setUniform(unsigned p, const std::string& n, int v) { glProgramUniform1i(p, uniformLocation(p, n), v); }
-void ShaderLibrary::setUniform(unsigned p, const std::string& n, unsigned v) { glProgramUniform1ui(p, uniformLocation(p, n), v); }
-void ShaderLibrary::setUniform(unsigned p, const std::string& n, float v) { glProgramUniform1f(p, uniformLocation(p, n), v); }
-void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::vec2 v) { glProgramUniform2f(p, uniformLocation(p, n), v.x, v.y); }
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, int v) {
+  glProgramUniform1i(p, uniformLocation(p, n), v);
+}
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, unsigned v) {
+  glProgramUniform1ui(p, uniformLocation(p, n), v);
+}
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, float v) {
+  glProgramUniform1f(p, uniformLocation(p, n), v);
+}
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::vec2 v) {
+  glProgramUniform2f(p, uniformLocation(p, n), v.x, v.y);
+}
 void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::vec3 v) {
   glProgramUniform3f(p, uniformLocation(p, n), v.x, v.y, v.z);
 }
 void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::vec4 v) {
   glProgramUniform4f(p, uniformLocation(p, n), v.x, v.y, v.z, v.w);
 }
-void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::ivec2 v) { glProgramUniform2i(p, uniformLocation(p, n), v.x, v.y); }
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::ivec2 v) {
+  glProgramUniform2i(p, uniformLocation(p, n), v.x, v.y);
+}
 void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::ivec3 v) {
   glProgramUniform3i(p, uniformLocation(p, n), v.x, v.y, v.z);
 }

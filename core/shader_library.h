@@ -4,12 +4,11 @@
 // file and line. `#ifdef __cplusplus … #endif` blocks (the C++ side of
 // shaders/shared/) are dropped. Programs are cached per (files, defines).
 #pragma once
+#include <glm/glm.hpp>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace vgi {
 

@@ -3,10 +3,9 @@
 #include <glad/gl.h>
 
 #include <algorithm>
-#include <vector>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <vector>
 
 #include "core/error.h"
 #include "core/gpu_scene.h"
@@ -31,7 +30,8 @@ FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int fr
   // relative at every distance. The usual [−1, 1] mapping with this near
   // plane resolved only ~3 mm at 1 m: a back face beside a silhouette tied
   // with the front face and won a 1-pixel column (seen on the Cornell box).
-  const float camFar = glm::length(glm::max(glm::abs(b.lo - cam.position), glm::abs(b.hi - cam.position))) * 1.01f + 1e-6f;
+  const float camFar =
+      glm::length(glm::max(glm::abs(b.lo - cam.position), glm::abs(b.hi - cam.position))) * 1.01f + 1e-6f;
   const float nearP = std::max(camFar * 1e-5f, 1e-7f), f = 1.0f / std::tan(0.5f * glm::radians(cam.fovYDeg));
   glm::mat4 proj(0.0f);
   proj[0][0] = f * float(H) / float(W);
@@ -53,7 +53,8 @@ FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int fr
 GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H), shaders_(shaders) {
   GLint maxTex = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
-  if (W > maxTex || H > maxTex) fail("--size ", W, "x", H, " exceeds this GL's largest texture (", maxTex, ")");
+  if (W > maxTex || H > maxTex)
+    fail("--size ", W, "x", H, " exceeds this GL's largest texture (", maxTex, ")");
   prog_ = shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/gbuffer.frag.glsl"});
   for (GlTexture& t : tex_) t = makeTexture2D(W, H, GL_RGBA32F);
   glCreateRenderbuffers(1, &depth_);
@@ -61,7 +62,8 @@ GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H), shaders_(
   glCreateFramebuffers(1, &fbo_);
   for (int i = 0; i < 4; ++i) glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + i, tex_[i].get(), 0);
   glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-  const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+  const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                          GL_COLOR_ATTACHMENT3};
   glNamedFramebufferDrawBuffers(fbo_, 4, bufs);
   if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     fail("the G-buffer framebuffer is incomplete on this GL");
@@ -95,7 +97,7 @@ void GBuffer::render(const GpuScene& gpu, const FrameCamera& camera) {
 
 void GBuffer::bind() const {
   const unsigned units[4] = {TEXUNIT_GBUFFER_POSITION, TEXUNIT_GBUFFER_NORMAL, TEXUNIT_GBUFFER_ALBEDO,
-                            TEXUNIT_GBUFFER_GEOMETRIC_NORMAL};
+                             TEXUNIT_GBUFFER_GEOMETRIC_NORMAL};
   for (unsigned i = 0; i < 4; ++i) glBindTextureUnit(units[i], tex_[i].get());
 }
 

@@ -23,7 +23,8 @@ struct FrameCamera {
 };
 // Frame `frame` of `frames` jittered frames: frame 0 of 1 at pixel centres,
 // otherwise Halton (2,3) offsets in [−½, ½)² pixels.
-FrameCamera frameCamera(const Camera& camera, const Bounds& bounds, int width, int height, int frame, int frames);
+FrameCamera frameCamera(const Camera& camera, const Bounds& bounds, int width, int height, int frame,
+                        int frames);
 
 // Position (w = 1 where a surface was seen), normal facing the viewer (w =
 // material index), albedo and the geometric normal, at the texture units of

@@ -19,7 +19,8 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
   // rays: a matrix with the face's x, y mapping whose inverse is well
   // conditioned (the face's own, with its near plane at 1e-5 of the range,
   // loses the rays' directions to cancellation).
-  auto add = [&](const glm::mat4& vp, const glm::mat4& rays, glm::vec3 eye, bool ortho, glm::vec3 axis, float texel) {
+  auto add = [&](const glm::mat4& vp, const glm::mat4& rays, glm::vec3 eye, bool ortho, glm::vec3 axis,
+                 float texel) {
     shared::LightFace f;
     f.viewProj = vp;
     f.rayUnproject = glm::inverse(rays);
@@ -38,7 +39,8 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
       glm::mat4 vp = glm::ortho(-r, r, -r, r, 0.0f, 2.0f * r) * glm::lookAt(origin, center, up);
       add(vp, vp, origin, true, d, 2.0f * r / float(resolution));
     } else {
-      float maxDist = glm::length(glm::max(glm::abs(b.lo - l.position), glm::abs(b.hi - l.position))) * 1.01f + 1e-6f;
+      float maxDist =
+          glm::length(glm::max(glm::abs(b.lo - l.position), glm::abs(b.hi - l.position))) * 1.01f + 1e-6f;
       float nearP = std::max(maxDist * 1e-5f, 1e-7f);
       if (l.type == LightType::Spot && l.coneHalfAngleDeg <= kSingleFaceSpotDeg) {
         // One face with a 2 % margin, so texels on the cone's edge are inside.
@@ -46,8 +48,9 @@ LightFaceLayout layoutLightFaces(const std::vector<Light>& lights, const Bounds&
         glm::vec3 axis = glm::normalize(l.direction);
         glm::vec3 up = std::abs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
         glm::mat4 view = glm::lookAt(l.position, l.position + axis, up);
-        add(glm::perspective(fov, 1.0f, nearP, maxDist) * view, glm::perspective(fov, 1.0f, 1.0f, 2.0f) * view,
-            l.position, false, axis, 2.0f * std::tan(0.5f * fov) / float(resolution));
+        add(glm::perspective(fov, 1.0f, nearP, maxDist) * view,
+            glm::perspective(fov, 1.0f, 1.0f, 2.0f) * view, l.position, false, axis,
+            2.0f * std::tan(0.5f * fov) / float(resolution));
       } else {
         // Cube faces in GL's order with their conventional up vectors.
         const glm::vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -77,11 +80,13 @@ LightMaps::LightMaps(const std::vector<Light>& lights, const GpuScene& gpu, int 
   GLint maxTex = 0, maxLayers = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &maxLayers);
-  if (resolution > maxTex) fail("parameter 'shadow_res': ", resolution, " exceeds GL_MAX_TEXTURE_SIZE ", maxTex);
+  if (resolution > maxTex)
+    fail("parameter 'shadow_res': ", resolution, " exceeds GL_MAX_TEXTURE_SIZE ", maxTex);
   layout_ = layoutLightFaces(lights, gpu.bounds(), resolution);
   const int layers = std::max(1, faceCount());
   if (layers > maxLayers)
-    fail("the scene's ", lights.size(), " lights need ", layers, " light-map faces; this GL allows ", maxLayers);
+    fail("the scene's ", lights.size(), " lights need ", layers, " light-map faces; this GL allows ",
+         maxLayers);
 
   const GLenum formats[4] = {GL_R32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F};
   const int channels = reflective ? 4 : 1;
@@ -94,18 +99,21 @@ LightMaps::LightMaps(const std::vector<Light>& lights, const GpuScene& gpu, int 
     glTextureParameteri(textures_[c], GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   }
   glCreateBuffers(1, &faceBuffer_);
-  glNamedBufferStorage(faceBuffer_, GLsizeiptr(std::max<size_t>(1, layout_.faces.size()) * sizeof(shared::LightFace)),
+  glNamedBufferStorage(faceBuffer_,
+                       GLsizeiptr(std::max<size_t>(1, layout_.faces.size()) * sizeof(shared::LightFace)),
                        nullptr, GL_DYNAMIC_STORAGE_BIT);
   glCreateBuffers(1, &rangeBuffer_);
-  glNamedBufferStorage(rangeBuffer_, GLsizeiptr(std::max<size_t>(1, layout_.ranges.size()) * sizeof(glm::ivec4)),
-                       nullptr, GL_DYNAMIC_STORAGE_BIT);
+  glNamedBufferStorage(rangeBuffer_,
+                       GLsizeiptr(std::max<size_t>(1, layout_.ranges.size()) * sizeof(glm::ivec4)), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT);
   uploadLayout();
 
   glCreateFramebuffers(1, &fbo_);
   glCreateRenderbuffers(1, &depth_);
   glNamedRenderbufferStorage(depth_, GL_DEPTH_COMPONENT32F, resolution, resolution);
   glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-  const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+  const GLenum bufs[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                          GL_COLOR_ATTACHMENT3};
   glNamedFramebufferDrawBuffers(fbo_, channels, bufs);
 }
 
@@ -130,7 +138,8 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
   const int channels = reflective_ ? 4 : 1;
   ShaderDefines defs;
   if (reflective_) defs["REFLECTIVE"] = "1";
-  unsigned prog = shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/light_map.frag.glsl"}, defs);
+  unsigned prog =
+      shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/light_map.frag.glsl"}, defs);
   auto s = profiler.scope(reflective_ ? "rsm" : "shadow_maps");
   glUseProgram(prog);
   gpu.bind(prog);
@@ -183,8 +192,8 @@ nlohmann::json LightMaps::describe() const {
   for (auto& r : layout_.ranges) (r.y == 6 ? cube : single)++;
   int drawn = 0;
   for (bool d : layout_.drawn) drawn += d ? 1 : 0;
-  return {{"faces", faceCount()}, {"faces_drawn", drawn}, {"cube", cube}, {"single_face", single},
-          {"resolution", resolution_}, {"reflective", reflective_}};
+  return {{"faces", faceCount()},  {"faces_drawn", drawn},      {"cube", cube},
+          {"single_face", single}, {"resolution", resolution_}, {"reflective", reflective_}};
 }
 
 }  // namespace vgi

@@ -3,9 +3,8 @@
 // (position, normal, reflected direct radiance; VGI §5.1) — one 2D array
 // texture per channel, a face table as an SSBO.
 #pragma once
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "core/scene.h"
 #include "shaders/shared/light_maps.glsl"

@@ -6,10 +6,9 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/image.h"
 #include "core/params.h"
@@ -38,8 +37,8 @@ struct RenderRequest {
   // and targets, `time` = frameTimes[frame]. A still: one frame.
   std::vector<float> frameTimes;
   int frame = 0;
-  bool progress = true;             // draw a progress bar on a terminal
-  std::vector<std::string> aovs;    // extra outputs asked for (a subset of Method::outputs())
+  bool progress = true;           // draw a progress bar on a terminal
+  std::vector<std::string> aovs;  // extra outputs asked for (a subset of Method::outputs())
   Accumulation accumulation = Accumulation::Compensated;
   // Sample counts (< spp) at which `onCheckpoint` receives the image so far
   // (convergence plots); the last sample count is the result itself.
@@ -54,11 +53,11 @@ struct RenderRequest {
 
 struct RenderResult {
   Image image;
-  int sppCompleted = 0;   // < requested when interrupted (Ctrl-C)
+  int sppCompleted = 0;  // < requested when interrupted (Ctrl-C)
   bool interrupted = false;
   nlohmann::json extra = nlohmann::json::object();  // method-specific stats
-  std::map<std::string, Image> aovs;                 // the extra outputs asked for
-  std::vector<std::string> built;                    // the resources this render built (SceneResources::built)
+  std::map<std::string, Image> aovs;                // the extra outputs asked for
+  std::vector<std::string> built;                   // the resources this render built (SceneResources::built)
   // The timed passes that ran once per sample (the sample loop records them);
   // the others are set-up (voxelization, light maps, uploads).
   std::vector<std::string> samplePasses;
@@ -93,7 +92,7 @@ class Method {
 // outputs both write (compared too).
 struct Counterpart {
   std::string method;
-  std::vector<std::string> set;   // key=value
+  std::vector<std::string> set;  // key=value
   std::vector<std::string> aovs;
 };
 

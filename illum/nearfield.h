@@ -9,4 +9,4 @@ namespace vgi {
 constexpr float kDefaultNearFieldRadius = 0.5f;
 
 std::unique_ptr<Method> createNearFieldMethod(ParamSet& params, const Scene& scene);
-}
+}  // namespace vgi

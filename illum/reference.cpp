@@ -35,12 +35,13 @@
 // | integrator | string | path               | path, nearfield, ao, direct                          |
 // | maxdepth   | int    | 8                  | path: maximum number of bounces                      |
 // | rr_depth   | int    | 3                  | path: bounces before Russian roulette starts         |
-// | radius     | float  | 0.5 / 0.1 · diag.  | nearfield (as the nearfield module) / ao: ray length (world units) |
-// | env        | bool   | true               | nearfield: rays leaving `radius` read the environment |
-// | visibility | string | exact              | nearfield: exact, or voxels (see below)              |
-// | voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        |
-// | offset     | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diagonals |
-// | emitter_sampling | string | mis          | path/direct/nearfield: area lights by mis, light (NEE only) or brdf |
+// | radius     | float  | 0.5 / 0.1 · diag.  | nearfield (as the nearfield module) / ao: ray length (world
+// units) | | env        | bool   | true               | nearfield: rays leaving `radius` read the environment
+// | | visibility | string | exact              | nearfield: exact, or voxels (see below)              | |
+// voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        | | offset
+// | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diagonals | |
+// emitter_sampling | string | mis          | path/direct/nearfield: area lights by mis, light (NEE only) or
+// brdf |
 //
 // nearfield with visibility=voxels isolates the voxel-visibility error of the
 // `nearfield` module: the bounce ray starts `offset` voxel diagonals along the
@@ -60,8 +61,8 @@
 #include "core/gpu_scene.h"
 #include "core/parallel.h"
 #include "core/progress.h"
-#include "illum/sample_loop.h"
 #include "illum/nearfield.h"
+#include "illum/sample_loop.h"
 #include "illum/voxel_ao.h"
 #include "shaders/shared/brdf.glsl"
 #include "shaders/shared/lights.glsl"
@@ -109,7 +110,7 @@ struct SurfacePoint {
   vec3 wo;
   float t = 0;  // distance from the ray's origin
   BrdfParams brdf;
-  vec3 emission;    // Le towards wo (0 behind a one-sided emitter)
+  vec3 emission;     // Le towards wo (0 behind a one-sided emitter)
   int emitter = -1;  // index in Emitters, or −1
 };
 
@@ -118,10 +119,10 @@ enum class EmitterSampling { Mis, Light, Brdf };
 class ReferenceRenderer : public Method {
  public:
   ReferenceRenderer(ParamSet& params, const Scene& scene) {
-    std::string name = params.getString("integrator", "path", "what to compute",
-                                        {"path", "nearfield", "ao", "direct"});
-    integrator_ = name == "path" ? Integrator::Path
-                  : name == "direct" ? Integrator::Direct
+    std::string name =
+        params.getString("integrator", "path", "what to compute", {"path", "nearfield", "ao", "direct"});
+    integrator_ = name == "path"        ? Integrator::Path
+                  : name == "direct"    ? Integrator::Direct
                   : name == "nearfield" ? Integrator::NearField
                                         : Integrator::Ao;
     const bool usesDepth = integrator_ == Integrator::Path;
@@ -130,44 +131,59 @@ class ReferenceRenderer : public Method {
     // Every parameter is documented; only the integrator's own are read (and so
     // appear in the stats); giving another integrator's parameter is an error.
     auto check = [&](bool uses, const char* key) {
-      if (!uses && params.has(key))
-        fail("parameter '", key, "' does not apply to integrator=", name);
+      if (!uses && params.has(key)) fail("parameter '", key, "' does not apply to integrator=", name);
       return uses;
     };
     const char* depthDoc = "path: maximum number of bounces";
     const char* rrDoc = "path: bounces before Russian roulette";
     const char* radiusDoc =
-        "nearfield/ao: ray length in world units (default 0.5 x scene diagonal for nearfield, as the nearfield "
+        "nearfield/ao: ray length in world units (default 0.5 x scene diagonal for nearfield, as the "
+        "nearfield "
         "module; 0.1 x for ao)";
     const char* envDoc =
         "nearfield: rays that leave the radius read the environment (black where the scene has none)";
-    if (check(usesDepth, "maxdepth")) maxDepth_ = params.getInt("maxdepth", 8, depthDoc, 1, 10000);
-    else params.declare("maxdepth", "int", "8", depthDoc);
-    if (check(usesDepth, "rr_depth")) rrDepth_ = params.getInt("rr_depth", 3, rrDoc, 0, 10000);
-    else params.declare("rr_depth", "int", "3", rrDoc);
+    if (check(usesDepth, "maxdepth"))
+      maxDepth_ = params.getInt("maxdepth", 8, depthDoc, 1, 10000);
+    else
+      params.declare("maxdepth", "int", "8", depthDoc);
+    if (check(usesDepth, "rr_depth"))
+      rrDepth_ = params.getInt("rr_depth", 3, rrDoc, 0, 10000);
+    else
+      params.declare("rr_depth", "int", "3", rrDoc);
     float diag = scene.bounds().diagonal();
     const float radiusDefault = (nearField ? kDefaultNearFieldRadius : kDefaultAoRadius) * diag;
-    if (check(usesRadius, "radius")) radius_ = params.getFloat("radius", radiusDefault, radiusDoc, 1e-30f, 1e30f);
-    else params.declare("radius", "float", std::to_string(radiusDefault), radiusDoc);
-    if (check(nearField, "env")) env_ = params.getBool("env", true, envDoc);
-    else params.declare("env", "bool", "true", envDoc);
+    if (check(usesRadius, "radius"))
+      radius_ = params.getFloat("radius", radiusDefault, radiusDoc, 1e-30f, 1e30f);
+    else
+      params.declare("radius", "float", std::to_string(radiusDefault), radiusDoc);
+    if (check(nearField, "env"))
+      env_ = params.getBool("env", true, envDoc);
+    else
+      params.declare("env", "bool", "true", envDoc);
     const char* visDoc = "nearfield: exact, or voxels (voxel visibility on an exact voxelization)";
     const char* voxDoc = "nearfield, visibility=voxels: grid resolution N or WxHxD";
     const char* offDoc = "nearfield, visibility=voxels: ray start offset along the normal, voxel diagonals";
     if (check(nearField, "visibility"))
       voxelVisibility_ = params.getString("visibility", "exact", visDoc, {"exact", "voxels"}) == "voxels";
-    else params.declare("visibility", "string", "exact", visDoc);
+    else
+      params.declare("visibility", "string", "exact", visDoc);
     if (check(voxelVisibility_, "voxels")) {
       voxels_ = parseResolution(params.getString("voxels", "128", voxDoc), "parameter 'voxels'");
       checkGridMemory(voxels_, 2);
-    } else params.declare("voxels", "string", "128", voxDoc);
-    if (check(voxelVisibility_, "offset")) offset_ = params.getFloat("offset", 1.0f, offDoc, 0.0f, 100.0f);
-    else params.declare("offset", "float", "1.0", offDoc);
+    } else
+      params.declare("voxels", "string", "128", voxDoc);
+    if (check(voxelVisibility_, "offset"))
+      offset_ = params.getFloat("offset", 1.0f, offDoc, 0.0f, 100.0f);
+    else
+      params.declare("offset", "float", "1.0", offDoc);
     const char* emDoc = "path/direct/nearfield: area lights sampled by mis (light + BRDF), light or brdf";
     if (check(integrator_ != Integrator::Ao, "emitter_sampling")) {
       std::string e = params.getString("emitter_sampling", "mis", emDoc, {"mis", "light", "brdf"});
-      emitterSampling_ = e == "mis" ? EmitterSampling::Mis : e == "light" ? EmitterSampling::Light : EmitterSampling::Brdf;
-    } else params.declare("emitter_sampling", "string", "mis", emDoc);
+      emitterSampling_ = e == "mis"     ? EmitterSampling::Mis
+                         : e == "light" ? EmitterSampling::Light
+                                        : EmitterSampling::Brdf;
+    } else
+      params.declare("emitter_sampling", "string", "mis", emDoc);
     if (integrator_ == Integrator::Direct) maxDepth_ = 1;
   }
 
@@ -319,7 +335,8 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng) const {
       L += beta * scene_->environmentRadiance(d);
       break;
     }
-    if (sp.emission != vec3(0.0f)) L += beta * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
+    if (sp.emission != vec3(0.0f))
+      L += beta * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
     if (depth == maxDepth_) break;
     L += beta * directLight(sp, rng, true);
     vec3 wi = sampleBrdf(sp.brdf, sp.n, sp.wo, rng.uniform3());
@@ -385,9 +402,12 @@ float ReferenceRenderer::aoLi(vec3 o, vec3 d, Pcg32& rng) const {
 vec3 ReferenceRenderer::li(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
   switch (integrator_) {
     case Integrator::Path:
-    case Integrator::Direct: return pathLi(o, d, rng);
-    case Integrator::NearField: return nearFieldLi(o, d, rng, indirect);
-    case Integrator::Ao: return vec3(aoLi(o, d, rng));
+    case Integrator::Direct:
+      return pathLi(o, d, rng);
+    case Integrator::NearField:
+      return nearFieldLi(o, d, rng, indirect);
+    case Integrator::Ao:
+      return vec3(aoLi(o, d, rng));
   }
   return vec3(0.0f);
 }

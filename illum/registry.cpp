@@ -24,7 +24,9 @@ const std::vector<MethodInfo>& methodRegistry() {
   static const std::vector<MethodInfo> table = {
       {"direct", "GL deferred direct lighting with shadow maps (delta lights, emission)", true,
        [](ParamSet& p, const Scene& s) { return createDirectMethod(p, s); },
-       [](const nlohmann::json&) { return Counterpart{"reference", {"integrator=direct"}, {}}; }},
+       [](const nlohmann::json&) {
+         return Counterpart{"reference", {"integrator=direct"}, {}};
+       }},
       {"nearfield", "GL near-field one-bounce GI: voxel visibility + RSM back-projection (VGI 5.1)", true,
        [](ParamSet& p, const Scene& s) { return createNearFieldMethod(p, s); },
        [](const nlohmann::json& p) {
@@ -33,7 +35,8 @@ const std::vector<MethodInfo>& methodRegistry() {
                              std::string("env=") + (p.at("env").get<bool>() ? "true" : "false")},
                             {"direct", "indirect"}};
        }},
-      {"voxel_ao", "GL ambient occlusion through the binary voxel grid (hierarchical first-hit tracer, VGI 4)", true,
+      {"voxel_ao",
+       "GL ambient occlusion through the binary voxel grid (hierarchical first-hit tracer, VGI 4)", true,
        [](ParamSet& p, const Scene& s) { return createVoxelAoMethod(p, s); },
        [](const nlohmann::json& p) {
          return Counterpart{"reference", {"integrator=ao", "radius=" + exactText(p.at("radius"))}, {}};

@@ -93,8 +93,8 @@ void checkFinite(const RenderResult& r, const std::string& method) {
     for (size_t i = 0; i < img.pixels.size(); ++i) {
       const glm::vec3 c = img.pixels[i];
       if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
-        fail("method '", method, "' computed a non-finite value in its ", what, " at pixel (", i % size_t(img.width),
-             ", ", i / size_t(img.width), "): (", c.x, ", ", c.y, ", ", c.z,
+        fail("method '", method, "' computed a non-finite value in its ", what, " at pixel (",
+             i % size_t(img.width), ", ", i / size_t(img.width), "): (", c.x, ", ", c.y, ", ", c.z,
              "); the scene's values overflow float there. Nothing was written");
     }
   };
@@ -124,7 +124,8 @@ nlohmann::json resolveParameters(const RenderOptions& opt) {
   return params.resolved();
 }
 
-RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame, const CheckpointSink& onCheckpoint) {
+RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
+                       const CheckpointSink& onCheckpoint) {
   if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
   if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
     fail("--size ", opt.width, "x", opt.height, ": each side must be in [1, 16384]");
@@ -149,7 +150,8 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame, const
   if (!opt.checkpoints.empty() && opt.frames > 1)
     fail("--checkpoints applies to a still; --frames ", opt.frames, " renders an animation");
   for (int c : opt.checkpoints)
-    if (c < 1 || c > opt.spp) fail("--checkpoints: ", c, " is not a sample count in [1, --spp ", opt.spp, "]");
+    if (c < 1 || c > opt.spp)
+      fail("--checkpoints: ", c, " is not a sample count in [1, --spp ", opt.spp, "]");
 
   std::unique_ptr<GlContext> gl;
   std::unique_ptr<ShaderLibrary> shaders;
@@ -230,7 +232,8 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame, const
     s.update(renderStats(out.result, profiler));
     s["interrupted"] = out.result.interrupted;
     s["gl_errors"] = gl ? gl->errorCount() : 0;
-    out.stats["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out.stats["wall_ms"] =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     checkGl();
     return out;
   }
@@ -242,7 +245,8 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame, const
   nlohmann::json frames = nlohmann::json::array(), timings = nlohmann::json::object(),
                  cpuTimings = nlohmann::json::object(), calls = nlohmann::json::object();
   auto addInto = [](nlohmann::json& sum, const nlohmann::json& part) {
-    for (auto& [k, v] : part.items()) sum[k] = (sum.contains(k) ? sum[k].get<double>() : 0.0) + v.get<double>();
+    for (auto& [k, v] : part.items())
+      sum[k] = (sum.contains(k) ? sum[k].get<double>() : 0.0) + v.get<double>();
   };
   ProgressBar bar("frames", opt.frames);
   bool interrupted = false;
@@ -256,7 +260,8 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame, const
     checkGl();
     checkFinite(out.result, info.name);
     interrupted = out.result.interrupted || interruptRequested();
-    // Stopped before every pixel of this frame had a sample: the frames so far stand, this one is not written.
+    // Stopped before every pixel of this frame had a sample: the frames so far stand, this one is not
+    // written.
     if (out.result.sppCompleted == 0) break;
     nlohmann::json fs = renderStats(out.result, profiler);
     fs["frame"] = f;
@@ -307,7 +312,8 @@ std::vector<std::string> writeImages(const RenderResult& r, const std::string& s
   return files;
 }
 
-void writeStats(nlohmann::json s, const std::string& json, const std::vector<std::string>& files, float exposure) {
+void writeStats(nlohmann::json s, const std::string& json, const std::vector<std::string>& files,
+                float exposure) {
   s["outputs"] = files;
   s["exposure_png"] = exposure;
   writeJsonFile(s, json);
@@ -320,7 +326,8 @@ std::string stemOf(const std::string& path) {
 
 }  // namespace
 
-std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path, float exposure) {
+std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path,
+                                            float exposure) {
   const std::string stem = stemOf(path);
   std::vector<std::string> files = writeImages(out.result, stem, exposure);
   files.insert(files.begin() + 2, stem + ".json");
@@ -339,14 +346,15 @@ std::vector<std::string> writeCheckpointOutputs(const RenderOutput& out, const s
   return files;
 }
 
-std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame, float exposure) {
+std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame,
+                                          float exposure) {
   char number[16];
   std::snprintf(number, sizeof number, "_%04d", frame);
   return writeImages(out.result, stemOf(path) + number, exposure);
 }
 
-std::string writeAnimationStats(const RenderOutput& out, const std::string& path, const std::vector<std::string>& files,
-                                float exposure) {
+std::string writeAnimationStats(const RenderOutput& out, const std::string& path,
+                                const std::vector<std::string>& files, float exposure) {
   const std::string json = stemOf(path) + ".json";
   writeStats(out.stats, json, files, exposure);
   return json;
@@ -365,7 +373,8 @@ std::string describeMethod(const std::string& name, const std::string& sceneSpec
     return s.empty() ? std::string("-") : s;
   };
   os << "needs: " << list(method->needs().names()) << " (with these defaults)\n";
-  os << "outputs: image" << (method->outputs().empty() ? "" : ", " + list(method->outputs())) << " (--aov NAME,...)\n";
+  os << "outputs: image" << (method->outputs().empty() ? "" : ", " + list(method->outputs()))
+     << " (--aov NAME,...)\n";
   os << "parameters (--set key=value; scene-dependent defaults shown for " << sceneSpec << "):\n";
   for (auto& d : params.docs())
     os << "  " << d.key << " (" << d.type << ", default " << d.defaultValue << "): " << d.doc << "\n";

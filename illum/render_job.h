@@ -4,10 +4,9 @@
 #pragma once
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/gl_context.h"
 #include "core/output_files.h"
@@ -26,13 +25,13 @@ struct RenderOptions {
   uint32_t seed = 1;
   int threads = 0;
   float time = 0;
-  int frames = 1;                   // > 1: an animation from `time`, `timeStep` apart
+  int frames = 1;  // > 1: an animation from `time`, `timeStep` apart
   float timeStep = 1.0f / 30.0f;
   GlBackend gl = GlBackend::Auto;
   bool progress = true;
-  std::vector<std::string> aovs;  // --aov: extra output channels
+  std::vector<std::string> aovs;                          // --aov: extra output channels
   Accumulation accumulation = Accumulation::Compensated;  // --accumulate
-  std::vector<int> checkpoints;   // --checkpoints: sample counts to write the image at (a still)
+  std::vector<int> checkpoints;  // --checkpoints: sample counts to write the image at (a still)
 };
 
 struct RenderOutput {
@@ -67,10 +66,11 @@ std::vector<std::string> writeCheckpointOutputs(const RenderOutput& out, const s
                                                 float exposure);
 // An animation's frame: <stem>_NNNN.exr/.png and <stem>_NNNN.<aov>.exr/.png (no JSON);
 // returns the files written.
-std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame, float exposure);
+std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame,
+                                          float exposure);
 // The stats JSON <stem>.json of an animation, listing `files`; returns its path.
-std::string writeAnimationStats(const RenderOutput& out, const std::string& path, const std::vector<std::string>& files,
-                                float exposure);
+std::string writeAnimationStats(const RenderOutput& out, const std::string& path,
+                                const std::vector<std::string>& files, float exposure);
 
 // Throws if `path` cannot be written (bad extension, see core/output_files.h) —
 // checked before a long render, so nothing is lost at the end.

@@ -9,12 +9,12 @@
 #include "core/profiler.h"
 #include "core/scene.h"
 #include "illum/light_maps.h"
+#include "shaders/shared/value_grid.glsl"
 #include "traverse/embree_tracer.h"
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/or_mip_pyramid.h"
 #include "voxelize/atlas.h"
 #include "voxelize/atlas_voxelizer.h"
-#include "shaders/shared/value_grid.glsl"
 #include "voxelize/value_grids.h"
 #include "voxelize/voxelizer.h"
 
@@ -48,10 +48,12 @@ void SceneNeeds::check(const std::string& method, bool gl) const {
       fail("method '", method, "' asks for multi-valued grids without the atlas voxelizer's binary grid (",
            binaryGrid ? "voxelizer=" + binaryGrid->voxelizer : std::string("no binary grid"),
            "): their values come from its atlas points");
-    if (valueGrids->channels.empty()) fail("method '", method, "' asks for multi-valued grids with no channel");
+    if (valueGrids->channels.empty())
+      fail("method '", method, "' asks for multi-valued grids with no channel");
     for (auto& c : valueGrids->channels)
       if (valueChannelIndex(c) == shared::VALUE_CHANNEL_RADIANCE && !lightMaps)
-        fail("method '", method, "' asks for the radiance channel without light maps (its direct light comes from them)");
+        fail("method '", method,
+             "' asks for the radiance channel without light maps (its direct light comes from them)");
   }
   if (binaryGrid) {
     const VoxelizerInfo& v = findVoxelizer(binaryGrid->voxelizer);
@@ -190,7 +192,8 @@ void SceneResources::buildGrid(Profiler& prof) {
     atlas_->voxelizeFrame(time_, prof);
     if (needs_.valueGrids) {
       if (!valueTextures_)
-        valueTextures_ = std::make_unique<ValueTextures>(box_, needs_.valueGrids->channels, needs_.valueGrids->mips);
+        valueTextures_ =
+            std::make_unique<ValueTextures>(box_, needs_.valueGrids->channels, needs_.valueGrids->mips);
       // With area lights the radiance follows the sample's lights: beginSample inserts and resolves it.
       if (atlas_->hasRadiance() && !sampleLights_) insertRadiance(prof);
       valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
@@ -229,7 +232,9 @@ const GridBox& SceneResources::gridBox() const {
 }
 float SceneResources::voxelDiagonal() const { return glm::length(gridBox().voxelSize()); }
 const GlPyramid& SceneResources::glPyramid() const { return need(glPyramid_, "GL pyramid"); }
-const ValueTextures& SceneResources::valueTextures() const { return need(valueTextures_, "value-grid textures"); }
+const ValueTextures& SceneResources::valueTextures() const {
+  return need(valueTextures_, "value-grid textures");
+}
 const OrMipPyramid& SceneResources::cpuPyramid() const { return need(cpuPyramid_, "CPU pyramid"); }
 const EmbreeTracer& SceneResources::bvh() const { return need(bvh_, "BVH"); }
 const FlatScene& SceneResources::flatScene() const { return need(flat_, "flattened scene"); }

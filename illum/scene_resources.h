@@ -55,7 +55,8 @@ struct BinaryGridNeed {
 // binary grid's box: built by the atlas voxelizer's insertion, so they need
 // binaryGrid with voxelizer "atlas" (its points are where the values come from).
 struct ValueGridNeed {
-  std::vector<std::string> channels;  // of valueChannelNames(): normal, albedo, glossy, radiance (needs lightMaps)
+  std::vector<std::string>
+      channels;  // of valueChannelNames(): normal, albedo, glossy, radiance (needs lightMaps)
   ValueMips mips = ValueMips::None;
 };
 
@@ -66,8 +67,8 @@ struct SceneNeeds {
   std::optional<LightMapNeed> lightMaps;  // GL: shadow maps / RSMs of every delta light
   std::optional<BinaryGridNeed> binaryGrid;
   std::optional<ValueGridNeed> valueGrids;  // GL: the channels' 3D textures (+ mips)
-  bool orMipPyramid = false;  // over binaryGrid (required with it on GL: GLSL reads level 0)
-  bool bvh = false;           // CPU: the flattened scene in an Embree BVH
+  bool orMipPyramid = false;                // over binaryGrid (required with it on GL: GLSL reads level 0)
+  bool bvh = false;                         // CPU: the flattened scene in an Embree BVH
 
   // The resource names of the stats ("gbuffer", "light_maps" or "rsm",
   // "binary_grid", "value_grids", "value_mips", "or_mip_pyramid", "bvh"), in that order.

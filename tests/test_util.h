@@ -1,10 +1,10 @@
 // Helpers shared by the tests: data paths and small analytic scenes.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "core/image.h"
@@ -65,7 +65,8 @@ inline Mesh& addMesh(Scene& s, std::vector<glm::vec3> positions, std::vector<glm
 inline std::string writeMovingTriangleScene(const std::string& name) {
   std::string path = testing::TempDir() + "/" + name + ".json";
   std::ofstream(path) << R"({ "meshes": [ {"path": "builtin:cornell"},
-      {"path": ")" << dataPath("triangle.gltf") << R"(", "transform": {"scale": 0.2, "translate": [0.1, 0.1, -0.3]},
+      {"path": ")" << dataPath("triangle.gltf")
+                      << R"(", "transform": {"scale": 0.2, "translate": [0.1, 0.1, -0.3]},
        "dynamic": true, "keyframes": [ {"time": 0, "translate": [0, 0, 0]}, {"time": 1, "translate": [0.3, 0.2, 0]} ] } ] })";
   return path;
 }
@@ -89,7 +90,8 @@ inline void addBox(Scene& s, glm::vec3 lo, glm::vec3 hi, int material) {
   m.source = "test";
   for (int i = 0; i < 8; ++i)
     m.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
-  const unsigned q[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+  const unsigned q[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                            {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
   for (auto& f : q) {
     m.triangles.push_back({f[0], f[1], f[2]});
     m.triangles.push_back({f[0], f[2], f[3]});

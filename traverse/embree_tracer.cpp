@@ -24,10 +24,10 @@ EmbreeTracer::EmbreeTracer(const FlatScene& s) {
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
   const size_t n = s.triangleCount();
   RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
-  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
-                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+  auto* v = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+  auto* idx = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
   if (!v || !idx) fail("Embree: cannot allocate buffers for ", n, " triangles: ", error_);
   for (size_t i = 0; i < 3 * n; ++i) {
     v[3 * i + 0] = s.positions[i].x;

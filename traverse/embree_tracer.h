@@ -1,9 +1,8 @@
 // Exact ray–triangle queries with Embree (robust mode): the ground truth that
 // the voxel tracers and every approximate module are measured against.
 #pragma once
-#include <string>
-
 #include <glm/glm.hpp>
+#include <string>
 
 #include "core/scene.h"
 

@@ -32,14 +32,16 @@ GlPyramid::GlPyramid(const GridBox& box, float marchStep) : box_(box), params_(p
 
 void GlPyramid::build(const GpuGridBuffer& grid, ShaderLibrary& shaders) {
   const size_t bytes = size_t(box_.resolution.x) * box_.resolution.y * (box_.resolution.z / 32u) * 4;
-  if (grid.bytes() != bytes) fail("GlPyramid::build: grid of ", grid.bytes(), " bytes, the pyramid's level 0 has ", bytes);
+  if (grid.bytes() != bytes)
+    fail("GlPyramid::build: grid of ", grid.bytes(), " bytes, the pyramid's level 0 has ", bytes);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   glCopyNamedBufferSubData(grid.buffer(), buffer_, 0, 0, GLsizeiptr(bytes));
   reduce(shaders);
 }
 
 void GlPyramid::build(const BinaryGrid& grid, ShaderLibrary& shaders) {
-  if (!(grid.box().resolution == box_.resolution)) fail("GlPyramid::build: the grid's resolution differs from the pyramid's");
+  if (!(grid.box().resolution == box_.resolution))
+    fail("GlPyramid::build: the grid's resolution differs from the pyramid's");
   glNamedBufferSubData(buffer_, 0, GLsizeiptr(grid.words().size() * 4), grid.words().data());
   reduce(shaders);
 }
@@ -99,7 +101,8 @@ void GlPyramid::bind(unsigned program) const {
 }
 
 std::string readTracerParam(ParamSet& p) {
-  return p.getString("tracer", "hierarchical", "voxel tracer (GLSL define)", {"hierarchical", "dda", "march"});
+  return p.getString("tracer", "hierarchical", "voxel tracer (GLSL define)",
+                     {"hierarchical", "dda", "march"});
 }
 
 void addTracerDefine(ShaderDefines& defines, const std::string& tracer) {
@@ -108,8 +111,9 @@ void addTracerDefine(ShaderDefines& defines, const std::string& tracer) {
   defines["VGI_TRACER"] = std::to_string(info.define);
 }
 
-std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& shaders, const std::string& tracer,
-                                     const std::vector<TraceRay>& rays, Profiler& profiler) {
+std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& shaders,
+                                     const std::string& tracer, const std::vector<TraceRay>& rays,
+                                     Profiler& profiler) {
   ShaderDefines defines;
   addTracerDefine(defines, tracer);
   unsigned prog = shaders.program({"traverse/trace_rays.comp.glsl"}, defines);

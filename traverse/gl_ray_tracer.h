@@ -59,7 +59,8 @@ void addTracerDefine(ShaderDefines& defines, const std::string& tracer);
 
 // Traces the rays on the GPU with a GLSL tracer ("hierarchical", "dda",
 // "march"). The pass is timed as "trace_<tracer>" in `profiler`.
-std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& shaders, const std::string& tracer,
-                                     const std::vector<TraceRay>& rays, Profiler& profiler);
+std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& shaders,
+                                     const std::string& tracer, const std::vector<TraceRay>& rays,
+                                     Profiler& profiler);
 
 }  // namespace vgi

@@ -15,8 +15,8 @@ namespace vgi {
 struct RayPopulation {
   size_t count = 1000000;
   uint32_t seed = 1;
-  float tmax = 0.0f;    // world units (may be +inf)
-  float offset = 0.0f;  // world units along the normal
+  float tmax = 0.0f;          // world units (may be +inf)
+  float offset = 0.0f;        // world units along the normal
   glm::vec3 viewpoint{0.0f};  // normals are flipped to face it
 };
 

@@ -18,7 +18,8 @@ namespace vgi {
 const std::vector<TracerInfo>& tracerRegistry() {
   static const std::vector<TracerInfo> registry = {
       {"hierarchical", "first hit over the OR-mip pyramid (VGI §4)", true, VGI_TRACER_HIERARCHICAL},
-      {"dda", "3D DDA over the finest grid (Amanatides & Woo 1987); the oracle on the grid", true, VGI_TRACER_DDA},
+      {"dda", "3D DDA over the finest grid (Amanatides & Woo 1987); the oracle on the grid", true,
+       VGI_TRACER_DDA},
       {"march", "fixed-step ray marching (AVG paper); step = half the smallest voxel edge", true,
        VGI_TRACER_MARCH},
       {"embree", "exact first hit on the triangles (Embree, CPU only)", false, -1},
@@ -56,7 +57,8 @@ float defaultMarchStep(const GridBox& box) {
 
 float defaultMarchStep(const OrMipPyramid& pyramid) { return defaultMarchStep(pyramid.box()); }
 
-void RayTracer::traceBatch(const std::vector<TraceRay>& rays, std::vector<TraceResult>& out, int threads) const {
+void RayTracer::traceBatch(const std::vector<TraceRay>& rays, std::vector<TraceResult>& out,
+                           int threads) const {
   out.resize(rays.size());
   parallelFor(rays.size(), 4096, threads, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) out[i] = trace(rays[i]);
@@ -82,7 +84,8 @@ class VoxelTracer : public RayTracer {
     switch (kind_) {
       case VGI_TRACER_HIERARCHICAL:
         return fromShared(shared::traceHierarchical(params_, ray.origin, ray.dir, ray.tmax, words_));
-      case VGI_TRACER_DDA: return fromShared(shared::traceDda(params_, ray.origin, ray.dir, ray.tmax, words_));
+      case VGI_TRACER_DDA:
+        return fromShared(shared::traceDda(params_, ray.origin, ray.dir, ray.tmax, words_));
       case VGI_TRACER_MARCH:
         return fromShared(shared::traceMarch(params_, ray.origin, ray.dir, ray.tmax, marchStep_, words_));
     }

@@ -9,11 +9,10 @@
 // in units of |dir| (world distance for unit directions).
 #pragma once
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "shaders/shared/or_mip.glsl"
 
@@ -34,15 +33,15 @@ static_assert(sizeof(TraceRay) == 32, "TraceRay must match the std430 layout");
 
 struct TraceResult {
   bool hit = false;
-  float t = 0.0f;         // distance to the entry of the hit voxel (embree: to the surface)
-  glm::uvec3 voxel{0u};   // the hit voxel (embree: the voxel holding the hit point)
-  uint32_t steps = 0;     // loop iterations (0 for embree)
+  float t = 0.0f;        // distance to the entry of the hit voxel (embree: to the surface)
+  glm::uvec3 voxel{0u};  // the hit voxel (embree: the voxel holding the hit point)
+  uint32_t steps = 0;    // loop iterations (0 for embree)
 };
 
 struct TracerInfo {
   std::string name;
   std::string description;
-  bool glsl;  // also available in GLSL passes (selected by a define)
+  bool glsl;   // also available in GLSL passes (selected by a define)
   int define;  // value of VGI_TRACER in GLSL
 };
 const std::vector<TracerInfo>& tracerRegistry();

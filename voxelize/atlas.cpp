@@ -16,9 +16,15 @@ namespace fs = std::filesystem;
 namespace vgi {
 
 nlohmann::json MeshAtlas::toJson() const {
-  return {{"resolution", resolution}, {"texel_world", texelWorld}, {"charts", charts}, {"lscm_charts", lscmCharts},
-          {"faces_split_off", facesSplitOff}, {"utilization", utilization}, {"max_stretch", maxStretch},
-          {"ms", ms}, {"from_cache", fromCache}};
+  return {{"resolution", resolution},
+          {"texel_world", texelWorld},
+          {"charts", charts},
+          {"lscm_charts", lscmCharts},
+          {"faces_split_off", facesSplitOff},
+          {"utilization", utilization},
+          {"max_stretch", maxStretch},
+          {"ms", ms},
+          {"from_cache", fromCache}};
 }
 
 float autoTexelWorld(glm::vec3 voxelSize, float texelsPerVoxel) {
@@ -42,7 +48,8 @@ uint64_t fnv1a(const void* data, size_t n, uint64_t h) {
   return h;
 }
 
-uint64_t contentHash(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T, const AtlasOptions& o) {
+uint64_t contentHash(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T,
+                     const AtlasOptions& o) {
   uint64_t h = 1469598103934665603ULL;
   h = fnv1a(&kCacheVersion, sizeof kCacheVersion, h);
   h = fnv1a(P.data(), P.size() * sizeof(glm::vec3), h);
@@ -69,7 +76,8 @@ bool readCache(const fs::path& file, size_t triangles, MeshAtlas& a) {
       h.uvCount != int64_t(3 * triangles))
     return false;
   a.uv.resize(size_t(h.uvCount));
-  if (!in.read(reinterpret_cast<char*>(a.uv.data()), std::streamsize(a.uv.size() * sizeof(glm::vec2)))) return false;
+  if (!in.read(reinterpret_cast<char*>(a.uv.data()), std::streamsize(a.uv.size() * sizeof(glm::vec2))))
+    return false;
   a.resolution = h.resolution;
   a.charts = h.charts;
   a.lscmCharts = h.lscmCharts;
@@ -87,8 +95,8 @@ void writeCache(const fs::path& file, const MeshAtlas& a) {
   tmp += ".tmp";
   std::ofstream out(tmp, std::ios::binary);
   if (!out) return;  // an unwritable cache only costs time
-  CacheHeader h{kCacheVersion, a.resolution, a.charts, a.lscmCharts, a.facesSplitOff, int64_t(a.uv.size()),
-                a.texelWorld, a.maxStretch, a.utilization};
+  CacheHeader h{kCacheVersion,        a.resolution, a.charts,     a.lscmCharts, a.facesSplitOff,
+                int64_t(a.uv.size()), a.texelWorld, a.maxStretch, a.utilization};
   out.write(reinterpret_cast<const char*>(&h), sizeof h);
   out.write(reinterpret_cast<const char*>(a.uv.data()), std::streamsize(a.uv.size() * sizeof(glm::vec2)));
   out.close();
@@ -115,8 +123,8 @@ void alignChart(FlatChart& c) {
 
 }  // namespace
 
-MeshAtlas buildAtlas(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T, const AtlasOptions& opt,
-                     int maxResolution) {
+MeshAtlas buildAtlas(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T,
+                     const AtlasOptions& opt, int maxResolution) {
   auto t0 = std::chrono::steady_clock::now();
   if (opt.texelWorld <= 0 && opt.resolution <= 0) fail("atlas: give a texel size or a resolution");
   if (opt.resolution > maxResolution)
@@ -178,7 +186,8 @@ MeshAtlas buildAtlas(const std::vector<glm::vec3>& P, const std::vector<glm::uve
     double texels = chartArea / (double(texel) * texel);
     if (texels > double(maxResolution) * maxResolution)
       fail("atlas: ", charts.size(), " charts at texel size ", texel, " need about ", std::sqrt(texels),
-           "² texels, more than the largest texture (", maxResolution, "²); use a coarser voxel grid or a manual atlas resolution");
+           "² texels, more than the largest texture (", maxResolution,
+           "²); use a coarser voxel grid or a manual atlas resolution");
     side = pack(texel, lows, sp);
     if (side > maxResolution)
       fail("atlas: packing needs ", side, "² texels, more than the largest texture (", maxResolution, "²)");
@@ -194,7 +203,8 @@ MeshAtlas buildAtlas(const std::vector<glm::vec3>& P, const std::vector<glm::uve
     const FlatChart& c = charts[ci];
     glm::vec2 shift = glm::vec2(sp.offsets[ci]) + glm::vec2(float(opt.gutter) + 0.5f) - lows[ci];
     for (size_t i = 0; i < c.faces.size(); ++i)
-      for (int k = 0; k < 3; ++k) atlas.uv[3 * c.faces[i] + size_t(k)] = (c.uv[3 * i + size_t(k)] / texel + shift) / float(side);
+      for (int k = 0; k < 3; ++k)
+        atlas.uv[3 * c.faces[i] + size_t(k)] = (c.uv[3 * i + size_t(k)] / texel + shift) / float(side);
   }
   if (!cacheFile.empty()) writeCache(cacheFile, atlas);
   atlas.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

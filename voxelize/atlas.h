@@ -2,11 +2,10 @@
 // parametrization and packing into a square atlas with gutters, at a texel
 // density proportional to world area.
 #pragma once
-#include <string>
-#include <vector>
-
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "voxelize/chart_segmentation.h"
 

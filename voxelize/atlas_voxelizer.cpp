@@ -23,7 +23,6 @@
 #include "voxelize/atlas_voxelizer.h"
 
 #include <glad/gl.h>
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -32,13 +31,13 @@
 
 #include "core/error.h"
 #include "core/gl_context.h"
-#include "core/shader_library.h"
 #include "core/gpu_scene.h"
-#include "voxelize/atlas.h"
-#include "voxelize/gpu_grid.h"
+#include "core/shader_library.h"
 #include "shaders/shared/atlas_footprint.glsl"
 #include "shaders/shared/bindings.glsl"
 #include "shaders/shared/value_grid.glsl"
+#include "voxelize/atlas.h"
+#include "voxelize/gpu_grid.h"
 
 namespace vgi {
 
@@ -106,7 +105,7 @@ struct AtlasVoxelizer::MeshGpu {
   std::string name;
   int material = 0;
   bool dynamic = false;
-  glm::mat4 model0{1.0f};   // object → world at time 0 (the atlas's frame)
+  glm::mat4 model0{1.0f};  // object → world at time 0 (the atlas's frame)
   const Mesh* mesh = nullptr;
   std::vector<glm::vec2> uv;  // the atlas, 3 per triangle
   int resolution = 0;
@@ -125,7 +124,8 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   const bool values = !req.valueGrids.empty();
   ShaderDefines renderDefs{{"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}};
   if (values) renderDefs["MULTI_VALUED"] = "1";
-  renderProg_ = req.shaders->program({"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"}, renderDefs);
+  renderProg_ = req.shaders->program({"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"},
+                                     renderDefs);
   if (!(req.atlasFootprint >= 0.0f && req.atlasFootprint <= 4.0f))
     fail("atlas footprint ", req.atlasFootprint, ": must be in [0, 4] texels");
   insertProg_ = req.shaders->program({"voxelize/atlas_insert.comp.glsl"},
@@ -133,24 +133,27 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   setGridUniforms(insertProg_, req.box);
   if (values) {
     const uint64_t cells = req.box.cellCount();
-    const double bytes = double(cells) * (4.0 + 16.0 * double(req.valueGrids.size())) * 2.0;  // static + frame (+ radiance)
+    const double bytes =
+        double(cells) * (4.0 + 16.0 * double(req.valueGrids.size())) * 2.0;  // static + frame (+ radiance)
     const double phys = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
     if (bytes > 0.5 * phys)
       fail("multi-valued grids (", req.valueGrids.size(), " channels) at ", req.box.resolution.x, "x",
-           req.box.resolution.y, "x", req.box.resolution.z, " need ", bytes / (1 << 20), " MiB; this machine has ",
-           phys / (1 << 20), " MiB (at most half is used)");
+           req.box.resolution.y, "x", req.box.resolution.z, " need ", bytes / (1 << 20),
+           " MiB; this machine has ", phys / (1 << 20), " MiB (at most half is used)");
     ShaderDefines valueDefs;
     for (auto& ch : req.valueGrids)
       if (ch != "radiance")
-        valueDefs["VALUE_" + std::string(ch == "normal" ? "NORMAL" : ch == "albedo" ? "ALBEDO" : "GLOSSY")] = "1";
+        valueDefs["VALUE_" + std::string(ch == "normal"   ? "NORMAL"
+                                         : ch == "albedo" ? "ALBEDO"
+                                                          : "GLOSSY")] = "1";
     valueDefs["ATLAS_VERTEX_FLOATS"] = std::to_string(kVertexFloats);
     valueProg_ = req.shaders->program({"voxelize/atlas_insert_values.comp.glsl"}, valueDefs);
     setGridUniforms(valueProg_, req.box);
     if (std::find(req.valueGrids.begin(), req.valueGrids.end(), "radiance") != req.valueGrids.end()) {
       ShaderDefines rd = renderDefs;
       rd["VALUE_RADIANCE"] = "1";
-      radianceRenderProg_ = req.shaders->program(
-          {"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"}, rd);
+      radianceRenderProg_ =
+          req.shaders->program({"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"}, rd);
       radianceInsertProg_ = req.shaders->program(
           {"voxelize/atlas_insert_values.comp.glsl"},
           {{"VALUE_RADIANCE", "1"}, {"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}});
@@ -205,9 +208,10 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     // Position (RGBA32F) + triangle id (R32I) per texel; refuse before GL's allocation fails.
     const double bytes = double(atlas.resolution) * atlas.resolution * 20.0;
     if (bytes > double(1u << 31))
-      fail("atlas voxelizer: mesh '", mesh.name, "' needs a ", atlas.resolution, "x", atlas.resolution, " atlas (",
-           bytes / (1 << 20), " MiB of render targets, limit 2048 MiB); lower --texels-per-voxel (",
-           req.texelsPerVoxel, ") or the grid resolution, or set --atlas-resolution");
+      fail("atlas voxelizer: mesh '", mesh.name, "' needs a ", atlas.resolution, "x", atlas.resolution,
+           " atlas (", bytes / (1 << 20),
+           " MiB of render targets, limit 2048 MiB); lower --texels-per-voxel (", req.texelsPerVoxel,
+           ") or the grid resolution, or set --atlas-resolution");
     maxResolution_ = std::max(maxResolution_, atlas.resolution);
     nlohmann::json aj = atlas.toJson();
     aj["mesh"] = mesh.name;
@@ -221,11 +225,13 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     lines.reserve(mesh.triangles.size() * 6);
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
       const glm::uvec3& tri = mesh.triangles[t];
-      glm::vec3 face = glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]], mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+      glm::vec3 face = glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
+                                  mesh.positions[tri[2]] - mesh.positions[tri[0]]);
       for (int k = 0; k < 3; ++k) {
         const glm::vec3& p = mesh.positions[tri[k]];
         const glm::vec2& uv = atlas.uv[3 * t + size_t(k)];
-        glm::vec3 n = mesh.normals.empty() || mesh.normals[tri[k]] == glm::vec3(0.0f) ? face : mesh.normals[tri[k]];
+        glm::vec3 n =
+            mesh.normals.empty() || mesh.normals[tri[k]] == glm::vec3(0.0f) ? face : mesh.normals[tri[k]];
         glm::vec2 tex = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[tri[k]];
         verts.insert(verts.end(), {p.x, p.y, p.z, uv.x, uv.y, float(t), n.x, n.y, n.z, tex.x, tex.y});
       }
@@ -237,14 +243,17 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     glCreateVertexArrays(1, &m->vao);
     glCreateBuffers(1, &m->vbo);
     glCreateBuffers(1, &m->ebo);
-    glNamedBufferStorage(m->vbo, GLsizeiptr(std::max<size_t>(verts.size(), 1) * sizeof(float)), verts.data(), 0);
-    glNamedBufferStorage(m->ebo, GLsizeiptr(std::max<size_t>(lines.size(), 1) * sizeof(uint32_t)), lines.data(), 0);
+    glNamedBufferStorage(m->vbo, GLsizeiptr(std::max<size_t>(verts.size(), 1) * sizeof(float)), verts.data(),
+                         0);
+    glNamedBufferStorage(m->ebo, GLsizeiptr(std::max<size_t>(lines.size(), 1) * sizeof(uint32_t)),
+                         lines.data(), 0);
     glVertexArrayVertexBuffer(m->vao, 0, m->vbo, 0, kVertexFloats * sizeof(float));
     glVertexArrayElementBuffer(m->vao, m->ebo);
     const int sizes[5] = {3, 2, 1, 3, 2}, offsets[5] = {0, 3, 5, 6, 9};
     for (unsigned a = 0; a < 5; ++a) {
       glEnableVertexArrayAttrib(m->vao, a);
-      glVertexArrayAttribFormat(m->vao, a, sizes[a], GL_FLOAT, GL_FALSE, unsigned(offsets[a]) * sizeof(float));
+      glVertexArrayAttribFormat(m->vao, a, sizes[a], GL_FLOAT, GL_FALSE,
+                                unsigned(offsets[a]) * sizeof(float));
       glVertexArrayAttribBinding(m->vao, a, 0);
     }
     meshes_.push_back(std::move(m));
@@ -276,8 +285,8 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
       glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT5, radianceTarget_, 0);
     }
   }
-  const GLenum bufs[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
-                          GL_COLOR_ATTACHMENT4};
+  const GLenum bufs[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                          GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
   glNamedFramebufferDrawBuffers(fbo_, values ? 5 : 2, bufs);
   if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     fail("atlas voxelizer: the ", R, "x", R, " atlas framebuffer is incomplete on ", req.gl->renderer());
@@ -294,8 +303,8 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     }
     // Dynamic meshes are only measured here (into the frame grid, which each frame overwrites).
     renderAndInsert(m, m.dynamic ? req.time : 0.0f, m.dynamic ? *frame_ : *static_,
-                    m.dynamic ? frameValues_.get() : staticValues_.get(), m.dynamic ? frameCounter_ : staticCounter_,
-                    prof, &ids, points);
+                    m.dynamic ? frameValues_.get() : staticValues_.get(),
+                    m.dynamic ? frameCounter_ : staticCounter_, prof, &ids, points);
     // A triangle is lost when no written texel lies on it or within half a
     // texel of it in the atlas. Slivers inside a chart often own no texel (the
     // neighbours' fill covers those centres) but are sampled by that lattice.
@@ -309,8 +318,10 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
       glm::vec2 lo = glm::min(m.uv[3 * t], glm::min(m.uv[3 * t + 1], m.uv[3 * t + 2])) * float(R);
       glm::vec2 hi = glm::max(m.uv[3 * t], glm::max(m.uv[3 * t + 1], m.uv[3 * t + 2])) * float(R);
       bool near = false;
-      for (int y = std::max(0, int(std::floor(lo.y - 0.5f))); !near && y <= std::min(R - 1, int(hi.y + 0.5f)); ++y)
-        for (int x = std::max(0, int(std::floor(lo.x - 0.5f))); !near && x <= std::min(R - 1, int(hi.x + 0.5f)); ++x)
+      for (int y = std::max(0, int(std::floor(lo.y - 0.5f))); !near && y <= std::min(R - 1, int(hi.y + 0.5f));
+           ++y)
+        for (int x = std::max(0, int(std::floor(lo.x - 0.5f)));
+             !near && x <= std::min(R - 1, int(hi.x + 0.5f)); ++x)
           near = ids[size_t(y) * size_t(R) + size_t(x)] >= 0;
       (near ? sharing : meshLost)++;
     }
@@ -389,7 +400,8 @@ void AtlasVoxelizer::renderAtlas(const MeshGpu& m, float time, unsigned prog, in
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void AtlasVoxelizer::insertRadiance(float time, const std::function<void(unsigned)>& bindLights, Profiler& prof) {
+void AtlasVoxelizer::insertRadiance(float time, const std::function<void(unsigned)>& bindLights,
+                                    Profiler& prof) {
   if (!radianceSums_) fail("internal: insertRadiance without a requested radiance channel");
   const uint32_t zero = 0;
   {
@@ -466,8 +478,8 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
   }
   if (ids) {
     ids->assign(size_t(R) * size_t(R), -1);
-    glGetTextureSubImage(targets_[1], 0, 0, 0, 0, R, R, 1, GL_RED_INTEGER, GL_INT, GLsizei(ids->size() * sizeof(int)),
-                         ids->data());
+    glGetTextureSubImage(targets_[1], 0, 0, 0, 0, R, R, 1, GL_RED_INTEGER, GL_INT,
+                         GLsizei(ids->size() * sizeof(int)), ids->data());
   }
   if (points) {
     points->positions.assign(size_t(R) * size_t(R), glm::vec4(0.0f));
@@ -479,7 +491,8 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     glm::mat4 model = m.mesh->objectToWorld(time);
     points->corners.clear();
     for (const glm::uvec3& tri : m.mesh->triangles)
-      for (int k = 0; k < 3; ++k) points->corners.push_back(glm::vec3(model * glm::vec4(m.mesh->positions[tri[k]], 1.0f)));
+      for (int k = 0; k < 3; ++k)
+        points->corners.push_back(glm::vec3(model * glm::vec4(m.mesh->positions[tri[k]], 1.0f)));
     points->footprint = request_.atlasFootprint * m.texelWorld;
   }
 }
@@ -494,7 +507,8 @@ void AtlasVoxelizer::voxelizeFrame(float time, Profiler& prof) {
     glClearNamedBufferData(frameCounter_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   }
   for (auto& m : meshes_)
-    if (m->dynamic) renderAndInsert(*m, time, *frame_, frameValues_.get(), frameCounter_, prof, nullptr, nullptr);
+    if (m->dynamic)
+      renderAndInsert(*m, time, *frame_, frameValues_.get(), frameCounter_, prof, nullptr, nullptr);
 }
 
 BinaryGrid AtlasVoxelizer::readFrame() const {

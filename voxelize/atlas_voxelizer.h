@@ -25,7 +25,8 @@ struct AtlasSamples {
 class AtlasVoxelizer {
  public:
   // atlasPoints, if given, receives each mesh's atlas at request.time.
-  AtlasVoxelizer(const VoxelizeRequest& request, Profiler& profiler, std::vector<AtlasSamples>* atlasPoints = nullptr);
+  AtlasVoxelizer(const VoxelizeRequest& request, Profiler& profiler,
+                 std::vector<AtlasSamples>* atlasPoints = nullptr);
   ~AtlasVoxelizer();
   AtlasVoxelizer(const AtlasVoxelizer&) = delete;
   AtlasVoxelizer& operator=(const AtlasVoxelizer&) = delete;
@@ -46,7 +47,8 @@ class AtlasVoxelizer {
   // TEXUNIT_LIGHT_* maps), into sums cleared first — after voxelizeFrame of
   // the same time, whose counts it shares. Two passes: the maximum (the
   // fixed-point range), then the insertion ("radiance_max", "radiance_insert").
-  void insertRadiance(float time, const std::function<void(unsigned program)>& bindLights, Profiler& profiler);
+  void insertRadiance(float time, const std::function<void(unsigned program)>& bindLights,
+                      Profiler& profiler);
   bool hasRadiance() const { return radianceSums_ != 0; }
 
   // "points" (of the last frame, static included), "atlas_resolution",
@@ -57,8 +59,9 @@ class AtlasVoxelizer {
   struct MeshGpu;
   struct ValueBuffers;
   // Points are counted on the GPU into `counter` (read only by stats(): no sync per mesh).
-  void renderAndInsert(const MeshGpu& mesh, float time, const GpuGridBuffer& target, const ValueBuffers* values,
-                       unsigned counter, Profiler& profiler, std::vector<int>* ids, AtlasSamples* points);
+  void renderAndInsert(const MeshGpu& mesh, float time, const GpuGridBuffer& target,
+                       const ValueBuffers* values, unsigned counter, Profiler& profiler,
+                       std::vector<int>* ids, AtlasSamples* points);
   void setPointCellInputs(unsigned program, const MeshGpu& mesh, float time) const;
   // Draws the mesh's atlas at `time` with `program` into the first `targets` attachments.
   void renderAtlas(const MeshGpu& mesh, float time, unsigned program, int targets) const;

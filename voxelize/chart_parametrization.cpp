@@ -8,7 +8,6 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -24,7 +23,8 @@ namespace {
 
 float cross2(glm::vec2 a, glm::vec2 b) { return a.x * b.y - a.y * b.x; }
 
-void planarProject(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T, glm::vec3 n, FlatChart& out) {
+void planarProject(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T, glm::vec3 n,
+                   FlatChart& out) {
   shared::Basis f = shared::makeBasis(glm::normalize(n));
   out.uv.clear();
   for (uint32_t t : out.faces)
@@ -76,9 +76,9 @@ bool lscm(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T, Fla
       int vi = local[T[t][j]];
       if (col[size_t(vi)] >= 0) {
         int cu = col[size_t(vi)], cv = free + col[size_t(vi)];
-        trip.emplace_back(row, cu, W.x);       // re: a u − b v
+        trip.emplace_back(row, cu, W.x);  // re: a u − b v
         trip.emplace_back(row, cv, -W.y);
-        trip.emplace_back(row + 1, cu, W.y);   // im: b u + a v
+        trip.emplace_back(row + 1, cu, W.y);  // im: b u + a v
         trip.emplace_back(row + 1, cv, W.x);
       } else {
         int k = vi == pa ? 0 : 1;
@@ -115,8 +115,10 @@ bool lscm(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T, Fla
   // Scale so that the UV area equals the surface area (uniform texel density).
   double area3 = 0, area2 = 0;
   for (uint32_t t : out.faces) {
-    area3 += 0.5 * glm::length(glm::cross(glm::dvec3(P[T[t][1]] - P[T[t][0]]), glm::dvec3(P[T[t][2]] - P[T[t][0]])));
-    glm::dvec2 a = uv[size_t(local[T[t][0]])], bb = uv[size_t(local[T[t][1]])], cc = uv[size_t(local[T[t][2]])];
+    area3 += 0.5 * glm::length(
+                       glm::cross(glm::dvec3(P[T[t][1]] - P[T[t][0]]), glm::dvec3(P[T[t][2]] - P[T[t][0]])));
+    glm::dvec2 a = uv[size_t(local[T[t][0]])], bb = uv[size_t(local[T[t][1]])],
+               cc = uv[size_t(local[T[t][2]])];
     area2 += 0.5 * std::abs((bb.x - a.x) * (cc.y - a.y) - (bb.y - a.y) * (cc.x - a.x));
   }
   if (!(area2 > 0)) return false;
@@ -146,10 +148,13 @@ float stretchOf(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& 
 
 // Edge-connected components of a face set. (Faces meeting only at a vertex
 // would leave LSCM free to rotate one about the other: underdetermined.)
-std::vector<std::vector<uint32_t>> components(const std::vector<glm::uvec3>& T, const std::vector<uint32_t>& faces) {
+std::vector<std::vector<uint32_t>> components(const std::vector<glm::uvec3>& T,
+                                              const std::vector<uint32_t>& faces) {
   std::vector<size_t> parent(faces.size());
   std::iota(parent.begin(), parent.end(), size_t(0));
-  std::function<size_t(size_t)> find = [&](size_t i) { return parent[i] == i ? i : parent[i] = find(parent[i]); };
+  std::function<size_t(size_t)> find = [&](size_t i) {
+    return parent[i] == i ? i : parent[i] = find(parent[i]);
+  };
   std::map<std::pair<uint32_t, uint32_t>, size_t> edgeOwner;
   for (size_t i = 0; i < faces.size(); ++i)
     for (int k = 0; k < 3; ++k) {
@@ -165,14 +170,16 @@ std::vector<std::vector<uint32_t>> components(const std::vector<glm::uvec3>& T, 
 }
 
 void parametrizeRecursive(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T,
-                          std::vector<uint32_t> faces, glm::vec3 normal, bool planar, std::vector<FlatChart>& out) {
+                          std::vector<uint32_t> faces, glm::vec3 normal, bool planar,
+                          std::vector<FlatChart>& out) {
   FlatChart c;
   c.faces = std::move(faces);
   bool ok;
   if (planar || c.faces.size() == 1) {
-    planarProject(P, T, c.faces.size() == 1
-                            ? glm::cross(P[T[c.faces[0]][1]] - P[T[c.faces[0]][0]], P[T[c.faces[0]][2]] - P[T[c.faces[0]][0]])
-                            : normal,
+    planarProject(P, T,
+                  c.faces.size() == 1 ? glm::cross(P[T[c.faces[0]][1]] - P[T[c.faces[0]][0]],
+                                                   P[T[c.faces[0]][2]] - P[T[c.faces[0]][0]])
+                                      : normal,
                   c);
     ok = true;
   } else {
@@ -186,7 +193,8 @@ void parametrizeRecursive(const std::vector<glm::vec3>& P, const std::vector<glm
   }
   // Split in two (the faces are in region-growing order, so halves are compact) and retry each component.
   size_t half = c.faces.size() / 2;
-  std::vector<uint32_t> a(c.faces.begin(), c.faces.begin() + long(half)), b(c.faces.begin() + long(half), c.faces.end());
+  std::vector<uint32_t> a(c.faces.begin(), c.faces.begin() + long(half)),
+      b(c.faces.begin() + long(half), c.faces.end());
   for (auto* part : {&a, &b})
     for (auto& comp : components(T, *part)) {
       glm::vec3 n(0.0f);
@@ -204,17 +212,21 @@ bool chartIsValid(const std::vector<glm::uvec3>& T, const FlatChart& c) {
   const float scale = std::max(hi.x - lo.x, hi.y - lo.y);
   if (!(scale > 0) || !std::isfinite(scale)) return false;
   for (size_t i = 0; i < n; ++i)
-    if (!(cross2(c.uv[3 * i + 1] - c.uv[3 * i], c.uv[3 * i + 2] - c.uv[3 * i]) > 1e-12f * scale * scale)) return false;
+    if (!(cross2(c.uv[3 * i + 1] - c.uv[3 * i], c.uv[3 * i + 2] - c.uv[3 * i]) > 1e-12f * scale * scale))
+      return false;
   if (n < 2) return true;
   // Bucket faces by bounding box into a grid of about n cells.
   const int g = std::max(1, int(std::sqrt(double(n))));
-  auto cellOf = [&](float v, float l) { return std::min(g - 1, std::max(0, int((v - l) / scale * float(g)))); };
+  auto cellOf = [&](float v, float l) {
+    return std::min(g - 1, std::max(0, int((v - l) / scale * float(g))));
+  };
   std::vector<std::vector<uint32_t>> buckets(size_t(g) * size_t(g));
   for (size_t i = 0; i < n; ++i) {
     glm::vec2 a = glm::min(c.uv[3 * i], glm::min(c.uv[3 * i + 1], c.uv[3 * i + 2]));
     glm::vec2 b = glm::max(c.uv[3 * i], glm::max(c.uv[3 * i + 1], c.uv[3 * i + 2]));
     for (int y = cellOf(a.y, lo.y); y <= cellOf(b.y, lo.y); ++y)
-      for (int x = cellOf(a.x, lo.x); x <= cellOf(b.x, lo.x); ++x) buckets[size_t(y) * size_t(g) + size_t(x)].push_back(uint32_t(i));
+      for (int x = cellOf(a.x, lo.x); x <= cellOf(b.x, lo.x); ++x)
+        buckets[size_t(y) * size_t(g) + size_t(x)].push_back(uint32_t(i));
   }
   const float eps = 1e-5f * scale;
   auto overlap = [&](size_t i, size_t j) {

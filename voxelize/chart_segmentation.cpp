@@ -16,7 +16,6 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
-
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -62,7 +61,8 @@ Segmentation segmentCharts(const std::vector<glm::vec3>& positions, const std::v
   std::vector<glm::vec3> normal(tris.size());
   std::vector<float> area(tris.size());
   for (size_t t = 0; t < tris.size(); ++t) {
-    glm::vec3 c = glm::cross(positions[tris[t][1]] - positions[tris[t][0]], positions[tris[t][2]] - positions[tris[t][0]]);
+    glm::vec3 c = glm::cross(positions[tris[t][1]] - positions[tris[t][0]],
+                             positions[tris[t][2]] - positions[tris[t][0]]);
     float l = glm::length(c);
     area[t] = 0.5f * l;
     normal[t] = l > 0 ? c / l : glm::vec3(0, 0, 1);
@@ -94,7 +94,8 @@ Segmentation segmentCharts(const std::vector<glm::vec3>& positions, const std::v
       for (auto ff = mesh.ff_iter(faceOf[t]); ff.is_valid(); ++ff) {
         int n = size_t(ff->idx()) < triOfFace.size() ? triOfFace[size_t(ff->idx())] : -1;
         if (n < 0 || chartOf[size_t(n)] >= 0 || area[size_t(n)] <= 0) continue;
-        if (glm::dot(normal[size_t(n)], seedN) < cosMax || glm::dot(normal[size_t(n)], mean) < cosMax) continue;
+        if (glm::dot(normal[size_t(n)], seedN) < cosMax || glm::dot(normal[size_t(n)], mean) < cosMax)
+          continue;
         chartOf[size_t(n)] = id;
         queue.push_back(uint32_t(n));
       }

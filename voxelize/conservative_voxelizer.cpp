@@ -26,9 +26,10 @@ BinaryGrid voxelizeConservativeGl(const VoxelizeRequest& req, Profiler& prof, nl
   const int side = int(std::max({res.x, res.y, res.z}));
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &maxSize);
-  if (side > maxSize) fail("conservative voxelizer: a ", side, "² view exceeds GL_MAX_FRAMEBUFFER_WIDTH ", maxSize);
-  unsigned prog = req.shaders->program(
-      {"voxelize/conservative.vert.glsl", "voxelize/conservative.geom.glsl", "voxelize/conservative.frag.glsl"});
+  if (side > maxSize)
+    fail("conservative voxelizer: a ", side, "² view exceeds GL_MAX_FRAMEBUFFER_WIDTH ", maxSize);
+  unsigned prog = req.shaders->program({"voxelize/conservative.vert.glsl", "voxelize/conservative.geom.glsl",
+                                        "voxelize/conservative.frag.glsl"});
   glProgramUniform1f(prog, glGetUniformLocation(prog, "uViewport"), float(side));
   BinaryGrid grid = rasterizeSceneIntoGrid(req, prog, side, side, "conservative", prof);
   stats["passes"] = 1;

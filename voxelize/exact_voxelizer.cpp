@@ -94,7 +94,8 @@ BinaryGrid voxelizeExact(const Scene& scene, const GridBox& box, float time, int
                            toGrid(flat.positions[3 * i + 2])};
         glm::dvec3 lo = glm::min(v[0], glm::min(v[1], v[2])), hi = glm::max(v[0], glm::max(v[1], v[2]));
         int x0, x1, y0, y1, z0, z1;
-        if (!cellRange(lo.x, hi.x, box.resolution.x, x0, x1) || !cellRange(lo.y, hi.y, box.resolution.y, y0, y1) ||
+        if (!cellRange(lo.x, hi.x, box.resolution.x, x0, x1) ||
+            !cellRange(lo.y, hi.y, box.resolution.y, y0, y1) ||
             !cellRange(lo.z, hi.z, box.resolution.z, z0, z1))
           continue;
         for (int y = y0; y <= y1; ++y)

@@ -68,7 +68,9 @@ GpuGridBuffer::GpuGridBuffer(const GridBox& box)
 
 GpuGridBuffer::~GpuGridBuffer() { glDeleteBuffers(1, &buffer_); }
 
-void GpuGridBuffer::bind(unsigned binding) const { glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_); }
+void GpuGridBuffer::bind(unsigned binding) const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_);
+}
 
 void GpuGridBuffer::read(BinaryGrid& grid) const {
   VGI_CHECK(grid.words().size() * sizeof(uint32_t) == bytes_);

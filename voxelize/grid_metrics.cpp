@@ -5,13 +5,15 @@
 namespace vgi {
 
 nlohmann::json GridComparison::toJson() const {
-  return {{"recall", recall()}, {"precision", precision()}, {"holes", holes()}, {"extra", extra()},
+  return {{"recall", recall()},
+          {"precision", precision()},
+          {"holes", holes()},
+          {"extra", extra()},
           {"exact_voxels", exact}};
 }
 
 GridComparison compareGrids(const BinaryGrid& a, const BinaryGrid& e) {
-  if (a.box().resolution != e.box().resolution)
-    fail("cannot compare grids of different resolutions");
+  if (a.box().resolution != e.box().resolution) fail("cannot compare grids of different resolutions");
   GridComparison c;
   const auto &wa = a.words(), &we = e.words();
   for (size_t i = 0; i < wa.size(); ++i) {

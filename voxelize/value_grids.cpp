@@ -19,7 +19,8 @@ std::vector<std::string> parseValueChannels(const std::string& list) {
     std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     bool known = false;
     for (auto& n : valueChannelNames()) known |= n == name;
-    if (!known) fail("--kind: unknown grid '", name, "' (binary, normal, albedo, glossy, radiance; comma-separated)");
+    if (!known)
+      fail("--kind: unknown grid '", name, "' (binary, normal, albedo, glossy, radiance; comma-separated)");
     bool dup = false;
     for (auto& o : out) dup |= o == name;
     if (!dup) out.push_back(name);

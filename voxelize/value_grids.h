@@ -2,10 +2,9 @@
 // mean of each requested channel (normal, albedo, glossy = ks rgb + exponent),
 // decoded from the GPU's fixed-point sums (shaders/shared/value_grid.glsl).
 #pragma once
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "voxelize/voxel_grid.h"
 
@@ -20,9 +19,9 @@ std::vector<std::string> parseValueChannels(const std::string& list);
 
 struct ValueGrids {
   GridBox box;
-  std::vector<uint32_t> counts;                // points per cell (x fastest)
-  std::vector<std::string> channels;           // built channels
-  std::vector<std::vector<glm::vec4>> means;   // per channel, per cell (0 where count = 0)
+  std::vector<uint32_t> counts;               // points per cell (x fastest)
+  std::vector<std::string> channels;          // built channels
+  std::vector<std::vector<glm::vec4>> means;  // per channel, per cell (0 where count = 0)
 
   size_t cellIndex(uint32_t x, uint32_t y, uint32_t z) const {
     return (size_t(z) * box.resolution.y + y) * box.resolution.x + x;

@@ -41,8 +41,7 @@ glm::uvec3 parseResolution(const std::string& text, const std::string& option) {
   }
   if (v[0] < 1 || v[1] < 1 || v[2] < 1)
     fail(option, " '", text, "': expected N or WxHxD (e.g. 256 or 256x128x512)");
-  if (v[0] > 8192 || v[1] > 8192)
-    fail(option, " '", text, "': W and H must be at most 8192");
+  if (v[0] > 8192 || v[1] > 8192) fail(option, " '", text, "': W and H must be at most 8192");
   if (v[2] % 128 != 0 || v[2] > 1024)
     fail(option, " '", text, "': the depth D = ", v[2], " must be 128, 256, 512 or 1024 (128-bit slabs)");
   return glm::uvec3(unsigned(v[0]), unsigned(v[1]), unsigned(v[2]));
@@ -114,7 +113,8 @@ uint64_t BinaryGrid::count() const {
 
 uint32_t BinaryGrid::columnCount(uint32_t x, uint32_t y) const {
   uint32_t n = 0;
-  for (uint32_t w = 0; w < wordsPerColumn(); ++w) n += uint32_t(__builtin_popcount(words_[wordIndex(x, y, w)]));
+  for (uint32_t w = 0; w < wordsPerColumn(); ++w)
+    n += uint32_t(__builtin_popcount(words_[wordIndex(x, y, w)]));
   return n;
 }
 
@@ -137,7 +137,8 @@ void writeGridPicture(const BinaryGrid& grid, const std::string& path) {
         break;
       }
     }
-  for (uint32_t y = 0; y < r.y; ++y) img.at(int(r.x), int(y)) = img.at(int(r.x) + 1, int(y)) = glm::vec3(1, 1, 0);
+  for (uint32_t y = 0; y < r.y; ++y)
+    img.at(int(r.x), int(y)) = img.at(int(r.x) + 1, int(y)) = glm::vec3(1, 1, 0);
   writeImage(img, path);
 }
 

@@ -4,10 +4,9 @@
 // shaders/shared/voxel_grid.glsl.
 #pragma once
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/scene.h"
 #include "shaders/shared/voxel_grid.glsl"

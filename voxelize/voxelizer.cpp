@@ -15,7 +15,9 @@ const std::vector<VoxelizerInfo>& voxelizerRegistry() {
       {"slicemap", "GL single-pass slicemap (Eisemann & Decoret 2006): one raster pass along depth", true,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeSlicemapGl(r, p, s); }},
       {"conservative", "GL three-axis conservative rasterization (dominant axis, expanded triangles)", true,
-       [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeConservativeGl(r, p, s); }},
+       [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) {
+         return voxelizeConservativeGl(r, p, s);
+       }},
       {"exact", "CPU triangle-box overlap (separating axes): the reference", false,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json&) {
          auto s = p.scope("voxelize_exact");

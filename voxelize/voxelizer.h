@@ -1,10 +1,9 @@
 // The voxelizers behind `vgi voxelize`, in an explicit table.
 #pragma once
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "core/profiler.h"
 #include "voxelize/voxel_grid.h"

@@ -6,7 +6,6 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 #define SHARED_BEGIN \

@@ -2,7 +2,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_util.h"
@@ -14,8 +13,10 @@ using test::tmp;
 using test::vgi;
 
 TEST(Cli, RenderWritesExrPngAndStats) {
-  CliRun r = vgi("render --scene builtin:cornell --method reference --set integrator=direct --size 32x24 --spp 2 "
-              "--quiet -o " + tmp("cli.exr") + " --stats " + tmp("cli_stats.json"));
+  CliRun r =
+      vgi("render --scene builtin:cornell --method reference --set integrator=direct --size 32x24 --spp 2 "
+          "--quiet -o " +
+          tmp("cli.exr") + " --stats " + tmp("cli_stats.json"));
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(tmp("cli.png")));
   nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("cli.json")));
@@ -27,10 +28,13 @@ TEST(Cli, RenderWritesExrPngAndStats) {
 
 // An animation: one image pair per frame (AOVs too), one stats JSON listing them with per-frame stats.
 TEST(Cli, RenderFramesWritesNumberedImagesAndOneStatsFile) {
-  CliRun r = vgi("render --scene builtin:cornell --method nearfield --size 16x16 --spp 1 --frames 2 --time-step 0.5 "
-                 "--aov indirect --quiet -o " + tmp("anim.exr"));
+  CliRun r =
+      vgi("render --scene builtin:cornell --method nearfield --size 16x16 --spp 1 --frames 2 --time-step 0.5 "
+          "--aov indirect --quiet -o " +
+          tmp("anim.exr"));
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* f : {"anim_0000.exr", "anim_0000.png", "anim_0001.exr", "anim_0001.png", "anim_0001.indirect.exr"})
+  for (const char* f :
+       {"anim_0000.exr", "anim_0000.png", "anim_0001.exr", "anim_0001.png", "anim_0001.indirect.exr"})
     EXPECT_TRUE(std::filesystem::exists(tmp(f))) << f;
   EXPECT_FALSE(std::filesystem::exists(tmp("anim.exr")));
   nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("anim.json")));
@@ -49,8 +53,10 @@ TEST(Cli, RenderFramesWritesNumberedImagesAndOneStatsFile) {
 // Speed against error in one command: nearfield against reference
 // integrator=nearfield with the same (resolved) radius and env.
 TEST(Cli, CompareRendersTheExactCounterpartWithTheSameParameters) {
-  CliRun r = vgi("compare --scene builtin:cornell --method nearfield --set env=false --size 24x24 --spp 2 "
-                 "--ref-spp 64 --relative-epsilon 0.1 --quiet -o " + tmp("cmp.exr"));
+  CliRun r =
+      vgi("compare --scene builtin:cornell --method nearfield --set env=false --size 24x24 --spp 2 "
+          "--ref-spp 64 --relative-epsilon 0.1 --quiet -o " +
+          tmp("cmp.exr"));
   ASSERT_EQ(r.code, 0) << r.output;
   nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("cmp.json")));
   const std::vector<std::string> set = s["exact"]["set"];
@@ -101,8 +107,12 @@ TEST(Cli, BadArgumentsFailWithClearMessages) {
 }
 
 TEST(Cli, DiffRefusesDifferentSizes) {
-  ASSERT_EQ(vgi("render --method reference --set integrator=ao --size 8x8 --spp 1 --quiet -o " + tmp("a.exr")).code, 0);
-  ASSERT_EQ(vgi("render --method reference --set integrator=ao --size 8x9 --spp 1 --quiet -o " + tmp("b.exr")).code, 0);
+  ASSERT_EQ(
+      vgi("render --method reference --set integrator=ao --size 8x8 --spp 1 --quiet -o " + tmp("a.exr")).code,
+      0);
+  ASSERT_EQ(
+      vgi("render --method reference --set integrator=ao --size 8x9 --spp 1 --quiet -o " + tmp("b.exr")).code,
+      0);
   CliRun same = vgi("diff --json " + tmp("a.exr") + " " + tmp("a.exr"));
   ASSERT_EQ(same.code, 0) << same.output;
   EXPECT_EQ(nlohmann::json::parse(same.output)["rmse"], 0.0);
@@ -125,7 +135,7 @@ TEST(Cli, InfoAndHelpModule) {
 // Ctrl-C during a long render still writes what was accumulated.
 TEST(Cli, InterruptWritesPartialImage) {
   CliRun r = vgi("render --method reference --set integrator=path --size 64x64 --spp 100000 --quiet -o " +
-              tmp("int.exr") + " & pid=$!; sleep 2; kill -INT $pid; wait $pid");
+                 tmp("int.exr") + " & pid=$!; sleep 2; kill -INT $pid; wait $pid");
   ASSERT_EQ(r.code, 130) << r.output;  // interrupted: what was done is written, and the exit status says so
   nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("int.json")));
   EXPECT_TRUE(s["interrupted"].get<bool>());
@@ -137,11 +147,12 @@ TEST(Cli, InterruptWritesPartialImage) {
 
 namespace vgi {
 TEST(Cli, VoxelizeWritesStatsAndPicture) {
-  auto r = vgi("voxelize --scene builtin:cornell --voxels 64x64x128 --voxelizer exact --stats " + tmp("vox.json") +
-               " --dump " + tmp("vox.png"));
+  auto r = vgi("voxelize --scene builtin:cornell --voxels 64x64x128 --voxelizer exact --stats " +
+               tmp("vox.json") + " --dump " + tmp("vox.png"));
   ASSERT_EQ(r.code, 0) << r.output;
   nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("vox.json")));
-  for (const char* k : {"voxelizer", "resolution", "voxels_set", "recall", "precision", "points", "atlas_resolution", "timings_ms"})
+  for (const char* k : {"voxelizer", "resolution", "voxels_set", "recall", "precision", "points",
+                        "atlas_resolution", "timings_ms"})
     EXPECT_TRUE(s.contains(k)) << k;
   EXPECT_EQ(s["resolution"][2], 128);
   EXPECT_GT(s["voxels_set"].get<long>(), 0);
@@ -157,7 +168,8 @@ TEST(Cli, VoxelizeWritesStatsAndPicture) {
 
 namespace vgi {
 TEST(Cli, VoxelizeBuildsOnlyTheRequestedValueGrids) {
-  auto r = vgi("voxelize --voxels 64x64x128 --kind binary,albedo --stats " + tmp("kind.json") + " --dump " + tmp("kind.png"));
+  auto r = vgi("voxelize --voxels 64x64x128 --kind binary,albedo --stats " + tmp("kind.json") + " --dump " +
+               tmp("kind.png"));
   ASSERT_EQ(r.code, 0) << r.output;
   nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("kind.json")));
   EXPECT_EQ(s["built"], nlohmann::json::array({"binary", "albedo"}));
@@ -172,12 +184,14 @@ TEST(Cli, VoxelizeBuildsOnlyTheRequestedValueGrids) {
 namespace vgi {
 TEST(Cli, VoxelizeFramesReportPerFramePasses) {
   std::string scene = test::writeMovingTriangleScene("cli_frames");
-  auto r = vgi("voxelize --scene " + scene + " --voxels 64x64x128 --frames 3 --time-step 0.5 --stats " + tmp("frames.json"));
+  auto r = vgi("voxelize --scene " + scene + " --voxels 64x64x128 --frames 3 --time-step 0.5 --stats " +
+               tmp("frames.json"));
   ASSERT_EQ(r.code, 0) << r.output;
   nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("frames.json")));
   ASSERT_EQ(s["frames"].size(), 3u);
   EXPECT_EQ(s["frames"][2]["time"], 1.0);
-  for (const char* pass : {"copy", "atlas_render", "insertion"}) EXPECT_TRUE(s["frames"][1]["timings_ms"].contains(pass)) << pass;
+  for (const char* pass : {"copy", "atlas_render", "insertion"})
+    EXPECT_TRUE(s["frames"][1]["timings_ms"].contains(pass)) << pass;
   EXPECT_EQ(s["dynamic_meshes"], 1);
   EXPECT_GE(s["precision"].get<double>(), 0.9999);  // the grid of the last frame, against exact at its time
   auto bad = vgi("voxelize --frames 2 --time-step nan");

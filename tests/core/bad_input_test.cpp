@@ -10,7 +10,8 @@ using test::expectError;
 TEST(BadInput, MalformedAndInvalidSceneJson) {
   expectError([] { loadScene(dataPath("bad/malformed.json")); }, {"malformed.json", "malformed JSON"});
   expectError([] { loadScene(dataPath("bad/unknown_key.json")); }, {"unknown_key.json", "lihgts"});
-  expectError([] { loadScene(dataPath("bad/wrong_type.json")); }, {"wrong_type.json", "lights[0].intensity", "bright"});
+  expectError([] { loadScene(dataPath("bad/wrong_type.json")); },
+              {"wrong_type.json", "lights[0].intensity", "bright"});
   expectError([] { loadScene(dataPath("bad/bad_fov.json")); }, {"bad_fov.json", "camera.fov_deg", "270"});
   expectError([] { loadScene(dataPath("bad/bad_cone.json")); }, {"bad_cone.json", "cone_deg", "120"});
   expectError([] { loadScene(dataPath("bad/missing_mesh.json")); }, {"does_not_exist.obj", "does not exist"});
@@ -22,7 +23,8 @@ TEST(BadInput, MalformedAndInvalidSceneJson) {
 }
 
 TEST(BadInput, NonFiniteVerticesAreErrors) {
-  expectError([] { loadScene(dataPath("bad/nan_vertex.obj")); }, {"nan_vertex.obj", "vertex 2", "non-finite"});
+  expectError([] { loadScene(dataPath("bad/nan_vertex.obj")); },
+              {"nan_vertex.obj", "vertex 2", "non-finite"});
   expectError([] { loadScene(dataPath("bad/inf_vertex.obj")); }, {"inf_vertex.obj", "non-finite"});
 }
 

@@ -42,7 +42,8 @@ TEST(ShaderLibrary, CompileErrorsNameTheIncludedFileAndLine) {
   namespace fs = std::filesystem;
   fs::path dir = fs::path(testing::TempDir()) / "shaders_line_test";
   fs::create_directories(dir / "sub");
-  std::ofstream(dir / "main.comp.glsl") << "layout(local_size_x = 1) in;\n#include \"sub/helper.glsl\"\nvoid main() { helper(); }\n";
+  std::ofstream(dir / "main.comp.glsl")
+      << "layout(local_size_x = 1) in;\n#include \"sub/helper.glsl\"\nvoid main() { helper(); }\n";
   std::ofstream(dir / "sub/helper.glsl") << "// helper\n\nvoid helper() { undefined_symbol = 1; }\n";
   ShaderLibrary lib(dir.string());
   test::expectError([&] { lib.program({"main.comp.glsl"}); }, {"sub/helper.glsl:3", "undefined_symbol"});
@@ -61,8 +62,9 @@ TEST(ShaderLibrary, TheGlslSideOfACplusplusElseIsKept) {
   namespace fs = std::filesystem;
   fs::path dir = fs::path(testing::TempDir()) / "shaders_else_test";
   fs::create_directories(dir);
-  std::ofstream(dir / "a.comp.glsl") << "#ifdef __cplusplus\n#include <cpp_only>\n#if 1\nint cpp;\n#endif\n#else\n"
-                                        "#if 1\nint glslNested;\n#endif\nint glslSide;\n#endif\nint after;\n";
+  std::ofstream(dir / "a.comp.glsl")
+      << "#ifdef __cplusplus\n#include <cpp_only>\n#if 1\nint cpp;\n#endif\n#else\n"
+         "#if 1\nint glslNested;\n#endif\nint glslSide;\n#endif\nint after;\n";
   ShaderLibrary lib(dir.string());
   const std::string text = lib.preprocess("a.comp.glsl", {}).text;
   for (const char* kept : {"int glslNested;", "int glslSide;", "int after;"})
@@ -100,10 +102,10 @@ TEST(SharedKernels, GpuMatchesCpu) {
   fs::create_directories(dir);
   fs::path shared = fs::path(defaultShaderDir()) / "shared";
   std::ofstream(dir / "k.comp.glsl") << "#include \"" << (shared / "constants.glsl").string() << "\"\n"
-      << "#include \"" << (shared / "sampling.glsl").string() << "\"\n"
-      << "#include \"" << (shared / "brdf.glsl").string() << "\"\n"
-      << "#include \"" << (shared / "lights.glsl").string() << "\"\n"
-      << R"(layout(local_size_x = 64) in;
+                                     << "#include \"" << (shared / "sampling.glsl").string() << "\"\n"
+                                     << "#include \"" << (shared / "brdf.glsl").string() << "\"\n"
+                                     << "#include \"" << (shared / "lights.glsl").string() << "\"\n"
+                                     << R"(layout(local_size_x = 64) in;
 layout(std430, binding = 0) buffer Out { uint hashes[]; };
 layout(std430, binding = 1) buffer OutF { vec4 values[]; };
 void main() {

@@ -1,4 +1,5 @@
 #include "core/image.h"
+
 #include "core/image_metrics.h"
 #include "test_util.h"
 
@@ -56,7 +57,7 @@ TEST(ImageMetrics, RelativeEpsilonPerChannelErrorsAndSignedDifference) {
   EXPECT_GT(d.relMse, 0.1);
   EXPECT_NEAR(d.relMaeRgb[0], 0.002 / 0.004, 1e-5);  // red: +0.001 twice over 0.004
   EXPECT_NEAR(d.relMaeRgb[1], 0.0, 1e-7);
-  EXPECT_NEAR(d.relMaeRgb[2], 1.0, 1e-5);             // blue: all of it missing
+  EXPECT_NEAR(d.relMaeRgb[2], 1.0, 1e-5);  // blue: all of it missing
   EXPECT_NEAR(d.energyRgb[0], 1.5, 1e-5);
   EXPECT_NEAR(d.energyRgb[2], 0.0, 1e-7);
   Image e = signedDifference(a, b);
@@ -66,7 +67,8 @@ TEST(ImageMetrics, RelativeEpsilonPerChannelErrorsAndSignedDifference) {
 
 TEST(ImageMetrics, RefusesDifferentSizesAndNaN) {
   Image a(4, 4), b(4, 5);
-  test::expectError([&] { compareImages(a, b, "a.exr", "b.exr"); }, {"different sizes", "a.exr is 4x4", "b.exr is 4x5"});
+  test::expectError([&] { compareImages(a, b, "a.exr", "b.exr"); },
+                    {"different sizes", "a.exr is 4x4", "b.exr is 4x5"});
   Image c(4, 4);
   c.pixels[5].y = std::nanf("");
   test::expectError([&] { compareImages(c, a, "c.exr", "a.exr"); }, {"c.exr", "non-finite", "(1, 1)"});

@@ -1,12 +1,13 @@
 // The shared kernels (shaders/shared/) on their hard cases: bases near ±z,
 // sampling at the pole and horizon, hash-to-float range, light cones, BRDF
 // normalisation.
+#include "shaders/shared/sampling.glsl"
+
 #include <algorithm>
 #include <random>
 
 #include "shaders/shared/brdf.glsl"
 #include "shaders/shared/lights.glsl"
-#include "shaders/shared/sampling.glsl"
 #include "test_util.h"
 
 namespace vgi {
@@ -33,7 +34,8 @@ TEST(SharedSampling, BasisIsOrthonormalNearThePoles) {
   expectOrthonormal(makeBasis(glm::vec3(1, 0, -0.0f)));
   std::mt19937 rng(7);
   std::normal_distribution<float> g;
-  for (int i = 0; i < 10000; ++i) expectOrthonormal(makeBasis(glm::normalize(glm::vec3(g(rng), g(rng), g(rng)))));
+  for (int i = 0; i < 10000; ++i)
+    expectOrthonormal(makeBasis(glm::normalize(glm::vec3(g(rng), g(rng), g(rng)))));
 }
 
 TEST(SharedSampling, CosineSamplingAtPoleAndHorizon) {
@@ -49,7 +51,9 @@ TEST(SharedSampling, CosineSamplingAtPoleAndHorizon) {
   // Mean of cos θ under a cosine density is 2/3.
   double sum = 0;
   const int n = 200000;
-  for (int i = 0; i < n; ++i) sum += cosineSampleHemisphere({uintToUnitFloat(pcgHash(2u * i)), uintToUnitFloat(pcgHash(2u * i + 1u))}).z;
+  for (int i = 0; i < n; ++i)
+    sum +=
+        cosineSampleHemisphere({uintToUnitFloat(pcgHash(2u * i)), uintToUnitFloat(pcgHash(2u * i + 1u))}).z;
   EXPECT_NEAR(sum / n, 2.0 / 3.0, 2e-3);
 }
 
@@ -103,7 +107,8 @@ TEST(SharedSampling, BlockRotationsDifferPerBlockAndFrameAndCoverTheSquare) {
       ASSERT_TRUE(r.x >= 0.0f && r.x < 1.0f && r.y >= 0.0f && r.y < 1.0f);
       ++cells[int(r.y * 4)][int(r.x * 4)];
     }
-  // 4096 offsets in 16 cells: 256 expected each (σ ≈ 15.5); ±64 is 4σ. The hash is fixed, so this is deterministic.
+  // 4096 offsets in 16 cells: 256 expected each (σ ≈ 15.5); ±64 is 4σ. The hash is fixed, so this is
+  // deterministic.
   for (auto& row : cells)
     for (int c : row) EXPECT_NEAR(c, 256, 64);
 }
@@ -122,7 +127,8 @@ TEST(SharedBrdf, LambertSamplingWeightIsTheAlbedo) {
   glm::vec3 n = glm::normalize(glm::vec3(0.3f, 0.2f, 0.9f));
   glm::vec3 wo = glm::normalize(glm::vec3(-0.2f, 0.4f, 0.8f));
   for (int i = 0; i < 1000; ++i) {
-    glm::vec3 u(uintToUnitFloat(pcgHash(3u * i)), uintToUnitFloat(pcgHash(3u * i + 1u)), uintToUnitFloat(pcgHash(3u * i + 2u)));
+    glm::vec3 u(uintToUnitFloat(pcgHash(3u * i)), uintToUnitFloat(pcgHash(3u * i + 1u)),
+                uintToUnitFloat(pcgHash(3u * i + 2u)));
     glm::vec3 wi = sampleBrdf(m, n, wo, u);
     float pdf = brdfPdf(m, n, wo, wi);
     if (dot(wi, n) <= 1e-4f) continue;

@@ -59,7 +59,8 @@ TEST(Scene, JsonSceneWithDynamicMeshAndPresets) {
   std::string path = testing::TempDir() + "/dyn.json";
   std::ofstream(path) << R"({
     "meshes": [ {"path": "builtin:cornell"},
-                {"path": ")" << test::dataPath("triangle.gltf") << R"(", "material": "gold", "dynamic": true,
+                {"path": ")"
+                      << test::dataPath("triangle.gltf") << R"(", "material": "gold", "dynamic": true,
                  "keyframes": [ {"time": 0, "translate": [0, 0, 0]},
                                 {"time": 1, "translate": [1, 0, 0], "rotate": [90, 0, 1, 0]} ] } ],
     "materials": { "gold": {"albedo": [0.5, 0.4, 0.1], "ks": [0.3, 0.3, 0.3], "exponent": 50},
@@ -96,7 +97,8 @@ TEST(Scene, FlattenGivesFiniteNormals) {
 }
 
 TEST(Scene, ProjectSceneFilesLoadWhenTheirDataIsPresent) {
-  for (const char* name : {"cornell-original.json", "sibenik.json", "bunny.json", "dragon.json", "cornell-bunny.json"}) {
+  for (const char* name :
+       {"cornell-original.json", "sibenik.json", "bunny.json", "dragon.json", "cornell-bunny.json"}) {
     std::string p = std::string(VGI_TEST_DATA) + "/../../scenes/" + name;
     std::ifstream in(p);
     ASSERT_TRUE(in.good()) << p;

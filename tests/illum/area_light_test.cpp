@@ -69,7 +69,6 @@ double expectedFloorMean(int size) {
   return sum / (size * size);
 }
 
-
 }  // namespace
 
 TEST(Emitters, SamplingFollowsPowerAndCoversEachTriangleUniformly) {

@@ -20,7 +20,8 @@ TEST(DirectModule, MatchesTheEmbreeDirectReferenceOnTheCornellBox) {
   ImageDiff d = compareImages(gl.result.image, ref.result.image);
   EXPECT_LT(d.relMse, 0.01);
   EXPECT_GT(d.ssim, 0.95);
-  for (const char* key : {"method", "scene", "width", "height", "spp", "gl_renderer", "timings_ms", "total_ms", "params"})
+  for (const char* key :
+       {"method", "scene", "width", "height", "spp", "gl_renderer", "timings_ms", "total_ms", "params"})
     EXPECT_TRUE(gl.stats.contains(key)) << key;
   EXPECT_TRUE(gl.stats["timings_ms"].contains("shade"));
 }
@@ -30,7 +31,8 @@ TEST(DirectModule, MatchesTheEmbreeDirectReferenceOnTheCornellBox) {
 TEST(DirectModule, PointAndDirectionalShadowsMatchTheReference) {
   std::string path = testing::TempDir() + "/open.json";
   std::ofstream(path) << R"({
-    "meshes": [ {"path": ")" << test::dataPath("open_scene.obj") << R"("} ],
+    "meshes": [ {"path": ")"
+                      << test::dataPath("open_scene.obj") << R"("} ],
     "lights": [ {"type": "point", "position": [1.5, 2.5, 1.0], "intensity": [3, 3, 3]},
                 {"type": "directional", "direction": [-0.4, -1, -0.3], "irradiance": [0.6, 0.5, 0.4]},
                 {"type": "spot", "position": [-1, 2, 1], "direction": [0.3, -1, -0.3], "intensity": 4,
@@ -107,13 +109,14 @@ TEST(DirectModule, EnvironmentMapOrientationMatchesTheReference) {
   std::string dir = testing::TempDir();
   writeImage(env, dir + "/env_uv.exr");
   std::ofstream(dir + "/env_scene.json") << R"({
-    "meshes": [ {"path": ")" << test::dataPath("triangle.gltf") << R"("} ],
+    "meshes": [ {"path": ")" << test::dataPath("triangle.gltf")
+                                         << R"("} ],
     "lights": [ {"type": "point", "position": [0, 0, 5], "intensity": 1} ],
     "environment": {"map": "env_uv.exr", "scale": 2},
     "camera": {"position": [0, 0, 0], "target": [0.3, 0.4, -1], "fov_deg": 120} })";
   Scene s = loadScene(dir + "/env_scene.json");
   EXPECT_NEAR(s.environmentRadiance({0, 1, 0}).y, 2.0f * (1.0f - 0.5f / 32), 1e-4f);  // zenith: top row
-  EXPECT_NEAR(s.environmentRadiance({0, 0, -1}).x, 2.0f * 0.5f, 0.02f);             // −z: u = ½
+  EXPECT_NEAR(s.environmentRadiance({0, 0, -1}).x, 2.0f * 0.5f, 0.02f);               // −z: u = ½
   RenderOutput gl = render(dir + "/env_scene.json", "direct", {}, 48, 4);
   RenderOutput ref = render(dir + "/env_scene.json", "reference", {"integrator=direct"}, 48, 16);
   EXPECT_LT(compareImages(gl.result.image, ref.result.image).relMse, 0.01);

@@ -2,9 +2,10 @@
 // lookup functions the GLSL passes run (shaders/shared/light_maps.glsl): every
 // point a light can see falls inside the face the lookup picks, and distances
 // and texel sizes follow the face's projection.
+#include "illum/light_maps.h"
+
 #include <random>
 
-#include "illum/light_maps.h"
 #include "test_util.h"
 
 namespace vgi {
@@ -33,7 +34,8 @@ TEST(LightMaps, EveryVisiblePointProjectsIntoTheFaceTheLookupPicks) {
   const Bounds b = cube(2.0f);
   const glm::vec3 down = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
   std::vector<Light> lights = {makeLight(LightType::Point, down, 90), makeLight(LightType::Spot, down, 40),
-                               makeLight(LightType::Spot, down, 80), makeLight(LightType::Directional, down, 90)};
+                               makeLight(LightType::Spot, down, 80),
+                               makeLight(LightType::Directional, down, 90)};
   LightFaceLayout layout = layoutLightFaces(lights, b, 512);
   ASSERT_EQ(layout.ranges.size(), 4u);
   EXPECT_EQ(layout.ranges[0].y, 6);  // point: cube
@@ -47,8 +49,8 @@ TEST(LightMaps, EveryVisiblePointProjectsIntoTheFaceTheLookupPicks) {
     glm::vec3 p(u(rng), u(rng), u(rng));
     for (size_t l = 0; l < lights.size(); ++l) {
       const glm::ivec4 r = layout.ranges[l];
-      if (lights[l].type == LightType::Spot &&
-          glm::dot(glm::normalize(p - lights[l].position), down) < std::cos(glm::radians(lights[l].coneHalfAngleDeg)))
+      if (lights[l].type == LightType::Spot && glm::dot(glm::normalize(p - lights[l].position), down) <
+                                                   std::cos(glm::radians(lights[l].coneHalfAngleDeg)))
         continue;  // outside the cone: never lit, never looked up
       int f = lightMapFace(layout.faces[size_t(r.x)], r.x, r.y, p);
       ASSERT_GE(f, r.x);
@@ -84,8 +86,10 @@ TEST(LightMaps, CubeFacesOutsideASpotConeAreNotDrawn) {
     Light light;
     int drawn;
   };
-  const Case cases[] = {{makeLight(LightType::Spot, {0, -1, 0}, 90), 5}, {makeLight(LightType::Spot, {1, 0, 0}, 61), 5},
-                        {makeLight(LightType::Spot, tilted, 70), 5},     {makeLight(LightType::Spot, tilted, 135), 6},
+  const Case cases[] = {{makeLight(LightType::Spot, {0, -1, 0}, 90), 5},
+                        {makeLight(LightType::Spot, {1, 0, 0}, 61), 5},
+                        {makeLight(LightType::Spot, tilted, 70), 5},
+                        {makeLight(LightType::Spot, tilted, 135), 6},
                         {makeLight(LightType::Point, {0, -1, 0}, 90), 6}};
   for (const Case& c : cases) {
     LightFaceLayout layout = layoutLightFaces({c.light}, b, 64);
@@ -97,7 +101,8 @@ TEST(LightMaps, CubeFacesOutsideASpotConeAreNotDrawn) {
       drawn += layout.drawn[size_t(f)] ? 1 : 0;
       if (layout.drawn[size_t(f)]) continue;
       const glm::vec3 axis = glm::vec3(layout.faces[size_t(f)].axisTexel);
-      const glm::vec3 u = std::abs(axis.x) > 0.5f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0), v = glm::cross(axis, u);
+      const glm::vec3 u = std::abs(axis.x) > 0.5f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0),
+                      v = glm::cross(axis, u);
       for (int i = 0; i <= 32; ++i)
         for (int j = 0; j <= 32; ++j) {
           glm::vec3 d = glm::normalize(axis + (i / 16.0f - 1.0f) * u + (j / 16.0f - 1.0f) * v);
@@ -159,9 +164,9 @@ TEST(LightMaps, PlaneDistanceAtTexelCentreIsExact) {
 }
 
 TEST(LightMaps, BackProjectionEpsilonFollowsTheRule) {
-  EXPECT_FLOAT_EQ(backProjectionEpsilon(0.1f, 0.01f, 1.0f), 0.1f);     // voxel-bound
-  EXPECT_FLOAT_EQ(backProjectionEpsilon(0.01f, 0.05f, 0.5f), 0.1f);    // texel / cos α
-  EXPECT_FLOAT_EQ(backProjectionEpsilon(0.01f, 0.05f, 0.0f), 0.5f);    // cos α clamped at 0.1
+  EXPECT_FLOAT_EQ(backProjectionEpsilon(0.1f, 0.01f, 1.0f), 0.1f);   // voxel-bound
+  EXPECT_FLOAT_EQ(backProjectionEpsilon(0.01f, 0.05f, 0.5f), 0.1f);  // texel / cos α
+  EXPECT_FLOAT_EQ(backProjectionEpsilon(0.01f, 0.05f, 0.0f), 0.5f);  // cos α clamped at 0.1
 }
 
 }  // namespace vgi

@@ -1,10 +1,11 @@
 // The Embree reference against analytic answers.
+#include "illum/reference.h"
+
 #include <cmath>
 
 #include "core/progress.h"
 #include "core/scene_loader.h"
 #include "illum/method.h"
-#include "illum/reference.h"
 #include "illum/sample_loop.h"
 #include "test_util.h"
 
@@ -85,7 +86,8 @@ TEST(Reference, DeltaLightsOnLambertPlaneMatchTheFormula) {
     RenderResult r = renderRef(s, {"integrator=direct"}, W, W, 64);
     // Compare with the formula box-filtered over each pixel (8×8 sub-samples);
     // pixels crossing the spot's cone edge are skipped.
-    const glm::vec3 fwd(0, -1, 0), right = glm::normalize(glm::cross(fwd, s.camera.up)), up = glm::cross(right, fwd);
+    const glm::vec3 fwd(0, -1, 0), right = glm::normalize(glm::cross(fwd, s.camera.up)),
+                                   up = glm::cross(right, fwd);
     const float t = std::tan(glm::radians(25.0f));
     const float edge = std::cos(glm::radians(60.0f));
     auto radiance = [&](float sx, float sy, bool& nearEdge) {
@@ -107,7 +109,8 @@ TEST(Reference, DeltaLightsOnLambertPlaneMatchTheFormula) {
         bool nearEdge = false;
         double expected = 0;
         for (int j = 0; j < 8; ++j)
-          for (int i = 0; i < 8; ++i) expected += radiance(x + (i + 0.5f) / 8, y + (j + 0.5f) / 8, nearEdge) / 64.0;
+          for (int i = 0; i < 8; ++i)
+            expected += radiance(x + (i + 0.5f) / 8, y + (j + 0.5f) / 8, nearEdge) / 64.0;
         if (nearEdge) continue;
         // Per pixel: random jitter leaves Monte Carlo noise on the pixel integral.
         EXPECT_NEAR(r.image.at(x, y).x, expected, 0.06 * expected + 1e-6) << x << "," << y;
@@ -164,7 +167,7 @@ TEST(Reference, ParametersOfOtherIntegratorsAreRejected) {
   test::expectError([&] { createReferenceMethod(p, s); }, {"maxdepth", "integrator=ao"});
   ParamSet docs;
   createReferenceMethod(docs, s);
-  EXPECT_EQ(docs.docs().size(), 9u);  // all parameters documented
+  EXPECT_EQ(docs.docs().size(), 9u);                 // all parameters documented
   EXPECT_FALSE(docs.resolved().contains("radius"));  // only the path integrator's resolved
   ParamSet q;
   q.setFromString("integrator=path");

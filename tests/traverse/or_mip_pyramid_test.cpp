@@ -2,13 +2,14 @@
 // is set at level l iff some level-0 column of the 2^l × 2^l block below has
 // it); the GPU build must equal the CPU build bit for bit. Grids are odd-sized
 // and deep on purpose (edges with missing children, several slabs).
+#include "traverse/or_mip_pyramid.h"
+
 #include <random>
 
 #include "core/gl_context.h"
 #include "core/shader_library.h"
 #include "test_util.h"
 #include "traverse/gl_ray_tracer.h"
-#include "traverse/or_mip_pyramid.h"
 
 namespace vgi {
 
@@ -29,7 +30,8 @@ BinaryGrid randomGrid(glm::uvec3 res, double density, uint32_t seed) {
 }  // namespace
 
 TEST(OrMipPyramid, EveryLevelIsTheOrOfItsBlock) {
-  for (glm::uvec3 res : {glm::uvec3(1, 1, 128), glm::uvec3(5, 3, 128), glm::uvec3(37, 20, 256), glm::uvec3(16, 16, 512)}) {
+  for (glm::uvec3 res :
+       {glm::uvec3(1, 1, 128), glm::uvec3(5, 3, 128), glm::uvec3(37, 20, 256), glm::uvec3(16, 16, 512)}) {
     BinaryGrid g = randomGrid(res, 0.004, res.x * 7 + res.y);
     OrMipPyramid p(g);
     ASSERT_EQ(p.levelSize(p.levels() - 1), glm::uvec2(1));
@@ -40,8 +42,10 @@ TEST(OrMipPyramid, EveryLevelIsTheOrOfItsBlock) {
           for (uint32_t z = 0; z < res.z; ++z) {
             bool any = false;
             for (uint32_t by = y << l; by < std::min(res.y, (y + 1) << l) && !any; ++by)
-              for (uint32_t bx = x << l; bx < std::min(res.x, (x + 1) << l) && !any; ++bx) any = g.test(bx, by, z);
-            ASSERT_EQ(p.test(l, x, y, z), any) << "level " << l << " column " << x << "," << y << " cell " << z;
+              for (uint32_t bx = x << l; bx < std::min(res.x, (x + 1) << l) && !any; ++bx)
+                any = g.test(bx, by, z);
+            ASSERT_EQ(p.test(l, x, y, z), any)
+                << "level " << l << " column " << x << "," << y << " cell " << z;
           }
     }
   }

@@ -4,24 +4,25 @@
 // double-precision ray–box test; GLSL on llvmpipe must equal the C++ build
 // bit for bit; no NaN and no loop beyond its proven bound; 10^7 adversarial
 // rays finish.
+#include "traverse/ray_tracers.h"
+
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include "core/gl_context.h"
 #include "core/profiler.h"
+#include "core/scene_loader.h"
 #include "core/shader_library.h"
 #include "shaders/shared/trace_hierarchical.glsl"
+#include "shaders/shared/tracer_ids.glsl"
 #include "test_util.h"
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/or_mip_pyramid.h"
-#include "traverse/ray_tracers.h"
-#include "shaders/shared/tracer_ids.glsl"
-#include "core/scene_loader.h"
 #include "traverse/ray_population.h"
 #include "voxelize/exact_voxelizer.h"
-#include "voxelize/voxelizer.h"
 #include "voxelize/voxel_grid.h"
+#include "voxelize/voxelizer.h"
 
 namespace vgi {
 
@@ -39,7 +40,8 @@ struct TestGrid {
 // land exactly on faces), non-cubic cells, and a rotated, offset box.
 std::vector<TestGrid> testGrids() {
   std::vector<TestGrid> grids;
-  auto add = [&](std::string name, glm::uvec3 res, glm::vec3 extent, glm::mat3 axes, glm::vec3 origin, double density) {
+  auto add = [&](std::string name, glm::uvec3 res, glm::vec3 extent, glm::mat3 axes, glm::vec3 origin,
+                 double density) {
     GridBox b;
     b.resolution = res;
     b.extent = extent;
@@ -98,8 +100,9 @@ std::vector<TraceRay> adversarialRays(const GridBox& box, size_t n, uint32_t see
     glm::vec3 d(u01(rng) * 2 - 1, u01(rng) * 2 - 1, u01(rng) * 2 - 1);
     int axis = pick(rng) % 3;
     switch (kind) {
-      case 0: break;  // random inside
-      case 1:         // outside, up to one box away on every side
+      case 0:
+        break;  // random inside
+      case 1:   // outside, up to one box away on every side
         for (int a = 0; a < 3; ++a) q[a] = (u01(rng) * 3 - 1) * res[a];
         break;
       case 2:  // on a face, edge or corner of a voxel
@@ -107,7 +110,8 @@ std::vector<TraceRay> adversarialRays(const GridBox& box, size_t n, uint32_t see
           if (pick(rng) % 2) q[a] = std::floor(q[a]);
         break;
       case 3:  // axis-parallel, other components +0 or −0
-        d = glm::vec3(pick(rng) % 2 ? 0.0f : -0.0f, pick(rng) % 2 ? 0.0f : -0.0f, pick(rng) % 2 ? 0.0f : -0.0f);
+        d = glm::vec3(pick(rng) % 2 ? 0.0f : -0.0f, pick(rng) % 2 ? 0.0f : -0.0f,
+                      pick(rng) % 2 ? 0.0f : -0.0f);
         d[axis] = pick(rng) % 2 ? 1.0f : -1.0f;
         if (pick(rng) % 2) q = glm::floor(q);
         break;
@@ -141,11 +145,21 @@ std::vector<TraceRay> adversarialRays(const GridBox& box, size_t n, uint32_t see
     r.dir = glm::normalize(wd);
     if (!std::isfinite(r.dir.x)) r.dir = box.axes[axis];
     switch (pick(rng) % 6) {
-      case 0: r.tmax = 0.0f; break;
-      case 1: r.tmax = kInf; break;
-      case 2: r.tmax = 1e30f; break;
-      case 3: r.tmax = u01(rng) * 0.05f * diag; break;
-      default: r.tmax = u01(rng) * 2.0f * diag; break;
+      case 0:
+        r.tmax = 0.0f;
+        break;
+      case 1:
+        r.tmax = kInf;
+        break;
+      case 2:
+        r.tmax = 1e30f;
+        break;
+      case 3:
+        r.tmax = u01(rng) * 0.05f * diag;
+        break;
+      default:
+        r.tmax = u01(rng) * 2.0f * diag;
+        break;
     }
   }
   return rays;
@@ -156,8 +170,8 @@ struct Mismatch {
   std::string first;
 };
 
-void compare(const std::vector<TraceResult>& a, const std::vector<TraceResult>& b, const std::vector<TraceRay>& rays,
-             const GridBox& box, bool compareSteps, Mismatch& m) {
+void compare(const std::vector<TraceResult>& a, const std::vector<TraceResult>& b,
+             const std::vector<TraceRay>& rays, const GridBox& box, bool compareSteps, Mismatch& m) {
   const float tol = 1e-5f * std::min(box.voxelSize().x, std::min(box.voxelSize().y, box.voxelSize().z));
   for (size_t i = 0; i < a.size(); ++i) {
     bool same = a[i].hit == b[i].hit &&
@@ -166,11 +180,12 @@ void compare(const std::vector<TraceResult>& a, const std::vector<TraceResult>& 
     if (!same && m.count++ == 0) {
       std::ostringstream s;
       s.precision(9);
-      s << "ray " << i << " o=(" << rays[i].origin.x << "," << rays[i].origin.y << "," << rays[i].origin.z << ") d=("
-        << rays[i].dir.x << "," << rays[i].dir.y << "," << rays[i].dir.z << ") tmax=" << rays[i].tmax << ": hit "
-        << a[i].hit << "/" << b[i].hit << " t " << a[i].t << "/" << b[i].t << " voxel (" << a[i].voxel.x << ","
-        << a[i].voxel.y << "," << a[i].voxel.z << ")/(" << b[i].voxel.x << "," << b[i].voxel.y << "," << b[i].voxel.z
-        << ") steps " << a[i].steps << "/" << b[i].steps;
+      s << "ray " << i << " o=(" << rays[i].origin.x << "," << rays[i].origin.y << "," << rays[i].origin.z
+        << ") d=(" << rays[i].dir.x << "," << rays[i].dir.y << "," << rays[i].dir.z
+        << ") tmax=" << rays[i].tmax << ": hit " << a[i].hit << "/" << b[i].hit << " t " << a[i].t << "/"
+        << b[i].t << " voxel (" << a[i].voxel.x << "," << a[i].voxel.y << "," << a[i].voxel.z << ")/("
+        << b[i].voxel.x << "," << b[i].voxel.y << "," << b[i].voxel.z << ") steps " << a[i].steps << "/"
+        << b[i].steps;
       m.first = s.str();
     }
   }
@@ -239,8 +254,10 @@ TEST(RayTracers, DdaMatchesExactRayBoxOverlap) {
       const glm::dvec3 cell = glm::dvec3(tg.box.voxelSize());
       for (int i = 0; i < 500; ++i) {
         // Aim near the voxel from a random point in the grid.
-        glm::dvec3 qo(u01(rng) * tg.box.resolution.x, u01(rng) * tg.box.resolution.y, u01(rng) * tg.box.resolution.z);
-        glm::dvec3 qt = glm::dvec3(v) + glm::dvec3(u01(rng) * 1.6 - 0.3, u01(rng) * 1.6 - 0.3, u01(rng) * 1.6 - 0.3);
+        glm::dvec3 qo(u01(rng) * tg.box.resolution.x, u01(rng) * tg.box.resolution.y,
+                      u01(rng) * tg.box.resolution.z);
+        glm::dvec3 qt =
+            glm::dvec3(v) + glm::dvec3(u01(rng) * 1.6 - 0.3, u01(rng) * 1.6 - 0.3, u01(rng) * 1.6 - 0.3);
         glm::dvec3 lo = glm::dvec3(tg.box.origin), wo = lo + glm::dmat3(tg.box.axes) * (qo * cell);
         glm::dvec3 wt = lo + glm::dmat3(tg.box.axes) * (qt * cell);
         glm::dvec3 dir = glm::normalize(wt - wo);
@@ -261,7 +278,8 @@ TEST(RayTracers, DdaMatchesExactRayBoxOverlap) {
         if (std::abs(overlap) < eps) continue;
         TraceResult r = dda->trace(ray), rh = hier->trace(ray);
         ++checked;
-        ASSERT_EQ(r.hit, overlap > 0) << tg.name << " trial " << trial << " ray " << i << " overlap " << overlap;
+        ASSERT_EQ(r.hit, overlap > 0)
+            << tg.name << " trial " << trial << " ray " << i << " overlap " << overlap;
         ASSERT_EQ(rh.hit, r.hit);
         if (r.hit) {
           ++hits;
@@ -339,9 +357,12 @@ TEST(RayTracers, HardCasesHaveTheDefinedAnswers) {
   }
   // Two-point visibility: the same loop ending at the second point.
   shared::PyramidParams p = pyramidParams(pyramid);
-  EXPECT_FALSE(shared::visibleHierarchical(p, {1.5f, 2.5f, 0.0f}, {1.5f, 2.5f, 40.0f}, pyramid.words().data()));
-  EXPECT_TRUE(shared::visibleHierarchical(p, {1.5f, 2.5f, 0.0f}, {1.5f, 2.5f, 30.5f}, pyramid.words().data()));
-  EXPECT_TRUE(shared::visibleHierarchical(p, {0.5f, 0.5f, 0.0f}, {0.5f, 3.5f, 900.0f}, pyramid.words().data()));
+  EXPECT_FALSE(
+      shared::visibleHierarchical(p, {1.5f, 2.5f, 0.0f}, {1.5f, 2.5f, 40.0f}, pyramid.words().data()));
+  EXPECT_TRUE(
+      shared::visibleHierarchical(p, {1.5f, 2.5f, 0.0f}, {1.5f, 2.5f, 30.5f}, pyramid.words().data()));
+  EXPECT_TRUE(
+      shared::visibleHierarchical(p, {0.5f, 0.5f, 0.0f}, {0.5f, 3.5f, 900.0f}, pyramid.words().data()));
 }
 
 TEST(RayTracers, GlslOnLlvmpipeEqualsCppBitForBit) {
@@ -366,12 +387,21 @@ TEST(RayTracers, GlslOnLlvmpipeEqualsCppBitForBit) {
     }
   }
   EXPECT_EQ(gl->errorCount(), 0);
-  test::expectError([&] { std::vector<TraceRay> r; ShaderDefines d; addTracerDefine(d, "embree"); },
-                    {"tracer 'embree'", "no GLSL"});
-  test::expectError([] { findTracer("octree"); }, {"tracer 'octree'", "hierarchical", "dda", "march", "embree"});
+  test::expectError(
+      [&] {
+        std::vector<TraceRay> r;
+        ShaderDefines d;
+        addTracerDefine(d, "embree");
+      },
+      {"tracer 'embree'", "no GLSL"});
+  test::expectError([] { findTracer("octree"); },
+                    {"tracer 'octree'", "hierarchical", "dda", "march", "embree"});
   // An id that names no tracer is a compile error in GLSL, not a silent `march`.
-  test::expectError([&] { shaders.program({"traverse/trace_rays.comp.glsl"}, {{"VGI_TRACER", "7"}}); },
-                    {"trace_rays.comp.glsl", "unknown VGI_TRACER"});
+  test::expectError(
+      [&] {
+        shaders.program({"traverse/trace_rays.comp.glsl"}, {{"VGI_TRACER", "7"}});
+      },
+      {"trace_rays.comp.glsl", "unknown VGI_TRACER"});
   EXPECT_EQ(findTracer("dda").define, VGI_TRACER_DDA);
 }
 
@@ -450,9 +480,9 @@ TEST(RayTracers, ResumedPastAHitVoxelHierarchicalEqualsDda) {
           std::ostringstream s;
           s.precision(9);
           s << "step " << k << " o=(" << ray.origin.x << "," << ray.origin.y << "," << ray.origin.z << ") d=("
-            << ray.dir.x << "," << ray.dir.y << "," << ray.dir.z << ") tmax " << ray.tmax << ": t " << h.t << "/"
-            << d.t << " voxel (" << h.voxel.x << "," << h.voxel.y << "," << h.voxel.z << ")/(" << d.voxel.x << ","
-            << d.voxel.y << "," << d.voxel.z << ")";
+            << ray.dir.x << "," << ray.dir.y << "," << ray.dir.z << ") tmax " << ray.tmax << ": t " << h.t
+            << "/" << d.t << " voxel (" << h.voxel.x << "," << h.voxel.y << "," << h.voxel.z << ")/("
+            << d.voxel.x << "," << d.voxel.y << "," << d.voxel.z << ")";
           first = s.str();
         }
         break;

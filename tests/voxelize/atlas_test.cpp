@@ -1,11 +1,12 @@
 // Atlas generation: every triangle gets UVs, nothing flips or overlaps anywhere
 // in the atlas, density follows world area, and the cache returns the same atlas.
+#include "voxelize/atlas.h"
+
 #include <filesystem>
 #include <random>
 
 #include "core/scene_loader.h"
 #include "test_util.h"
-#include "voxelize/atlas.h"
 #include "voxelize/atlas_packing.h"
 #include "voxelize/chart_parametrization.h"
 
@@ -62,9 +63,11 @@ TEST(Atlas, SphereChartsAreValidWithUniformDensity) {
   // Texel density: texels per world area ≈ 1 / texel², per triangle within the stretch bound.
   double uvArea = 0, worldArea = 0;
   for (size_t i = 0; i < m.t.size(); ++i) {
-    glm::vec2 e1 = (a.uv[3 * i + 1] - a.uv[3 * i]) * float(a.resolution), e2 = (a.uv[3 * i + 2] - a.uv[3 * i]) * float(a.resolution);
+    glm::vec2 e1 = (a.uv[3 * i + 1] - a.uv[3 * i]) * float(a.resolution),
+              e2 = (a.uv[3 * i + 2] - a.uv[3 * i]) * float(a.resolution);
     double tex = 0.5 * std::abs(double(e1.x) * e2.y - double(e1.y) * e2.x);
-    double w = 0.5 * glm::length(glm::cross(m.p[m.t[i][1]] - m.p[m.t[i][0]], m.p[m.t[i][2]] - m.p[m.t[i][0]]));
+    double w =
+        0.5 * glm::length(glm::cross(m.p[m.t[i][1]] - m.p[m.t[i][0]], m.p[m.t[i][2]] - m.p[m.t[i][0]]));
     uvArea += tex;
     worldArea += w;
     EXPECT_GT(tex / (w / (0.01 * 0.01)), 0.2) << i;
@@ -94,8 +97,11 @@ TEST(Atlas, ManualResolutionAndCache) {
 TEST(Atlas, NonManifoldAndDuplicateFacesStillGetUvs) {
   TriMesh m;
   m.p = {{0, 0, 0}, {1, 0, 0}, {0.5f, 1, 0}, {0.5f, -1, 0}, {0.5f, 0, 1}, {0.5f, 0, -1}};
-  m.t = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}, {1, 0, 5},  // four faces on edge 0–1 (complex edge)
-         {0, 1, 2}};                                   // and a duplicate face
+  m.t = {{0, 1, 2},
+         {1, 0, 3},
+         {0, 1, 4},
+         {1, 0, 5},   // four faces on edge 0–1 (complex edge)
+         {0, 1, 2}};  // and a duplicate face
   AtlasOptions o;
   o.texelWorld = 0.05f;
   MeshAtlas a = buildAtlas(m.p, m.t, o);
@@ -118,8 +124,9 @@ TEST(Atlas, ShelfPackingNeverOverlaps) {
     EXPECT_LE(p.offsets[i].x + sizes[i].x, p.width);
     EXPECT_LE(p.offsets[i].y + sizes[i].y, p.height);
     for (size_t j = i + 1; j < sizes.size(); ++j) {
-      bool sep = p.offsets[i].x + sizes[i].x <= p.offsets[j].x || p.offsets[j].x + sizes[j].x <= p.offsets[i].x ||
-                 p.offsets[i].y + sizes[i].y <= p.offsets[j].y || p.offsets[j].y + sizes[j].y <= p.offsets[i].y;
+      bool sep =
+          p.offsets[i].x + sizes[i].x <= p.offsets[j].x || p.offsets[j].x + sizes[j].x <= p.offsets[i].x ||
+          p.offsets[i].y + sizes[i].y <= p.offsets[j].y || p.offsets[j].y + sizes[j].y <= p.offsets[i].y;
       ASSERT_TRUE(sep) << i << " " << j;
     }
   }

@@ -1,21 +1,21 @@
 // The GL atlas voxelizer (llvmpipe in CI): its insertion equals the CPU build of
 // the same kernel bit for bit, and its grid is measured against the exact one.
+#include "voxelize/atlas_voxelizer.h"
+
 #include <fstream>
+#include <random>
 
 #include "core/gl_context.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
+#include "shaders/shared/sampling.glsl"
 #include "test_util.h"
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/or_mip_pyramid.h"
-#include "voxelize/atlas_voxelizer.h"
+#include "voxelize/conservative_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"
 #include "voxelize/grid_metrics.h"
-#include "shaders/shared/sampling.glsl"
 #include "voxelize/slicemap_voxelizer.h"
-#include "voxelize/conservative_voxelizer.h"
-
-#include <random>
 
 namespace vgi {
 
@@ -99,8 +99,15 @@ TEST(AtlasVoxelizer, SliversStillProduceTexelsAndVoxels) {
   Scene s;
   // Two long needles (width 1e-4 of their length) and a normal triangle.
   test::addMesh(s,
-                {{0, 0, 0}, {1, 0.3f, 0.2f}, {1, 0.3001f, 0.2f}, {0, 1, 1}, {0.9f, 0.1f, 0.95f},
-                 {0.9f, 0.1f, 0.9501f}, {0.2f, 0.8f, 0.1f}, {0.5f, 0.9f, 0.3f}, {0.3f, 0.6f, 0.5f}},
+                {{0, 0, 0},
+                 {1, 0.3f, 0.2f},
+                 {1, 0.3001f, 0.2f},
+                 {0, 1, 1},
+                 {0.9f, 0.1f, 0.95f},
+                 {0.9f, 0.1f, 0.9501f},
+                 {0.2f, 0.8f, 0.1f},
+                 {0.5f, 0.9f, 0.3f},
+                 {0.3f, 0.6f, 0.5f}},
                 {{0, 1, 2}, {3, 4, 5}, {6, 7, 8}});
   VoxelizeRequest r = f.request(s, {64, 64, 128});
   Profiler prof(true);
@@ -148,8 +155,8 @@ TEST(AtlasVoxelizer, SliversStillProduceTexelsAndVoxels) {
           }
           if (t1 - t0 > 0 && (t1 - t0) * len > 1.5f * std::sqrt(2.0f) * texel) {
             ++checked;
-            EXPECT_TRUE(atlas.test(x, y, z)) << "needle crosses " << x << "," << y << "," << z << " with chord "
-                                             << (t1 - t0) * len / texel << " texels";
+            EXPECT_TRUE(atlas.test(x, y, z)) << "needle crosses " << x << "," << y << "," << z
+                                             << " with chord " << (t1 - t0) * len / texel << " texels";
           }
         }
   }
@@ -182,9 +189,17 @@ TEST(SlicemapVoxelizer, FacingTrianglesAreFoundEdgeOnOnesAreNot) {
   Scene s;
   Mesh& mesh = test::addMesh(s, {}, {});
   // A quad facing +z (normal along the depth axis) and one lying in a plane that contains z.
-  mesh.positions = {{0.05f, 0.05f, 0.3f}, {0.95f, 0.05f, 0.3f}, {0.95f, 0.95f, 0.3f}, {0.05f, 0.95f, 0.3f},
-                    {0.51f, 0.05f, 0.05f}, {0.51f, 0.95f, 0.05f}, {0.51f, 0.95f, 0.95f}, {0.51f, 0.05f, 0.95f},
-                    {0, 0, 0}, {1, 1, 1}, {1, 1.0001f, 1}};  // a needle stretching the box to [0,1]³
+  mesh.positions = {{0.05f, 0.05f, 0.3f},
+                    {0.95f, 0.05f, 0.3f},
+                    {0.95f, 0.95f, 0.3f},
+                    {0.05f, 0.95f, 0.3f},
+                    {0.51f, 0.05f, 0.05f},
+                    {0.51f, 0.95f, 0.05f},
+                    {0.51f, 0.95f, 0.95f},
+                    {0.51f, 0.05f, 0.95f},
+                    {0, 0, 0},
+                    {1, 1, 1},
+                    {1, 1.0001f, 1}};  // a needle stretching the box to [0,1]³
   mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}, {8, 9, 10}};
   VoxelizeRequest r = f.request(s, {64, 64, 128});
   Profiler prof(true);
@@ -256,7 +271,7 @@ TEST(AtlasVoxelizer, ResolutionRuleFindsEveryInteriorCellOfAPlane) {
     plane.positions.push_back(c + q.x * b.t + q.y * b.b);
   plane.triangles = {{0, 1, 2}, {0, 2, 3}};
   VoxelizeRequest r = f.request(s, {64, 64, 128});
-  r.atlasFootprint = 0.0f;  // the rule is about the points themselves
+  r.atlasFootprint = 0.0f;         // the rule is about the points themselves
   r.box.origin = glm::vec3(0.0f);  // a fixed box of cubic cells inside the plane's extent
   r.box.extent = glm::vec3(0.5f, 0.5f, 1.0f);
   BinaryGrid interior = voxelizeExact(s, r.box, 0, 0, kInteriorShrink);
@@ -266,8 +281,10 @@ TEST(AtlasVoxelizer, ResolutionRuleFindsEveryInteriorCellOfAPlane) {
     nlohmann::json stats;
     BinaryGrid got = voxelizeAtlasGl(r, prof, stats);
     GridComparison cmp = compareGrids(got, interior);
-    if (tpv >= 2.0f * std::sqrt(2.0f) - 1e-4f) EXPECT_EQ(cmp.holes(), 0u) << "tpv " << tpv;
-    else EXPECT_GT(cmp.holes(), 0u) << "tpv " << tpv << " should be too sparse";
+    if (tpv >= 2.0f * std::sqrt(2.0f) - 1e-4f)
+      EXPECT_EQ(cmp.holes(), 0u) << "tpv " << tpv;
+    else
+      EXPECT_GT(cmp.holes(), 0u) << "tpv " << tpv << " should be too sparse";
   }
 }
 }  // namespace vgi

@@ -2,11 +2,12 @@
 // separating-axis test: dense point sampling (every sampled point's cell must be
 // set) and a distance bound (every set cell's centre lies within half a cell
 // diagonal of a triangle), plus hand-computed answers.
+#include "voxelize/exact_voxelizer.h"
+
 #include <random>
 
-#include "test_util.h"
-#include "voxelize/exact_voxelizer.h"
 #include "core/scene_loader.h"
+#include "test_util.h"
 #include "voxelize/grid_metrics.h"
 
 namespace vgi {
@@ -67,7 +68,8 @@ void checkAgainstOracles(const std::vector<std::array<glm::vec3, 3>>& tris, glm:
       glm::dvec3 p = glm::dvec3(t[0]) + a * glm::dvec3(t[1] - t[0]) + b * glm::dvec3(t[2] - t[0]);
       if (p.x < 0 || p.y < 0 || p.z < 0 || p.x > res.x || p.y > res.y || p.z > res.z) continue;
       glm::uvec3 c = glm::min(glm::uvec3(glm::floor(p)), res - 1u);
-      ASSERT_TRUE(g.test(c.x, c.y, c.z)) << "sampled point's cell missing: " << c.x << "," << c.y << "," << c.z;
+      ASSERT_TRUE(g.test(c.x, c.y, c.z))
+          << "sampled point's cell missing: " << c.x << "," << c.y << "," << c.z;
     }
   for (uint32_t z = 0; z < res.z; ++z)
     for (uint32_t y = 0; y < res.y; ++y)
@@ -76,7 +78,8 @@ void checkAgainstOracles(const std::vector<std::array<glm::vec3, 3>>& tris, glm:
         double best = 1e30;
         for (auto& t : tris)
           best = std::min(best, pointTriangleDistance(glm::dvec3(x, y, z) + 0.5, t[0], t[1], t[2]));
-        ASSERT_LE(best, std::sqrt(3.0) / 2 + 1e-9) << "cell too far from every triangle: " << x << "," << y << "," << z;
+        ASSERT_LE(best, std::sqrt(3.0) / 2 + 1e-9)
+            << "cell too far from every triangle: " << x << "," << y << "," << z;
       }
 }
 }  // namespace
@@ -155,23 +158,29 @@ TEST(ExactVoxelizer, DepthAcrossWordAndSlabBorders) {
 
 TEST(ExactVoxelizer, HugeSlantedAndSliverTriangles) {
   checkAgainstOracles({{{{-10, -5, -20}, {50, 3, 140}, {7, 40, 60}}}}, {32, 24, 128});
-  checkAgainstOracles({{{{0.1f, 0.1f, 0.1f}, {31.9f, 23.9f, 127.9f}, {31.9f, 23.9001f, 127.9f}}}}, {32, 24, 128});
+  checkAgainstOracles({{{{0.1f, 0.1f, 0.1f}, {31.9f, 23.9f, 127.9f}, {31.9f, 23.9001f, 127.9f}}}},
+                      {32, 24, 128});
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> u(-2, 34);
   std::vector<std::array<glm::vec3, 3>> many;
-  for (int i = 0; i < 40; ++i) many.push_back({{{u(rng), u(rng), u(rng) * 4}, {u(rng), u(rng), u(rng) * 4}, {u(rng), u(rng), u(rng) * 4}}});
+  for (int i = 0; i < 40; ++i)
+    many.push_back(
+        {{{u(rng), u(rng), u(rng) * 4}, {u(rng), u(rng), u(rng) * 4}, {u(rng), u(rng), u(rng) * 4}}});
   checkAgainstOracles(many, {32, 32, 128});
 }
 
 TEST(ExactVoxelizer, NonCubicOrientedGridAndFlatScene) {
   // A rotated grid box: the same triangles expressed in a rotated frame give the same cells.
   // Generic vertices: integer ones put edges exactly on cell edges, where rounding decides.
-  std::vector<std::array<glm::vec3, 3>> tris = {{{{1.37f, 2.21f, 3.53f}, {20.13f, 5.71f, 100.29f}, {9.61f, 30.17f, 50.83f}}}};
+  std::vector<std::array<glm::vec3, 3>> tris = {
+      {{{1.37f, 2.21f, 3.53f}, {20.13f, 5.71f, 100.29f}, {9.61f, 30.17f, 50.83f}}}};
   GridBox box = unitBox({24, 32, 128});
   BinaryGrid ref = voxelizeExact(gridScene(tris), box);
   glm::mat3 R = glm::mat3_cast(glm::angleAxis(0.7f, glm::normalize(glm::vec3(1, 2, 3))));
   std::vector<std::array<glm::vec3, 3>> rotated;
-  for (auto& t : tris) rotated.push_back({R * t[0] + glm::vec3(5, 6, 7), R * t[1] + glm::vec3(5, 6, 7), R * t[2] + glm::vec3(5, 6, 7)});
+  for (auto& t : tris)
+    rotated.push_back(
+        {R * t[0] + glm::vec3(5, 6, 7), R * t[1] + glm::vec3(5, 6, 7), R * t[2] + glm::vec3(5, 6, 7)});
   GridBox rbox = box;
   rbox.axes = R;
   rbox.origin = glm::vec3(5, 6, 7);
@@ -192,9 +201,12 @@ TEST(ExactVoxelizer, ThreadCountDoesNotChangeTheGrid) {
   std::vector<std::array<glm::vec3, 3>> many;
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0, 64);
-  for (int i = 0; i < 500; ++i) many.push_back({{{u(rng), u(rng), u(rng) * 2}, {u(rng), u(rng), u(rng) * 2}, {u(rng), u(rng), u(rng) * 2}}});
+  for (int i = 0; i < 500; ++i)
+    many.push_back(
+        {{{u(rng), u(rng), u(rng) * 2}, {u(rng), u(rng), u(rng) * 2}, {u(rng), u(rng), u(rng) * 2}}});
   Scene s = gridScene(many);
-  EXPECT_EQ(voxelizeExact(s, unitBox({64, 64, 128}), 0, 1).words(), voxelizeExact(s, unitBox({64, 64, 128}), 0, 2).words());
+  EXPECT_EQ(voxelizeExact(s, unitBox({64, 64, 128}), 0, 1).words(),
+            voxelizeExact(s, unitBox({64, 64, 128}), 0, 2).words());
 }
 
 }  // namespace vgi
