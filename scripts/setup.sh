@@ -2,14 +2,15 @@
 # Installs every build and run dependency from Debian packages. Idempotent:
 # packages already present are skipped, so a second run costs seconds.
 set -euo pipefail
-# Toolchain; libraries; Mesa's llvmpipe for EGL (surfaceless) and OSMesa, so the
-# GL code runs on a machine without a GPU. Two packages are here only because
+# Toolchain (clang-format for the suite's format check); libraries; Mesa's
+# llvmpipe for EGL (surfaceless) and OSMesa, so the GL code runs on a machine
+# without a GPU. Two packages are here only because
 # Debian's CMake configs of other packages name their files: OpenImageIO's
 # exported targets reference /usr/bin/iconvert (openimageio-tools), and assimp's
 # link interface names libz.so (zlib1g-dev). Without them configure, then link,
 # fails on a fresh Debian 12 (scripts/check_fresh_machine.sh checks that).
 PKGS=(
-  build-essential cmake ninja-build pkg-config git python3 python3-glad
+  build-essential cmake ninja-build pkg-config git python3 python3-glad clang-format
   libembree-dev libopenimageio-dev openimageio-tools libassimp-dev zlib1g-dev libopenmesh-dev libeigen3-dev
   libglfw3-dev libglm-dev libimgui-dev libcli11-dev nlohmann-json3-dev libgtest-dev
   libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
