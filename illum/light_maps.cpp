@@ -3,7 +3,6 @@
 #include <glad/gl.h>
 
 #include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
 #include "core/gpu_scene.h"
