@@ -14,7 +14,9 @@
 #include <filesystem>
 
 #include "apps/commands.h"
+#include "core/build_info.h"
 #include "core/error.h"
+#include "core/shader_library.h"
 
 namespace {
 
@@ -82,6 +84,10 @@ std::string suggestion(CLI::App& app, int argc, char** argv) {
 int main(int argc, char** argv) {
   CLI::App app{"vgi: atlas-voxelized hierarchical ray-voxel global illumination framework"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", [] {
+    return std::string("vgi ") + vgi::version() + " (" + vgi::gitRevision() + ")\nshaders " +
+           vgi::defaultShaderDir();
+  });
   vgi::app::addRenderCommand(app);
   vgi::app::addInfoCommand(app);
   vgi::app::addDiffCommand(app);

@@ -25,5 +25,7 @@ add_custom_command(
   COMMENT "Generating the GL 4.5 core loader (glad)"
   VERBATIM)
 add_library(vgi_glad STATIC ${GLAD_OUT}/src/gl.c)
-target_include_directories(vgi_glad PUBLIC ${GLAD_OUT}/include)
+target_include_directories(vgi_glad PUBLIC $<BUILD_INTERFACE:${GLAD_OUT}/include>
+                                           $<INSTALL_INTERFACE:${VGI_INSTALL_INCLUDEDIR}>)
+set_target_properties(vgi_glad PROPERTIES EXPORT_NAME glad)
 set_target_properties(vgi_glad PROPERTIES POSITION_INDEPENDENT_CODE ON)

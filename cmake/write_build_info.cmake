@@ -3,7 +3,7 @@ execute_process(COMMAND git -C ${SRC} describe --always --dirty --abbrev=12
 if(NOT rc EQUAL 0 OR rev STREQUAL "")
   set(rev "unknown")
 endif()
-set(content "#include \"core/build_info.h\"\nnamespace vgi { const char* gitRevision() { return \"${rev}\"; } }\n")
+set(content "#include \"core/build_info.h\"\nnamespace vgi { const char* gitRevision() { return \"${rev}\"; }\nconst char* version() { return \"${VERSION}\"; } }\n")
 if(EXISTS ${OUT})
   file(READ ${OUT} old)
 else()

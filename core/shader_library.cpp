@@ -19,6 +19,14 @@ namespace vgi {
 
 std::string defaultShaderDir() {
   if (const char* env = std::getenv("VGI_SHADER_DIR")) return env;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path beside = exe.parent_path().parent_path() / VGI_SHADER_DIR_RELATIVE;
+    if (fs::is_directory(beside / "shared", ec)) return beside.string();
+  }
+  for (const char* dir : {VGI_SHADER_DIR_DEFAULT, VGI_SHADER_DIR_INSTALLED})
+    if (fs::is_directory(fs::path(dir) / "shared", ec)) return dir;
   return VGI_SHADER_DIR_DEFAULT;
 }
 

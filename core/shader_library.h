@@ -14,7 +14,12 @@ namespace vgi {
 
 using ShaderDefines = std::map<std::string, std::string>;
 
-// $VGI_SHADER_DIR, else the source tree's shaders/ folder baked in at build time.
+// Where the shaders are read from at run time, first that exists:
+// $VGI_SHADER_DIR; ../share/vgi/shaders beside the running executable (an
+// installed vgi, or a consumer installed into the same prefix); the source
+// tree's shaders/ baked in at build time; the install prefix's share/vgi/shaders.
+// With none present: $VGI_SHADER_DIR or the source tree (ShaderLibrary then
+// names it in its error).
 std::string defaultShaderDir();
 
 class ShaderLibrary {

@@ -194,6 +194,8 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
   run["params"] = params.resolved();
   run["preset"] = opt.preset;
   run["git_revision"] = gitRevision();
+  run["vgi_version"] = version();
+  run["shader_dir"] = defaultShaderDir();
   run["triangles"] = scene.triangleCount();
   run["degenerate_triangles_dropped"] = scene.report.degenerateTrianglesDropped;
   run["warnings"] = scene.report.warnings;
