@@ -1,5 +1,6 @@
 // vgi diff A B [--json]: error of image A against reference B.
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
 #include "core/image_metrics.h"

@@ -4,8 +4,13 @@
 #include <string>
 #include <vector>
 
-#include "core/image_metrics.h"
-#include "illum/render_job.h"
+// Declarations only: vgi_main.cpp includes this with CLI11 and nothing of the
+// library's (its commands include what they use).
+namespace vgi {
+struct RenderOptions;
+struct DiffOptions;
+struct ImageDiff;
+}  // namespace vgi
 
 namespace vgi::app {
 // Thrown after a Ctrl-C'd command has written what it completed: vgi exits 130.

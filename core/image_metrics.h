@@ -12,7 +12,7 @@
 //   SSIM     Wang et al. 2004 on tone-mapped (clamped, sRGB) luminance, 8×8
 //            Gaussian-free box windows with stride 4 (mean SSIM).
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "core/image.h"
 

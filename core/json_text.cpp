@@ -1,8 +1,14 @@
 #include "core/json_text.h"
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 
 namespace vgi {
+
+std::string jsonText(const nlohmann::json& j, int indent) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 
 namespace {
 struct TooDeep {};

@@ -4,14 +4,12 @@
 // stats file is never left half-written by a name. Values quoted in error
 // messages are cut short: a 10⁶-element array must not become a 2 MB line.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace vgi {
 
-inline std::string jsonText(const nlohmann::json& j, int indent = -1) {
-  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
-}
+std::string jsonText(const nlohmann::json& j, int indent = -1);
 
 // At most `limit` characters of the value, "…" marking a cut. Containers are
 // summarised by their first elements (never dumped whole: a deep or long value

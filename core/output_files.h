@@ -1,7 +1,7 @@
 // Files a command writes: checked (and their folder made) before the work
 // that fills them, so a long render is never lost to a bad path at its end.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace vgi {

@@ -2,6 +2,8 @@
 
 #include <glad/gl.h>
 
+#include <nlohmann/json.hpp>
+
 namespace vgi {
 
 Profiler::~Profiler() {

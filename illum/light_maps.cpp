@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "core/gpu_scene.h"

@@ -3,7 +3,7 @@
 // (position, normal, reflected direct radiance; VGI §5.1) — one 2D array
 // texture per channel, a face table as an SSBO.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "core/scene.h"

@@ -3,7 +3,7 @@
 // density proportional to world area.
 #pragma once
 #include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 

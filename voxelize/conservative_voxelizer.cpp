@@ -12,6 +12,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "core/gl_context.h"

@@ -1,5 +1,7 @@
 #include "voxelize/grid_metrics.h"
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 
 namespace vgi {

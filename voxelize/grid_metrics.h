@@ -1,7 +1,7 @@
 // A voxelization against the exact one: recall (exact cells found), precision
 // (set cells that are exact), holes (exact cells missed) and extra cells.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "voxelize/voxel_grid.h"
 

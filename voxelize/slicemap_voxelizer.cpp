@@ -9,6 +9,8 @@
 
 #include <glad/gl.h>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 #include "core/gl_context.h"
 #include "core/shader_library.h"

@@ -1,5 +1,7 @@
 #include "voxelize/value_grids.h"
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.h"
 #include "core/image.h"
 #include "shaders/shared/value_grid.glsl"

@@ -2,7 +2,7 @@
 // mean of each requested channel (normal, albedo, glossy = ks rgb + exponent),
 // decoded from the GPU's fixed-point sums (shaders/shared/value_grid.glsl).
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 

@@ -1,7 +1,7 @@
 // The voxelizers behind `vgi voxelize`, in an explicit table.
 #pragma once
 #include <functional>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
