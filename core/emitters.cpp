@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "shaders/shared/sampling.glsl"
 
 namespace vgi {
 
@@ -113,21 +114,8 @@ std::vector<Light> Emitters::spotLights(glm::vec2 u) const {
 }
 
 glm::vec2 emitterSequence(int k, uint32_t seed) {
-  // R2: u_k = frac(½ + k·(1/g, 1/g²)), g the plastic number.
-  const double g = 1.32471795724474602596;
-  const double a1 = 1.0 / g, a2 = 1.0 / (g * g);
-  // The seed's rotation: two hashes of it (splitmix64's finalizer).
-  auto mix = [](uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  };
-  const double r1 = double(mix(uint64_t(seed) * 2 + 1) >> 11) * 0x1.0p-53;
-  const double r2 = double(mix(uint64_t(seed) * 2 + 2) >> 11) * 0x1.0p-53;
-  double x = 0.5 + a1 * double(k) + r1, y = 0.5 + a2 * double(k) + r2;
-  x -= std::floor(x);
-  y -= std::floor(y);
-  return {float(std::min(x, 0x1.fffffep-1)), float(std::min(y, 0x1.fffffep-1))};
+  // R2, rotated by two hashes of the seed (shaders/shared/sampling.glsl).
+  return shared::r2Point(uint32_t(k), shared::pcgHash(seed * 2u + 1u), shared::pcgHash(seed * 2u + 2u));
 }
 
 }  // namespace vgi

@@ -154,7 +154,6 @@ void NearFieldMethod::prepareFrame(Frame& f) {
   shaders.setUniform(ip, "uOffset", p_.offset * voxelDiagonal_);
   shaders.setUniform(ip, "uVoxelDiagonal", voxelDiagonal_);
   shaders.setUniform(ip, "uEnv", p_.env ? 1 : 0);
-  shaders.setUniform(ip, "uRsmRes", p_.shadow.resolution);
   shaders.setUniform(ip, "uRefine", p_.backProjection == "plane" ? 1 : 0);
   shaders.setUniform(ip, "uPassThrough", p_.passThrough ? 1 : 0);
 }

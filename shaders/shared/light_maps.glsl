@@ -16,6 +16,7 @@
 #endif
 
 #include "bindings.glsl"
+#include "gpu_scene.glsl"
 
 SHARED_BEGIN
 
@@ -85,6 +86,25 @@ SHARED_FN float lightMapPlaneDistance(SHARED_IN(LightFace) f, vec2 uvCentre, vec
   return lightMapDistance(f, o + d * t);
 }
 
+// The area a texel covers on the surface it sees at p (geometric normal ng):
+// what a texel stands for as a virtual point light (its reflected radiance ×
+// this area × cos is the VPL's intensity; Dachsbacher and Stamminger 2005).
+// Perspective faces: the texel's solid angle, texel² · cos³ of its angle to
+// the face axis (texel per unit distance), times dist² / cos α; orthographic
+// faces: texel² / cos α. α is the angle between ng and the light's ray,
+// |cos α| clamped at 0.05 (a grazing texel stands for a long strip, which
+// is finite on a real surface).
+SHARED_FN float lightMapTexelArea(SHARED_IN(LightFace) f, vec3 p, vec3 ng) {
+  vec3 axis = vec3(f.axisTexel.x, f.axisTexel.y, f.axisTexel.z);
+  float w = f.axisTexel.w;
+  if (f.eyeOrtho.w > 0.5f) return w * w / max(abs(dot(ng, axis)), 0.05f);
+  vec3 d = p - lightFaceEye(f);
+  float dist2 = dot(d, d);
+  vec3 dir = d / sqrt(dist2);
+  float c = dot(dir, axis);
+  return w * w * c * c * c * dist2 / max(abs(dot(ng, dir)), 0.05f);
+}
+
 // VGI §5.1: a hit point y back-projected into a reflective shadow map receives
 // the stored radiance when |y − p_rsm| < ε, ε = max(v, s/cos α · z/z_near):
 // v the voxel discretisation (here the voxel diagonal, as a voxel-entry hit can
@@ -136,5 +156,119 @@ bool lightMapLit(int light, vec3 p, vec3 n, vec3 ng, float cosI, float bias, flo
   // it). Taking the nearer never shadows a plane by itself.
   if (onPlane >= 0.0f) return min(onPlane, own + texel) - bias * texel <= stored;
   return own - bias * texel / max(cosI, 0.2f) <= stored;
+}
+
+// --- Reading reflective shadow maps (VGI §5.1): back-projection of a point
+// into every light's RSM, and RSM texels as virtual point lights.
+
+// The RSM texel of light l that point y projects to: its face and texel, or
+// face −1 outside every face or where the light saw nothing.
+struct RsmTexel {
+  int face;
+  ivec3 texel;
+  vec3 position, normal;
+};
+bool insideLightMap(int l, vec3 y) {
+  vec2 uv = lightMapUv(lightFaces[lightFaceOf(l, y)], y);
+  return uv.x >= 0.0f && uv.y >= 0.0f && uv.x <= 1.0f && uv.y <= 1.0f;
+}
+RsmTexel rsmTexelAt(int l, vec3 y) {
+  int res = textureSize(lightPosition, 0).x;
+  RsmTexel r;
+  r.face = lightFaceOf(l, y);
+  vec2 uv = lightMapUv(lightFaces[r.face], y);
+  r.texel = ivec3(min(ivec2(uv * float(res)), ivec2(res - 1)), r.face);
+  vec4 P = texelFetch(lightPosition, r.texel, 0);
+  if (uv.x < 0.0f || uv.y < 0.0f || uv.x > 1.0f || uv.y > 1.0f || P.w == 0.0f) r.face = -1;
+  r.position = P.xyz;
+  r.normal = texelFetch(lightNormal, r.texel, 0).xyz;
+  return r;
+}
+
+// VGI's ε (shared/light_maps.glsl) for the surface a texel saw.
+float rsmEpsilon(int l, RsmTexel r, float voxelTerm) {
+  LightSample ls = sampleDeltaLight(lights[l], r.position);
+  return backProjectionEpsilon(voxelTerm,
+                               lightMapTexelWorld(lightFaces[r.face], lightMapDistance(lightFaces[r.face], r.position)),
+                               dot(r.normal, ls.wi));
+}
+
+// Direct radiance leaving the surface the ray (o, d) hit in the voxel it
+// entered at distance t, read back from every RSM (diffusely reflected: what
+// the RSMs store). voxelDiagonal: the hit's uncertainty (the voxel tracers':
+// the voxel diagonal); maxT: how far the ray was traced (r); refine:
+//   false, VGI §5.1: the voxel entry y = o + t·d is back-projected and
+//     takes the texel's radiance when |y − p_rsm| < ε (ε ≥ the voxel diagonal,
+//     as y lies up to a diagonal off the surface).
+//   true: the texel y projects to says which surface the light sees
+//     there; the ray is intersected with that surface's plane, and the point
+//     found (on the ray, on the surface) is back-projected again and tested
+//     with the texel term of ε alone. The plane must be met near the hit
+//     voxel (t − diag … t + 8·diag: a conservatively set voxel is often
+//     entered far before the plane at grazing angles), within r, from the lit side
+//     (a ray meeting the unlit back of a wall sees no RSM light); so voxel
+//     quantisation no longer lets the ε test accept a neighbouring surface
+//     or reject a lit one seen at a grazing angle.
+struct BackProjection {
+  vec3 radiance;
+  bool seenThrough;  // a light sees past y and none lights it: nothing is there
+};
+BackProjection rsmBackProject(vec3 o, vec3 d, float t, float voxelDiagonal, float maxT, bool refine) {
+  precise vec3 y = o + t * d;
+  vec3 sum = vec3(0.0f);
+  bool through = false;
+  for (int l = 0; l < lights.length(); ++l) {
+    RsmTexel r = rsmTexelAt(l, y);
+    if (r.face < 0) {
+      through = through || texelFetch(lightPosition, r.texel, 0).w == 0.0f && insideLightMap(l, y);
+      continue;
+    }
+    LightFace face = lightFaces[r.face];
+    through = through || lightMapDistance(face, r.position) > lightMapDistance(face, y) + 1.5f * voxelDiagonal;
+    if (!refine) {
+      if (distance(y, r.position) < rsmEpsilon(l, r, voxelDiagonal)) sum += texelFetch(lightRadiance, r.texel, 0).xyz;
+      continue;
+    }
+    // Up to three steps: a step that lands on another surface's texel
+    // (small features: the first texel belongs to a neighbour) tries that one.
+    for (int step = 0; step < 3; ++step) {
+      float c = dot(d, r.normal);
+      if (c >= -1e-4f) break;  // parallel to the plane, or meeting its unlit side
+      precise float ts = dot(r.position - o, r.normal) / c;
+      if (ts < t - voxelDiagonal || ts > t + 8.0f * voxelDiagonal || ts > maxT) break;
+      precise vec3 ys = o + ts * d;
+      RsmTexel rs = rsmTexelAt(l, ys);
+      if (rs.face < 0) break;
+      if (distance(ys, rs.position) < rsmEpsilon(l, rs, 0.0f)) {
+        sum += texelFetch(lightRadiance, rs.texel, 0).xyz;
+        break;
+      }
+      r = rs;
+    }
+  }
+  BackProjection b;
+  b.radiance = sum;
+  b.seenThrough = through && sum == vec3(0.0f);
+  return b;
+}
+
+// An RSM texel as a virtual point light (Dachsbacher and Stamminger 2005):
+// the surface the light saw there, its diffusely reflected radiance, and the
+// area it stands for (lightMapTexelArea); the VPL's intensity toward ω is
+// radiance · area · max(0, n·ω). valid is false where the light saw nothing.
+struct RsmVpl {
+  vec3 position, normal, radiance;
+  float area;
+  bool valid;
+};
+RsmVpl rsmTexelVpl(int face, ivec2 texel) {
+  RsmVpl v;
+  vec4 P = texelFetch(lightPosition, ivec3(texel, face), 0);
+  v.valid = P.w != 0.0f;
+  v.position = P.xyz;
+  v.normal = texelFetch(lightNormal, ivec3(texel, face), 0).xyz;
+  v.radiance = v.valid ? texelFetch(lightRadiance, ivec3(texel, face), 0).xyz : vec3(0.0f);
+  v.area = v.valid ? lightMapTexelArea(lightFaces[face], v.position, v.normal) : 0.0f;
+  return v;
 }
 #endif

@@ -58,15 +58,41 @@ SHARED_FN vec3 samplePowerCosine(vec2 u, float e) {
   return vec3(sinT * cos(phi), sinT * sin(phi), cosT);
 }
 
-// PCG hash (Jarzynski & Olano, "Hash Functions for GPU Rendering", JCGT 2020).
-SHARED_FN uint pcgHash(uint v) {
-  uint state = v * 747796405u + 2891336453u;
+// Random numbers, one 32-bit word of state per stream, the same in GLSL and
+// C++ bit for bit: PCG's RXS-M-XS output on a 32-bit LCG (O'Neill 2014,
+// "PCG: A family of simple fast space-efficient statistically good
+// algorithms"; the 32-bit form of Jarzynski & Olano, "Hash Functions for GPU
+// Rendering", JCGT 2020). A stream is seeded by hashing what identifies it
+// (pixel, sample, seed: rngSeed) and stepped with pcgAdvance; each step's
+// number is pcgOutput of the new state. Period 2³², enough for the few
+// hundred numbers a path takes; a stream per pixel and sample keeps paths
+// independent (the C++ reference keeps its 64-bit PCG32).
+SHARED_FN uint pcgAdvance(uint state) { return state * 747796405u + 2891336453u; }
+SHARED_FN uint pcgOutput(uint state) {
   uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
   return (word >> 22u) ^ word;
 }
+// PCG hash: one step from v, as a hash of v.
+SHARED_FN uint pcgHash(uint v) { return pcgOutput(pcgAdvance(v)); }
+
+// The state of the stream identified by (a, b, c), e.g. pixel index, sample
+// index, seed: nested hashes, so streams that differ in any word start apart.
+SHARED_FN uint rngSeed(uint a, uint b, uint c) { return pcgHash(a ^ pcgHash(b ^ pcgHash(c))); }
 
 // Uniform float in [0, 1) from the top 24 bits (exactly representable).
 SHARED_FN float uintToUnitFloat(uint x) { return float(x >> 8u) * (1.0f / 16777216.0f); }
+
+// Point i of Roberts' R2 sequence, frac(½ + i·(1/g, 1/g²)) with g the plastic
+// number, shifted by the rotation (rx, ry) (Cranley–Patterson, mod 1) — in
+// 32-bit fixed point (2³²/g = 3242174889, 2³²/g² = 2447445414, ½ = 2³¹), so
+// GLSL and C++ agree at any index and float precision never runs out. Its
+// 2D discrepancy is low for every prefix: what progressive per-sample choices
+// (an emitter point per frame) need.
+SHARED_FN vec2 r2Point(uint i, uint rx, uint ry) {
+  uint x = i * 3242174889u + 2147483648u + rx;
+  uint y = i * 2447445414u + 2147483648u + ry;
+  return vec2(uintToUnitFloat(x), uintToUnitFloat(y));
+}
 
 // A Cranley–Patterson rotation for block (bx, by) of frame f: every k×k
 // interleave block turns its k²·N directions by its own offset, so that one
@@ -79,3 +105,18 @@ SHARED_FN vec2 blockRotation(uint bx, uint by, uint f) {
 }
 
 SHARED_END
+
+// The next number in [0, 1) of stream `state` (pcgAdvance, then pcgOutput).
+#ifdef __cplusplus
+namespace vgi::shared {
+inline float rngNext(glm::uint& state) {
+  state = pcgAdvance(state);
+  return uintToUnitFloat(pcgOutput(state));
+}
+}  // namespace vgi::shared
+#else
+float rngNext(inout uint state) {
+  state = pcgAdvance(state);
+  return uintToUnitFloat(pcgOutput(state));
+}
+#endif

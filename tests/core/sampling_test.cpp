@@ -3,9 +3,16 @@
 // normalisation.
 #include "shaders/shared/sampling.glsl"
 
+#include <glad/gl.h>
+
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <random>
 
+#include "core/gl_context.h"
+#include "core/shader_library.h"
+#include "shaders/shared/bindings.glsl"
 #include "shaders/shared/brdf.glsl"
 #include "shaders/shared/lights.glsl"
 #include "test_util.h"
@@ -117,6 +124,119 @@ TEST(SharedSampling, HashToFloatStaysInUnitInterval) {
   EXPECT_EQ(uintToUnitFloat(0u), 0.0f);
   EXPECT_LT(uintToUnitFloat(0xffffffffu), 1.0f);
   EXPECT_NE(pcgHash(0u), pcgHash(1u));
+}
+
+// The GPU's numbers are the C++ build's, bit for bit: what a CPU test of a
+// sampling routine checks is what the shader draws.
+TEST(SharedRng, GlslStreamsAndR2PointsEqualTheCppBuildBitForBit) {
+  auto ctx = GlContext::create();
+  ShaderLibrary shaders;
+  const unsigned prog = shaders.program({"../tests/data/shaders/sampling_probe.comp.glsl"});
+  const int n = 4096;
+  const uint32_t b = 12345u, c = 0xdeadbeefu, rx = 0x9e3779b9u, ry = 0x7f4a7c15u;
+  unsigned buf = 0;
+  glCreateBuffers(1, &buf);
+  glNamedBufferStorage(buf, GLsizeiptr(n * 6 * sizeof(uint32_t)), nullptr, 0);
+  glUseProgram(prog);
+  shaders.setUniform(prog, "uB", b);
+  shaders.setUniform(prog, "uC", c);
+  shaders.setUniform(prog, "uRx", rx);
+  shaders.setUniform(prog, "uRy", ry);
+  shaders.setUniform(prog, "uCount", n);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_HITS, buf);
+  glDispatchCompute(n / 64, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<uint32_t> gpu(size_t(n) * 6);
+  glGetNamedBufferSubData(buf, 0, GLsizeiptr(gpu.size() * sizeof(uint32_t)), gpu.data());
+  glDeleteBuffers(1, &buf);
+  auto bits = [](float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+  };
+  for (int i = 0; i < n; ++i) {
+    uint32_t state = rngSeed(uint32_t(i), b, c);
+    for (int k = 0; k < 4; ++k) ASSERT_EQ(gpu[size_t(6 * i + k)], bits(rngNext(state))) << i << " " << k;
+    const vec2 r = r2Point(uint32_t(i) * 977u, rx, ry);
+    ASSERT_EQ(gpu[size_t(6 * i + 4)], bits(r.x)) << i;
+    ASSERT_EQ(gpu[size_t(6 * i + 5)], bits(r.y)) << i;
+  }
+  EXPECT_EQ(ctx->errorCount(), 0);
+}
+
+// Streams of neighbouring pixels and samples, drawn as a path tracer draws
+// them: 2¹⁸ streams × 8 numbers, uniform (χ² over 256 bins), uncorrelated
+// along a stream and across neighbouring streams, no stream repeating.
+TEST(SharedRng, StreamsAreUniformAndIndependent) {
+  const int streams = 1 << 18, draws = 8, bins = 256;
+  std::vector<double> count(bins, 0.0);
+  double sumLag = 0, sumCross = 0, sum = 0, sumSq = 0;
+  long pairsLag = 0, pairsCross = 0;
+  float previousFirst = 0;
+  std::vector<uint32_t> firstStates;
+  for (int s = 0; s < streams; ++s) {
+    // pixel = s % 512, sample = s / 512, seed 1
+    uint32_t state = rngSeed(uint32_t(s % 512), uint32_t(s / 512), 1u);
+    firstStates.push_back(state);
+    float prev = 0;
+    for (int k = 0; k < draws; ++k) {
+      const float u = rngNext(state);
+      ASSERT_TRUE(u >= 0.0f && u < 1.0f);
+      count[size_t(u * bins)] += 1;
+      sum += u;
+      sumSq += double(u) * u;
+      if (k > 0) sumLag += (double(prev) - 0.5) * (double(u) - 0.5), ++pairsLag;
+      if (k == 0 && s % 512 > 0) sumCross += (double(previousFirst) - 0.5) * (double(u) - 0.5), ++pairsCross;
+      if (k == 0) previousFirst = u;
+      prev = u;
+    }
+  }
+  const double total = double(streams) * draws, expected = total / bins;
+  double chi2 = 0;
+  for (double c : count) chi2 += (c - expected) * (c - expected) / expected;
+  // χ² with 255 degrees of freedom: mean 255, σ = √510 ≈ 22.6; P(χ² > 380) < 10⁻⁹.
+  EXPECT_LT(chi2, 380.0);
+  EXPECT_GT(chi2, 150.0);  // too uniform is not random either (P(χ² < 150) < 10⁻¹⁰)
+  EXPECT_NEAR(sum / total, 0.5, 6.0 * std::sqrt(1.0 / 12.0 / total));
+  EXPECT_NEAR(sumSq / total, 1.0 / 3.0, 6.0 * std::sqrt(4.0 / 45.0 / total));
+  // Correlations of uniform pairs: σ = (1/12)/√pairs; 6σ bounds.
+  EXPECT_NEAR(sumLag / double(pairsLag), 0.0, 6.0 / 12.0 / std::sqrt(double(pairsLag)));
+  EXPECT_NEAR(sumCross / double(pairsCross), 0.0, 6.0 / 12.0 / std::sqrt(double(pairsCross)));
+  // Distinct starting states: a hash collision among 2¹⁸ states of 2³² has
+  // probability ≈ 0.8 per pair set (birthday: 2³⁵/2³² ≈ 8 expected), so allow
+  // a handful, not a systematic repeat.
+  std::sort(firstStates.begin(), firstStates.end());
+  const long repeats = long(firstStates.size()) -
+                       long(std::unique(firstStates.begin(), firstStates.end()) - firstStates.begin());
+  EXPECT_LT(repeats, 40);
+}
+
+// The fixed-point R2 is the real-valued recurrence frac(½ + i/g), frac(½ + i/g²)
+// to the 2⁻²⁴ of its output (plus the constants' rounding, i·2⁻³³), for
+// indices far past where a float recurrence loses its digits; and every
+// prefix of it is well spread: N points put at most 2 into any cell of a
+// √N×√N grid (uniform random sets of 16…1024 points put 3…5 into their fullest cell).
+TEST(SharedRng, R2PointsAreTheRecurrenceAndSpreadEvenly) {
+  const double g = 1.32471795724474602596;
+  for (uint32_t i : {0u, 1u, 2u, 1000u, 65535u, 1u << 20, 3000000u}) {
+    const vec2 r = r2Point(i, 0u, 0u);
+    double x = 0.5 + double(i) / g, y = 0.5 + double(i) / (g * g);
+    x -= std::floor(x);
+    y -= std::floor(y);
+    const double tol = 0x1.0p-24 + double(i) * 0x1.0p-32;
+    EXPECT_NEAR(r.x, x, tol) << i;
+    EXPECT_NEAR(r.y, y, tol) << i;
+  }
+  for (int side : {4, 8, 16, 32}) {
+    const int n = side * side;
+    std::vector<int> cells(size_t(n), 0);
+    for (int i = 0; i < n; ++i) {
+      const vec2 r = r2Point(uint32_t(i), pcgHash(5u), pcgHash(6u));
+      ASSERT_TRUE(r.x >= 0.0f && r.x < 1.0f && r.y >= 0.0f && r.y < 1.0f);
+      ++cells[size_t(int(r.y * side) * side + int(r.x * side))];
+    }
+    EXPECT_LE(*std::max_element(cells.begin(), cells.end()), 2) << n << " points";
+  }
 }
 
 TEST(SharedBrdf, LambertSamplingWeightIsTheAlbedo) {

@@ -163,6 +163,51 @@ TEST(LightMaps, PlaneDistanceAtTexelCentreIsExact) {
   EXPECT_GT(checked, 6000);
 }
 
+// The texel areas of a face, summed over the texels that see a plane, are
+// the plane's area inside the face's frustum: (2h·tan(fov/2))² below a spot
+// or a cube face, (2r)²/cos θ for a directional light at θ to the plane.
+TEST(LightMaps, TexelAreasSumToTheSurfaceTheFaceSees) {
+  const Bounds b = cube(1.0f);
+  const float h = 0.7f;
+  const int n = 256;
+  struct Case {
+    LightType type;
+    glm::vec3 direction;
+    float cone;
+    int face;
+  };
+  const glm::vec3 slanted = glm::normalize(glm::vec3(0.5f, -1.0f, 0.2f));
+  for (const Case& k : {Case{LightType::Spot, {0, -1, 0}, 40, 0}, Case{LightType::Point, {0, -1, 0}, 90, 3},
+                        Case{LightType::Directional, slanted, 90, 0}}) {
+    Light light = makeLight(k.type, k.direction, k.cone);
+    light.position = glm::vec3(0.0f, h, 0.0f);
+    const LightFaceLayout layout = layoutLightFaces({light}, b, n);
+    const LightFace& face = layout.faces[size_t(k.face)];
+    const bool ortho = face.eyeOrtho.w > 0.5f;
+    double sum = 0;
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const glm::vec2 c((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
+        const glm::vec4 a = face.rayUnproject * glm::vec4(c.x * 2.0f - 1.0f, c.y * 2.0f - 1.0f, -1.0f, 1.0f);
+        const glm::vec3 onRay = glm::vec3(a) / a.w;
+        const glm::vec3 o = ortho ? onRay : lightFaceEye(face);
+        const glm::vec3 d = ortho ? glm::vec3(face.axisTexel) : glm::normalize(onRay - o);
+        ASSERT_LT(d.y, 0.0f);
+        const glm::vec3 p = o + d * (-o.y / d.y);  // on the plane y = 0
+        sum += lightMapTexelArea(face, p, glm::vec3(0, 1, 0));
+      }
+    double expect;
+    if (k.type == LightType::Directional) {
+      const double side = double(face.axisTexel.w) * n;
+      expect = side * side / -double(slanted.y);
+    } else {
+      const double t = double(face.axisTexel.w) * n / 2.0;  // tan(fov/2)
+      expect = (2.0 * h * t) * (2.0 * h * t);
+    }
+    EXPECT_NEAR(sum / expect, 1.0, 1e-3) << "light type " << int(k.type);
+  }
+}
+
 TEST(LightMaps, BackProjectionEpsilonFollowsTheRule) {
   EXPECT_FLOAT_EQ(backProjectionEpsilon(0.1f, 0.01f, 1.0f), 0.1f);   // voxel-bound
   EXPECT_FLOAT_EQ(backProjectionEpsilon(0.01f, 0.05f, 0.5f), 0.1f);  // texel / cos α
