@@ -155,7 +155,7 @@ void addVoxelizeCommand(CLI::App& app) {
         v.insertRadiance(
             req.time,
             [&](unsigned program) {
-              lit.bind(program);
+              lit.bind(*shaders, program);
               maps.bind();
             },
             prof);

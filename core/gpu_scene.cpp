@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/shader_library.h"
 
 namespace vgi {
 
@@ -169,16 +170,14 @@ GpuScene::~GpuScene() {
   glDeleteTextures(2, texs);
 }
 
-void GpuScene::bind(unsigned program) const {
+void GpuScene::bind(ShaderLibrary& shaders, unsigned program) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_MATERIALS, materials_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRI_MATERIAL, triMaterial_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_LIGHTS, lights_);
   glBindTextureUnit(TEXUNIT_ALBEDO_ARRAY, albedoArray_);
   glBindTextureUnit(TEXUNIT_ENV_MAP, envMap_);
-  int loc = glGetUniformLocation(program, "uEnvColorScale");
-  if (loc >= 0) glProgramUniform4fv(program, loc, 1, &envColorScale_.x);
-  loc = glGetUniformLocation(program, "uEnvHasMap");
-  if (loc >= 0) glProgramUniform1i(program, loc, envHasMap_ ? 1 : 0);
+  shaders.setUniform(program, "uEnvColorScale", envColorScale_);
+  shaders.setUniform(program, "uEnvHasMap", envHasMap_ ? 1 : 0);
 }
 
 void GpuScene::draw() const {

@@ -7,6 +7,7 @@
 #include "shaders/shared/gpu_scene.glsl"
 
 namespace vgi {
+class ShaderLibrary;
 
 shared::PackedLight packLight(const Light& light);
 // emission.w = 1 where the material emits from both sides (Scene::twoSidedEmission).
@@ -28,7 +29,7 @@ class GpuScene {
   void setLights(const std::vector<Light>& lights);
 
   // Binds SSBOs, textures and the environment uniforms of `program`.
-  void bind(unsigned program) const;
+  void bind(ShaderLibrary& shaders, unsigned program) const;
   void draw() const;  // all triangles; gl_PrimitiveID = triangle index
 
   size_t triangleCount() const { return triangles_; }

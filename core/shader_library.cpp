@@ -388,6 +388,12 @@ void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::vec4 v) {
 void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::ivec2 v) {
   glProgramUniform2i(p, uniformLocation(p, n), v.x, v.y);
 }
+void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::uvec2 v) {
+  glProgramUniform2ui(p, uniformLocation(p, n), v.x, v.y);
+}
+void ShaderLibrary::setUniformArray(unsigned p, const std::string& n, const uint32_t* v, int count) {
+  glProgramUniform1uiv(p, uniformLocation(p, n), count, v);
+}
 void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::ivec3 v) {
   glProgramUniform3i(p, uniformLocation(p, n), v.x, v.y, v.z);
 }

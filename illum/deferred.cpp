@@ -87,7 +87,7 @@ void GBuffer::render(const GpuScene& gpu, const FrameCamera& camera) {
   const float clearDepth = 0.0f;
   glClearBufferfv(GL_DEPTH, 0, &clearDepth);
   glUseProgram(prog_);
-  gpu.bind(prog_);
+  gpu.bind(shaders_, prog_);
   shaders_.setUniform(prog_, "uViewProj", camera.viewProj);
   gpu.draw();
   glDepthFunc(GL_LESS);
@@ -110,7 +110,7 @@ DirectPass::DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadow
 
 void DirectPass::shade(const GBuffer& g, const LightMaps& maps, const FrameCamera& cam, unsigned target) {
   glUseProgram(prog_);
-  gpu_.bind(prog_);  // other passes may have used the same binding points
+  gpu_.bind(shaders_, prog_);  // other passes may have used the same binding points
   shaders_.setUniform(prog_, "uCameraPosition", cam.position);
   shaders_.setUniform(prog_, "uInvViewProj", cam.invViewProj);
   g.bind();

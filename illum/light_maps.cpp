@@ -142,7 +142,7 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
       shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/light_map.frag.glsl"}, defs);
   auto s = profiler.scope(reflective_ ? "rsm" : "shadow_maps");
   glUseProgram(prog);
-  gpu.bind(prog);
+  gpu.bind(shaders, prog);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glViewport(0, 0, resolution_, resolution_);
   glEnable(GL_DEPTH_TEST);

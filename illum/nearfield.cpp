@@ -40,13 +40,13 @@
 // | interleave   | int    | 4                  | k: k×k pixel blocks with k² direction sets           |
 // | blur         | bool   | true               | geometry-aware blur over the interleave window       |
 // | tracer       | string | hierarchical       | hierarchical, dda or march (GLSL define)             |
-// | env          | bool   | true               | rays leaving r read the environment (black if the scene has
-// none) | | backprojection | string | plane            | hit → RSM: `plane` (see indirect.comp) or `entry`
-// (VGI's voxel entry) | | passthrough  | bool   | true               | go on past hit voxels whose entry a
-// light sees through | | offset       | float  | 0.5 (entry: 1)     | ray start offset along the normal,
-// voxel diagonals (VGI: 1) | | voxels       | string | 128                | grid resolution N or WxHxD | |
-// voxelizer    | string | atlas              | binary voxelizer (see `vgi voxelize --help`)         | |
-// shadow_res, shadow_bias, normal_offset: light maps, as in `direct`                        |
+// | env          | bool   | true               | rays leaving r read the environment (black if none) |
+// | backprojection | string | plane            | hit → RSM: `plane` (see indirect.comp) or `entry` (VGI) |
+// | passthrough  | bool   | true               | go on past hit voxels whose entry a light sees through |
+// | offset       | float  | 0.5 (entry: 1)     | ray start offset along the normal, voxel diag. (VGI: 1) |
+// | voxels       | string | 128                | grid resolution N or WxHxD                           |
+// | voxelizer    | string | atlas              | binary voxelizer (see `vgi voxelize --help`)         |
+// | shadow_res, shadow_bias, normal_offset | … | light maps, as in `direct`                       |
 #include "illum/nearfield.h"
 
 #include <glad/gl.h>
@@ -166,9 +166,9 @@ bool NearFieldMethod::addSample(Frame& f, int k) {
   {
     auto s = f.profiler.scope("indirect");
     glUseProgram(indirectProg_);
-    f.resources.gpuScene().bind(indirectProg_);
+    f.resources.gpuScene().bind(f.shaders(), indirectProg_);
     f.resources.lightMaps().bind();
-    f.resources.glPyramid().bind(indirectProg_);
+    f.resources.glPyramid().bind(f.shaders(), indirectProg_);
     f.gbuffer().bind();
     kit_.setSampleUniforms(f.shaders(), indirectProg_, k);
     kit_.dispatchGather();

@@ -35,13 +35,12 @@
 // | integrator | string | path               | path, nearfield, ao, direct                          |
 // | maxdepth   | int    | 8                  | path: maximum number of bounces                      |
 // | rr_depth   | int    | 3                  | path: bounces before Russian roulette starts         |
-// | radius     | float  | 0.5 / 0.1 · diag.  | nearfield (as the nearfield module) / ao: ray length (world
-// units) | | env        | bool   | true               | nearfield: rays leaving `radius` read the environment
-// | | visibility | string | exact              | nearfield: exact, or voxels (see below)              | |
-// voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        | | offset
-// | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diagonals | |
-// emitter_sampling | string | mis          | path/direct/nearfield: area lights by mis, light (NEE only) or
-// brdf |
+// | radius     | float  | 0.5 / 0.1 · diag.  | nearfield (as the module) / ao: ray length, world units |
+// | env        | bool   | true               | nearfield: rays leaving `radius` read the environment |
+// | visibility | string | exact              | nearfield: exact, or voxels (see below)              |
+// | voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        |
+// | offset     | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diag. |
+// | emitter_sampling | string | mis          | path/direct/nearfield: area lights by mis, light or brdf |
 //
 // nearfield with visibility=voxels isolates the voxel-visibility error of the
 // `nearfield` module: the bounce ray starts `offset` voxel diagonals along the

@@ -167,7 +167,7 @@ void SceneResources::insertRadiance(Profiler& prof) {
   atlas_->insertRadiance(
       time_,
       [this](unsigned program) {
-        gpu_->bind(program);
+        gpu_->bind(*shaders_, program);
         lightMaps_->bind();
       },
       prof);

@@ -85,7 +85,7 @@ class VoxelAoMethod : public Method {
     {
       auto s = f.profiler.scope("ao");
       glUseProgram(prog_);
-      f.resources.glPyramid().bind(prog_);
+      f.resources.glPyramid().bind(f.shaders(), prog_);
       f.gbuffer().bind();
       kit_.setSampleUniforms(f.shaders(), prog_, k);
       kit_.dispatchGather();

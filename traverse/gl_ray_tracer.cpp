@@ -55,11 +55,11 @@ void GlPyramid::reduce(ShaderLibrary& shaders) {
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   for (uint32_t l = 1; l < params_.levels; ++l) {
     glm::uvec2 s = shared::mipLevelSize(base, l), c = shared::mipLevelSize(base, l - 1);
-    glUniform2ui(glGetUniformLocation(prog, "uSize"), s.x, s.y);
-    glUniform2ui(glGetUniformLocation(prog, "uChildSize"), c.x, c.y);
-    glUniform1ui(glGetUniformLocation(prog, "uDepth"), D);
-    glUniform1ui(glGetUniformLocation(prog, "uOffset"), params_.levelOffsets[l]);
-    glUniform1ui(glGetUniformLocation(prog, "uChildOffset"), params_.levelOffsets[l - 1]);
+    shaders.setUniform(prog, "uSize", s);
+    shaders.setUniform(prog, "uChildSize", c);
+    shaders.setUniform(prog, "uDepth", D);
+    shaders.setUniform(prog, "uOffset", params_.levelOffsets[l]);
+    shaders.setUniform(prog, "uChildOffset", params_.levelOffsets[l - 1]);
     glDispatchCompute((s.x + 7u) / 8u, (s.y + 7u) / 8u, wpc);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   }
@@ -92,12 +92,12 @@ GlPyramid::~GlPyramid() {
   if (buffer_) glDeleteBuffers(1, &buffer_);
 }
 
-void GlPyramid::bind(unsigned program) const {
+void GlPyramid::bind(ShaderLibrary& shaders, unsigned program) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_PYRAMID, buffer_);
-  setGridUniforms(program, box_);
-  glUniform1ui(glGetUniformLocation(program, "uPyramidLevels"), params_.levels);
-  glUniform1uiv(glGetUniformLocation(program, "uPyramidOffsets"), 16, params_.levelOffsets);
-  glUniform1f(glGetUniformLocation(program, "uMarchStep"), marchStep_);
+  setGridUniforms(shaders, program, box_);
+  shaders.setUniform(program, "uPyramidLevels", params_.levels);
+  shaders.setUniformArray(program, "uPyramidOffsets", params_.levelOffsets, 16);
+  shaders.setUniform(program, "uMarchStep", marchStep_);
 }
 
 std::string readTracerParam(ParamSet& p) {
@@ -127,7 +127,7 @@ std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& sh
                        GL_DYNAMIC_STORAGE_BIT);
   glNamedBufferStorage(bufs[1], GLsizeiptr(std::min(batch, rays.size()) * 32), nullptr, 0);
   glUseProgram(prog);
-  pyramid.bind(prog);
+  pyramid.bind(shaders, prog);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_RAYS, bufs[0]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_HITS, bufs[1]);
   std::vector<glm::uvec4> hits;
@@ -136,7 +136,7 @@ std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& sh
     glNamedBufferSubData(bufs[0], 0, GLsizeiptr(n * sizeof(TraceRay)), rays.data() + b);
     {
       auto s = profiler.scope("trace_" + tracer);
-      glUniform1ui(glGetUniformLocation(prog, "uRayCount"), uint32_t(n));
+      shaders.setUniform(prog, "uRayCount", uint32_t(n));
       glDispatchCompute(uint32_t((n + 63) / 64), 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     }

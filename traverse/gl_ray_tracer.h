@@ -28,7 +28,7 @@ class GlPyramid {
 
   // Binds the words at BINDING_PYRAMID and sets the uniforms tracer.glsl
   // declares on `program` (which must be in use).
-  void bind(unsigned program) const;
+  void bind(ShaderLibrary& shaders, unsigned program) const;
   const GridBox& box() const { return box_; }
 
   // Level 0 := the grid's words (a GPU copy, or an upload), then every level

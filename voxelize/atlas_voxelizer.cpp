@@ -131,7 +131,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     fail("atlas footprint ", req.atlasFootprint, ": must be in [0, 4] texels");
   insertProg_ = req.shaders->program({"voxelize/atlas_insert.comp.glsl"},
                                      {{"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}});
-  setGridUniforms(insertProg_, req.box);
+  setGridUniforms(*req.shaders, insertProg_, req.box);
   if (values) {
     const uint64_t cells = req.box.cellCount();
     const double bytes =
@@ -149,7 +149,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
                                                           : "GLOSSY")] = "1";
     valueDefs["ATLAS_VERTEX_FLOATS"] = std::to_string(kVertexFloats);
     valueProg_ = req.shaders->program({"voxelize/atlas_insert_values.comp.glsl"}, valueDefs);
-    setGridUniforms(valueProg_, req.box);
+    setGridUniforms(*req.shaders, valueProg_, req.box);
     if (std::find(req.valueGrids.begin(), req.valueGrids.end(), "radiance") != req.valueGrids.end()) {
       ShaderDefines rd = renderDefs;
       rd["VALUE_RADIANCE"] = "1";
@@ -158,7 +158,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
       radianceInsertProg_ = req.shaders->program(
           {"voxelize/atlas_insert_values.comp.glsl"},
           {{"VALUE_RADIANCE", "1"}, {"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}});
-      setGridUniforms(radianceInsertProg_, req.box);
+      setGridUniforms(*req.shaders, radianceInsertProg_, req.box);
       const uint32_t zero = 0;
       glCreateBuffers(1, &radianceSums_);
       glNamedBufferStorage(radianceSums_, GLsizeiptr(cells * 16), nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -410,7 +410,7 @@ void AtlasVoxelizer::insertRadiance(float time, const std::function<void(unsigne
     auto s = prof.scope("radiance_max");
     glClearNamedBufferData(radianceMaxBuffer_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glUseProgram(radianceRenderProg_);
-    materials_->bind(radianceRenderProg_);
+    materials_->bind(*request_.shaders, radianceRenderProg_);
     bindLights(radianceRenderProg_);
     request_.shaders->setUniform(radianceRenderProg_, "uShadowBias", 1.0f);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, radianceMaxBuffer_);
@@ -451,7 +451,7 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     auto s = prof.scope("atlas_render");
     glUseProgram(renderProg_);
     if (values) {
-      materials_->bind(renderProg_);
+      materials_->bind(*request_.shaders, renderProg_);
       request_.shaders->setUniform(renderProg_, "uMaterial", m.material);
     }
     renderAtlas(m, time, renderProg_, values ? 5 : 2);

@@ -31,7 +31,7 @@ BinaryGrid voxelizeConservativeGl(const VoxelizeRequest& req, Profiler& prof, nl
     fail("conservative voxelizer: a ", side, "² view exceeds GL_MAX_FRAMEBUFFER_WIDTH ", maxSize);
   unsigned prog = req.shaders->program({"voxelize/conservative.vert.glsl", "voxelize/conservative.geom.glsl",
                                         "voxelize/conservative.frag.glsl"});
-  glProgramUniform1f(prog, glGetUniformLocation(prog, "uViewport"), float(side));
+  req.shaders->setUniform(prog, "uViewport", float(side));
   BinaryGrid grid = rasterizeSceneIntoGrid(req, prog, side, side, "conservative", prof);
   stats["passes"] = 1;
   return grid;

@@ -5,18 +5,19 @@
 #include "core/error.h"
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
+#include "core/shader_library.h"
 #include "shaders/shared/bindings.glsl"
 #include "voxelize/voxelizer.h"
 
 namespace vgi {
 
-void setGridUniforms(unsigned program, const GridBox& box) {
+void setGridUniforms(ShaderLibrary& shaders, unsigned program, const GridBox& box) {
   const shared::GridParams g = box.params();
-  glProgramUniform4fv(program, glGetUniformLocation(program, "uOrigin"), 1, &g.origin.x);
-  glProgramUniform4fv(program, glGetUniformLocation(program, "uAxisX"), 1, &g.axisX.x);
-  glProgramUniform4fv(program, glGetUniformLocation(program, "uAxisY"), 1, &g.axisY.x);
-  glProgramUniform4fv(program, glGetUniformLocation(program, "uAxisZ"), 1, &g.axisZ.x);
-  glProgramUniform4uiv(program, glGetUniformLocation(program, "uResolution"), 1, &g.resolution.x);
+  shaders.setUniform(program, "uOrigin", g.origin);
+  shaders.setUniform(program, "uAxisX", g.axisX);
+  shaders.setUniform(program, "uAxisY", g.axisY);
+  shaders.setUniform(program, "uAxisZ", g.axisZ);
+  shaders.setUniform(program, "uResolution", g.resolution);
 }
 
 void drawWithoutAttachments(int width, int height, const std::function<void()>& draw) {
@@ -41,7 +42,7 @@ BinaryGrid rasterizeSceneIntoGrid(const VoxelizeRequest& req, unsigned program, 
     auto s = prof.scope("upload");
     gpu = std::make_unique<GpuScene>(*req.scene, req.time);
   }
-  setGridUniforms(program, req.box);
+  setGridUniforms(*req.shaders, program, req.box);
   GpuGridBuffer target(req.box);
   {
     auto s = prof.scope(passName);

@@ -8,8 +8,9 @@
 #include "voxelize/voxel_grid.h"
 
 namespace vgi {
+class ShaderLibrary;
 
-void setGridUniforms(unsigned program, const GridBox& box);
+void setGridUniforms(ShaderLibrary& shaders, unsigned program, const GridBox& box);
 
 // Runs `draw` into a framebuffer without attachments of the given size, depth
 // test and culling off: for voxelizers whose fragments only write SSBOs.

@@ -185,7 +185,7 @@ TEST(ValueTextures, GlslLookupsMatchTheSharedCoordinatesInCpp) {
   glNamedBufferStorage(bufs[0], GLsizeiptr(points.size() * sizeof(glm::vec4)), points.data(), 0);
   glNamedBufferStorage(bufs[1], GLsizeiptr(points.size() * 4 * sizeof(glm::vec4)), nullptr, 0);
   glUseProgram(prog);
-  setGridUniforms(prog, box);
+  setGridUniforms(s.shaders, prog, box);
   s.shaders.setUniform(prog, "uCount", int(points.size()));
   const glm::vec3 dir = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
   s.shaders.setUniform(prog, "uDirection", dir);
