@@ -198,16 +198,19 @@ class ReferenceRenderer : public Method {
   void prepareFrame(Frame& f) override;
   bool addSample(Frame& f, int k) override;
   void finishFrame(Frame& f) override;
-  // nearfield splits its estimate into the direct part and the one indirect bounce.
+  // nearfield splits its estimate into the direct part and the one indirect
+  // bounce, path into the light reaching the first vertex along one segment
+  // and the rest.
   std::vector<std::string> outputs() const override {
-    return integrator_ == Integrator::NearField ? std::vector<std::string>{"direct", "indirect"}
-                                                : std::vector<std::string>{};
+    return integrator_ == Integrator::NearField || integrator_ == Integrator::Path
+               ? std::vector<std::string>{"direct", "indirect"}
+               : std::vector<std::string>{};
   }
 
  private:
   // Radiance along (o, d); `indirect` receives the indirect part where the integrator separates one.
   vec3 li(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const;
-  vec3 pathLi(vec3 o, vec3 d, Pcg32& rng) const;
+  vec3 pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const;
   vec3 nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const;
   float aoLi(vec3 o, vec3 d, Pcg32& rng) const;
   bool intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) const;
@@ -325,19 +328,29 @@ float ReferenceRenderer::emissionWeight(const SurfacePoint& hit, float pdfBrdf) 
   return pdfBrdf * pdfBrdf / (pdfBrdf * pdfBrdf + pdfLight * pdfLight);
 }
 
-vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng) const {
+vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
   vec3 L(0.0f), beta(1.0f);
   float pdfBrdf = 0;  // of the direction that led to this vertex (none for the camera ray)
+  // Light that reaches the first vertex x0 along one segment (its emission
+  // and NEE, emitters and environment met by its bounce ray) is direct; the
+  // rest, from the second vertex on, is indirect.
   for (int depth = 0;; ++depth) {
     SurfacePoint sp;
     if (!intersect(o, d, 1e30f, sp)) {
-      L += beta * scene_->environmentRadiance(d);
+      const vec3 e = beta * scene_->environmentRadiance(d);
+      L += e;
+      if (depth >= 2) indirect += e;
       break;
     }
-    if (sp.emission != vec3(0.0f))
-      L += beta * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
+    if (sp.emission != vec3(0.0f)) {
+      const vec3 e = beta * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
+      L += e;
+      if (depth >= 2) indirect += e;
+    }
     if (depth == maxDepth_) break;
-    L += beta * directLight(sp, rng, true);
+    const vec3 nee = beta * directLight(sp, rng, true);
+    L += nee;
+    if (depth >= 1) indirect += nee;
     vec3 wi = sampleBrdf(sp.brdf, sp.n, sp.wo, rng.uniform3());
     float pdf = brdfPdf(sp.brdf, sp.n, sp.wo, wi);
     if (!(pdf > 0.0f) || dot(wi, sp.n) <= 0.0f || dot(wi, sp.ng) <= 0.0f) break;
@@ -402,7 +415,7 @@ vec3 ReferenceRenderer::li(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
   switch (integrator_) {
     case Integrator::Path:
     case Integrator::Direct:
-      return pathLi(o, d, rng);
+      return pathLi(o, d, rng, indirect);
     case Integrator::NearField:
       return nearFieldLi(o, d, rng, indirect);
     case Integrator::Ao:

@@ -8,6 +8,7 @@
 #include "illum/nearfield.h"
 #include "illum/reference.h"
 #include "illum/voxel_ao.h"
+#include "illum/voxelpath.h"
 
 namespace vgi {
 
@@ -40,6 +41,15 @@ const std::vector<MethodInfo>& methodRegistry() {
        [](ParamSet& p, const Scene& s) { return createVoxelAoMethod(p, s); },
        [](const nlohmann::json& p) {
          return Counterpart{"reference", {"integrator=ao", "radius=" + exactText(p.at("radius"))}, {}};
+       }},
+      {"voxelpath",
+       "GL voxel path tracing: multi-bounce diffuse + glossy GI through the voxel grid (VGI 5.2)", true,
+       [](ParamSet& p, const Scene& s) { return createVoxelPathMethod(p, s); },
+       [](const nlohmann::json& p) {
+         return Counterpart{"reference",
+                            {"integrator=path", "maxdepth=" + std::to_string(p.at("maxdepth").get<int>()),
+                             "rr_depth=" + std::to_string(p.at("rr_depth").get<int>())},
+                            {"direct", "indirect"}};
        }},
       {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
        [](ParamSet& p, const Scene& s) { return createReferenceMethod(p, s); }},

@@ -1,5 +1,7 @@
 #include "illum/scene_resources.h"
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "core/emitters.h"
@@ -54,6 +56,22 @@ void SceneNeeds::check(const std::string& method, bool gl) const {
       if (valueChannelIndex(c) == shared::VALUE_CHANNEL_RADIANCE && !lightMaps)
         fail("method '", method,
              "' asks for the radiance channel without light maps (its direct light comes from them)");
+    // Memory: per cell the atomic sums (uvec4 per channel) and the count, and
+    // the textures (occupancy, count, each channel's format), the chains ×8/7.
+    const glm::uvec3 r = binaryGrid->resolution;
+    const double cells = double(r.x) * r.y * r.z;
+    const double chain = valueGrids->mips == ValueMips::None ? 1.0 : 8.0 / 7.0;
+    double perCell = 4.0 + (4.0 + 1.0) * chain;
+    for (auto& c : valueGrids->channels) {
+      const bool rgba8 = valueChannelIndex(c) == shared::VALUE_CHANNEL_ALBEDO;
+      perCell += 16.0 + (rgba8 ? 4.0 : 8.0) * chain;
+      if (valueGrids->mips == ValueMips::Anisotropic) perCell += 6.0 * 8.0 / 8.0 * chain;
+    }
+    const double phys = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    if (cells * perCell > 0.5 * phys)
+      fail("method '", method, "': multi-valued grids at ", r.x, "x", r.y, "x", r.z, " need ",
+           cells * perCell / double(1 << 20), " MiB; this machine has ", phys / double(1 << 20),
+           " MiB of memory (at most half of it is used for grids): use a smaller 'voxels'");
   }
   if (binaryGrid) {
     const VoxelizerInfo& v = findVoxelizer(binaryGrid->voxelizer);
@@ -61,13 +79,20 @@ void SceneNeeds::check(const std::string& method, bool gl) const {
   }
 }
 
-BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids) {
+BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids, bool atlasOnly) {
   BinaryGridNeed g;
   g.resolution = parseResolution(
       p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"), "parameter 'voxels'");
   std::vector<std::string> voxelizers;
-  for (auto& v : voxelizerRegistry()) voxelizers.push_back(v.name);
-  g.voxelizer = p.getString("voxelizer", "atlas", "binary voxelizer (see vgi voxelize --help)", voxelizers);
+  if (atlasOnly)
+    voxelizers.push_back("atlas");
+  else
+    for (auto& v : voxelizerRegistry()) voxelizers.push_back(v.name);
+  g.voxelizer =
+      p.getString("voxelizer", "atlas",
+                  atlasOnly ? "binary voxelizer: atlas (the multi-valued grids come from its points)"
+                            : "binary voxelizer (see vgi voxelize --help)",
+                  voxelizers);
   checkGridMemory(g.resolution, grids);
   return g;
 }

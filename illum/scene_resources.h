@@ -81,7 +81,7 @@ struct SceneNeeds {
 // The `voxels` (N or WxHxD) and `voxelizer` parameters of a module that
 // traces a binary grid; `grids`: how many grid-sized buffers it keeps (the
 // memory check).
-BinaryGridNeed readBinaryGridParams(ParamSet& params, int grids);
+BinaryGridNeed readBinaryGridParams(ParamSet& params, int grids, bool atlasOnly = false);
 
 class SceneResources {
  public:

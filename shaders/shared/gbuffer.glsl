@@ -7,3 +7,10 @@
 #endif
 
 #include "bindings.glsl"
+
+#ifndef __cplusplus
+layout(binding = TEXUNIT_GBUFFER_POSITION) uniform sampler2D gPosition;
+layout(binding = TEXUNIT_GBUFFER_NORMAL) uniform sampler2D gNormal;
+layout(binding = TEXUNIT_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
+layout(binding = TEXUNIT_GBUFFER_GEOMETRIC_NORMAL) uniform sampler2D gGeometricNormal;
+#endif

@@ -28,6 +28,13 @@ SHARED_FN vec3 worldToGrid(SHARED_IN(GridParams) g, vec3 p) {
   return q;
 }
 
+// Continuous grid coordinates → world position (the inverse of worldToGrid).
+SHARED_FN vec3 gridToWorld(SHARED_IN(GridParams) g, vec3 q) {
+  return vec3(g.origin.x, g.origin.y, g.origin.z) + vec3(g.axisX.x, g.axisX.y, g.axisX.z) * (q.x / g.axisX.w) +
+         vec3(g.axisY.x, g.axisY.y, g.axisY.z) * (q.y / g.axisY.w) +
+         vec3(g.axisZ.x, g.axisZ.y, g.axisZ.z) * (q.z / g.axisZ.w);
+}
+
 // The cell holding grid position q; positions exactly on the upper boundary
 // belong to the last cell (the box is closed). Callers check insideGrid first.
 SHARED_FN uvec3 gridCell(GridParams g, vec3 q) {

@@ -93,6 +93,21 @@ TEST(AnalyticSphere, EveryLightTransportMethodGivesItsTruncation) {
       {"reference", {"integrator=path", "maxdepth=10000"}, 256, 10000, 0.015, "the full solution (RR)"},
       {"direct", {"shadow_res=256"}, 4, 1, 0.003, "shadow maps: nothing occludes"},
       {"nearfield", {"radius=3", "shadow_res=256"}, 16, 2, 0.02, "voxel visibility + RSM back-projection"},
+      {"voxelpath", {"maxdepth=1", "shadow_res=256"}, 4, 1, 0.003, "maxdepth 1 is the direct light"},
+      {"voxelpath", {"maxdepth=2", "shadow_res=256"}, 64, 2, 0.02, "one bounce through the grid"},
+      {"voxelpath", {"maxdepth=3", "rr_depth=10", "shadow_res=256"}, 64, 3, 0.02, "two bounces, 128^3"},
+      {"voxelpath",
+       {"maxdepth=3", "rr_depth=10", "shadow_res=256", "voxels=256"},
+       64,
+       3,
+       0.02,
+       "two bounces, 256^3"},
+      {"voxelpath",
+       {"maxdepth=6", "rr_depth=1", "shadow_res=256"},
+       128,
+       6,
+       0.03,
+       "five bounces with Russian roulette from the first"},
   };
   for (const Case& c : cases) {
     RenderOutput r = test::render(scene, c.method, c.set, 32, c.spp);

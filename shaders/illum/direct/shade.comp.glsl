@@ -11,10 +11,6 @@
 #include "../../shared/gbuffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = TEXUNIT_GBUFFER_POSITION) uniform sampler2D gPosition;
-layout(binding = TEXUNIT_GBUFFER_NORMAL) uniform sampler2D gNormal;
-layout(binding = TEXUNIT_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
-layout(binding = TEXUNIT_GBUFFER_GEOMETRIC_NORMAL) uniform sampler2D gGeometricNormal;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform writeonly image2D uSample;
 
 uniform vec3 uCameraPosition;

@@ -16,8 +16,6 @@
 // so a blur window that loses some sets at an edge loses samples, not azimuths.
 #include "../../shared/gbuffer.glsl"
 #include "../../shared/sampling.glsl"
-layout(binding = TEXUNIT_GBUFFER_POSITION) uniform sampler2D gPosition;
-layout(binding = TEXUNIT_GBUFFER_NORMAL) uniform sampler2D gNormal;
 uniform int uScale;  // 1, 2 or 4
 
 // The image texel an indirect pixel stands for.

@@ -9,7 +9,6 @@
 // output channels when asked for (uWriteIndirect, uWriteDirect).
 #include "gather.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = TEXUNIT_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler2D uInput;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform image2D uSample;
 layout(rgba32f, binding = IMAGE_SAMPLE_AOV0) uniform writeonly image2D uIndirectAov;
