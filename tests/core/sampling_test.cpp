@@ -279,6 +279,55 @@ TEST(SharedBrdf, PhongLobeIsNormalisedAndPdfIntegratesToOne) {
   EXPECT_NEAR(pdfIntegral / N, 1.0, 0.02);
 }
 
+// The path tracers' weight f·cos/pdf of a sampled direction, averaged, is the
+// BRDF's directional albedo ∫ f cos dω — for a near-mirror lobe (e = 10³)
+// too, at normal incidence (exactly ρ + ks) and at 70° (part of the lobe
+// below the horizon: against a quadrature in the lobe's frame); no weight is
+// NaN or infinite, and samples below the horizon are the ones dropped.
+TEST(SharedBrdf, SamplingWeightAveragesToTheDirectionalAlbedoForANarrowLobe) {
+  BrdfParams m;
+  m.albedo = glm::vec3(0.3f);
+  m.ks = glm::vec3(0.6f);
+  m.exponent = 1000.0f;
+  const glm::vec3 n(0, 0, 1);
+  for (float thetaDeg : {0.0f, 70.0f}) {
+    const float th = glm::radians(thetaDeg);
+    const glm::vec3 wo(std::sin(th), 0.0f, std::cos(th));
+    // Quadrature of the lobe part around r = reflect(wo): α up to where cos^e α < 1e-12.
+    const glm::dvec3 r = glm::dvec3(reflectAbout(wo, n));
+    const Basis f = makeBasis(glm::vec3(r));
+    const double alphaMax = std::acos(std::pow(1e-12, 1.0 / m.exponent));
+    const int na = 2000, np = 2000;
+    double lobe = 0;
+    for (int i = 0; i < na; ++i)
+      for (int j = 0; j < np; ++j) {
+        const double a = (i + 0.5) * alphaMax / na, phi = (j + 0.5) * 2 * M_PI / np;
+        const glm::dvec3 w = glm::dvec3(f.t) * (std::sin(a) * std::cos(phi)) +
+                             glm::dvec3(f.b) * (std::sin(a) * std::sin(phi)) + glm::dvec3(f.n) * std::cos(a);
+        if (w.z <= 0) continue;
+        lobe += (m.exponent + 2) / (2 * M_PI) * std::pow(std::cos(a), m.exponent) * w.z * std::sin(a) *
+                (alphaMax / na) * (2 * M_PI / np);
+      }
+    const double expected = 0.3 + 0.6 * lobe;
+    if (thetaDeg == 0.0f) EXPECT_NEAR(lobe, 1.0, 1e-3);
+    uint32_t state = rngSeed(7u, uint32_t(thetaDeg), 3u);
+    const int N = 200000;
+    double sum = 0, sumSq = 0;
+    for (int k = 0; k < N; ++k) {
+      const glm::vec3 u(rngNext(state), rngNext(state), rngNext(state));
+      const glm::vec3 wi = sampleBrdf(m, n, wo, u);
+      const float pdf = brdfPdf(m, n, wo, wi);
+      double w = 0;
+      if (pdf > 0.0f && wi.z > 0.0f) w = double(evalBrdf(m, n, wo, wi).x) * wi.z / pdf;
+      ASSERT_TRUE(std::isfinite(w)) << k;
+      sum += w;
+      sumSq += w * w;
+    }
+    const double mean = sum / N, sd = std::sqrt(std::max(0.0, sumSq / N - mean * mean) / N);
+    EXPECT_NEAR(mean, expected, 5 * sd + 1e-6) << thetaDeg << " deg: sd " << sd;
+  }
+}
+
 TEST(SharedLights, SpotConeAndInverseSquare) {
   PackedLight spot;
   spot.positionType = glm::vec4(0, 2, 0, float(LIGHT_SPOT));
