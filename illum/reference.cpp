@@ -37,10 +37,17 @@
 // | rr_depth   | int    | 3                  | path: bounces before Russian roulette starts         |
 // | radius     | float  | 0.5 / 0.1 · diag.  | nearfield (as the module) / ao: ray length, world units |
 // | env        | bool   | true               | nearfield: rays leaving `radius` read the environment |
-// | visibility | string | exact              | nearfield: exact, or voxels (see below)              |
+// | visibility | string | exact              | nearfield/path: exact, or voxels (see below)         |
 // | voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        |
 // | offset     | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diag. |
 // | emitter_sampling | string | mis          | path/direct/nearfield: area lights by mis, light or brdf |
+//
+// path with visibility=voxels does the same for `voxelpath`: every bounce ray
+// (not the camera ray) finds its first hit through the voxel grid, from
+// `offset` diagonals along the normal, and the surface there exactly; NEE,
+// shading and emission stay exact. voxelpath against it is the voxel shading
+// (hit point, mean normal and BRDF) and RSM direct-light error; it against
+// the exact path tracer the voxel-visibility error.
 //
 // nearfield with visibility=voxels isolates the voxel-visibility error of the
 // `nearfield` module: the bounce ray starts `offset` voxel diagonals along the
@@ -159,10 +166,12 @@ class ReferenceRenderer : public Method {
       env_ = params.getBool("env", true, envDoc);
     else
       params.declare("env", "bool", "true", envDoc);
-    const char* visDoc = "nearfield: exact, or voxels (voxel visibility on an exact voxelization)";
-    const char* voxDoc = "nearfield, visibility=voxels: grid resolution N or WxHxD";
-    const char* offDoc = "nearfield, visibility=voxels: ray start offset along the normal, voxel diagonals";
-    if (check(nearField, "visibility"))
+    const char* visDoc =
+        "nearfield/path: exact, or voxels (bounce rays' first hits through an exact voxelization)";
+    const char* voxDoc = "nearfield/path, visibility=voxels: grid resolution N or WxHxD";
+    const char* offDoc =
+        "nearfield/path, visibility=voxels: ray start offset along the normal, voxel diagonals";
+    if (check(nearField || integrator_ == Integrator::Path, "visibility"))
       voxelVisibility_ = params.getString("visibility", "exact", visDoc, {"exact", "voxels"}) == "voxels";
     else
       params.declare("visibility", "string", "exact", visDoc);
@@ -223,6 +232,7 @@ class ReferenceRenderer : public Method {
 
   Integrator integrator_;
   int maxDepth_ = 8, rrDepth_ = 3;
+  float sceneDiagonal_ = 1;
   float radius_ = 0;
   bool env_ = true;
   bool voxelVisibility_ = false;
@@ -334,9 +344,25 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const
   // Light that reaches the first vertex x0 along one segment (its emission
   // and NEE, emitters and environment met by its bounce ray) is direct; the
   // rest, from the second vertex on, is indirect.
+  SurfacePoint prev;  // the vertex the current ray leaves (depth ≥ 1)
   for (int depth = 0;; ++depth) {
     SurfacePoint sp;
-    if (!intersect(o, d, 1e30f, sp)) {
+    bool found;
+    if (voxelTracer_ && depth >= 1) {
+      // visibility=voxels: the first hit of the bounce ray through the voxel
+      // grid, then the surface there found exactly (within two voxel
+      // diagonals of the hit voxel's entry; none: the path ends).
+      TraceRay ray;
+      ray.origin = prev.p + prev.n * (offset_ * voxelDiagonal_);
+      ray.dir = d;
+      ray.tmax = 4.0f * sceneDiagonal_;
+      const TraceResult h = voxelTracer_->trace(ray);
+      if (h.hit && !intersect(ray.origin, d, h.t + 2.0f * voxelDiagonal_, sp)) break;
+      found = h.hit;
+    } else {
+      found = intersect(o, d, 1e30f, sp);
+    }
+    if (!found) {
       const vec3 e = beta * scene_->environmentRadiance(d);
       L += e;
       if (depth >= 2) indirect += e;
@@ -363,6 +389,7 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const
     }
     o = offsetOrigin(sp, wi);
     d = wi;
+    prev = sp;
   }
   return L;
 }
@@ -436,6 +463,7 @@ void ReferenceRenderer::prepareFrame(Frame& f) {
     voxelTracer_ = createTracer("hierarchical", in);
     voxelDiagonal_ = f.resources.voxelDiagonal();
   }
+  sceneDiagonal_ = f.scene.bounds(f.request.time).diagonal();
   lights_.clear();
   for (auto& l : f.scene.lights) lights_.push_back(packLight(l));
   eps_ = 2e-5f * f.scene.bounds(f.request.time).diagonal();

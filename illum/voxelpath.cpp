@@ -28,7 +28,7 @@
 // | rr_depth    | int    | 3              | bounces before Russian roulette (as reference)           |
 // | tracer      | string | hierarchical   | hierarchical, dda or march (GLSL define)                 |
 // | offset      | float  | 0.5            | ray start offset along the normal, voxel diagonals       |
-// | passthrough | bool   | true           | pass seen-through and own-band unlit hits (as nearfield) |
+// | passthrough | bool   | true           | pass own-band hits (the start's normal, or unlit)       |
 // | hitpoint    | string | entry          | hit vertex: entry (voxel entry), centre, or plane (mean-normal plane) |
 // | backprojection | string | plane       | hit → RSM: plane or entry (as nearfield)                 |
 // | glossy      | bool   | true           | Phong lobes sampled and lit (false: diffuse only)        |
@@ -70,8 +70,8 @@ class VoxelPathMethod : public Method {
         p.getFloat("offset", 0.5f, "ray start offset along the normal, in voxel diagonals", 0.0f, 100.0f);
     passThrough_ =
         p.getBool("passthrough", true,
-                  "rays go on past a hit voxel whose entry a light sees through, or that lies within "
-                  "a voxel diagonal of the start's plane and gives no light (as nearfield)");
+                  "rays go on past a hit within a voxel diagonal of the start's plane whose mean normal "
+                  "is the start's or that gives no light (it may be the start's own voxel)");
     hitPoint_ =
         p.getString("hitpoint", "entry",
                     "hit vertex: entry (where the ray enters the voxel), centre (the voxel centre) "

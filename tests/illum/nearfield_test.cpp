@@ -226,8 +226,17 @@ TEST(Modules, BadParametersAndOutputsAreErrors) {
                     {"--aov", "glow", "direct, indirect"});
   test::expectError([] { render("builtin:cornell", "direct", {}, 8, 1, {"indirect"}); },
                     {"indirect", "none"});
-  test::expectError([] { render("builtin:cornell", "reference", {"visibility=voxels"}, 8, 1); },
-                    {"visibility", "integrator=path"});
+  test::expectError(
+      [] {
+        render("builtin:cornell", "reference", {"integrator=ao", "visibility=voxels"}, 8, 1);
+      },
+      {"visibility", "integrator=ao"});
+  test::expectError([] { render("builtin:cornell", "voxelpath", {"maxdepth=0"}, 8, 1); }, {"maxdepth", "0"});
+  test::expectError([] { render("builtin:cornell", "voxelpath", {"hitpoint=surface"}, 8, 1); },
+                    {"hitpoint", "surface", "entry"});
+  test::expectError([] { render("builtin:cornell", "voxelpath", {"voxelizer=slicemap"}, 8, 1); },
+                    {"voxelizer", "slicemap", "atlas"});
+  test::expectError([] { render("builtin:cornell", "voxelpath", {"clamp=nan"}, 8, 1); }, {"clamp", "nan"});
 }
 
 }  // namespace vgi

@@ -140,7 +140,7 @@ TEST(VoxelPath, HighPhongExponentAtGrazingViewStaysFinite) {
 // point, so voxelpath and the exact path tracer compute the same integral up
 // to the voxel hit point (the next vertex starts on the entered cell's face,
 // within a voxel of the wall) and the RSM's texels. Measured (1024 spp at
-// 64², maxdepth 2): the indirect light is 1.0 % low, all of it along the
+// 64², maxdepth 2): the indirect light is 1.1 % low, all of it along the
 // room's edges (contact light within about a pixel of the corners), the same
 // at 128³ and 256³ and for RSMs of 256² to 2048² — an open question
 // (docs/BENCHMARKS.md). The test: over 8×8 blocks of the indirect AOV, the
