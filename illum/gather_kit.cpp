@@ -82,17 +82,11 @@ void GatherKit::resolve(Frame& f) const {
     current = 1;
   }
   auto s = f.profiler.scope(scale_ > 1 ? "upsample_composite" : "composite");
-  const unsigned sample = f.sampleImage("image");
   glUseProgram(upProg_);
   shaders.setUniform(upProg_, "uCameraPosition", f.camera.position);
   gbuffer.bind();
   glBindTextureUnit(TEXUNIT_PASS_INPUT, low_[current]);
-  glBindImageTexture(IMAGE_SAMPLE, sample, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  // Outputs not asked for are not written (uWriteIndirect/uWriteDirect); their units get the sample image.
-  const unsigned indirect = f.wants("indirect") ? f.sampleImage("indirect") : sample;
-  const unsigned direct = f.wants("direct") ? f.sampleImage("direct") : sample;
-  glBindImageTexture(IMAGE_SAMPLE_AOV0, indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glBindImageTexture(IMAGE_SAMPLE_AOV1, direct, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  bindSampleAndSplitImages(f);
   glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }

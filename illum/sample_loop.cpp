@@ -272,4 +272,13 @@ RenderResult renderStill(Method& method, const RenderRequest& req, Profiler& pro
   return renderFrame(method, req, resources, targets, shaders, prof);
 }
 
+void bindSampleAndSplitImages(const Frame& f) {
+  const unsigned sample = f.sampleImage("image");
+  glBindImageTexture(IMAGE_SAMPLE, sample, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  const unsigned indirect = f.wants("indirect") ? f.sampleImage("indirect") : sample;
+  const unsigned direct = f.wants("direct") ? f.sampleImage("direct") : sample;
+  glBindImageTexture(IMAGE_SAMPLE_AOV0, indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(IMAGE_SAMPLE_AOV1, direct, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+}
+
 }  // namespace vgi

@@ -131,6 +131,12 @@ class Frame {
   ShaderLibrary* shaders_;
 };
 
+// Binds the frame's sample image ("image", read-write) at IMAGE_SAMPLE and the
+// "indirect" / "direct" outputs at IMAGE_SAMPLE_AOV0 / AOV1 (shared/bindings.glsl)
+// for a pass that composes the sample and splits it; an output not asked for
+// gets the sample image (the pass must not write it: uWriteIndirect/uWriteDirect).
+void bindSampleAndSplitImages(const Frame& f);
+
 // One frame of `method`: the loop described at the top. `shaders` is set for GL methods.
 RenderResult renderFrame(Method& method, const RenderRequest& request, SceneResources& resources,
                          SampleTargets& targets, ShaderLibrary* shaders, Profiler& profiler);

@@ -144,11 +144,7 @@ class VoxelPathMethod : public Method {
       shaders.setUniform(prog_, "uCameraPosition", f.camera.position);
       shaders.setUniform(prog_, "uSampleIndex", uint32_t(k));
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-      glBindImageTexture(IMAGE_SAMPLE, sample, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-      const unsigned indirect = f.wants("indirect") ? f.sampleImage("indirect") : sample;
-      const unsigned direct = f.wants("direct") ? f.sampleImage("direct") : sample;
-      glBindImageTexture(IMAGE_SAMPLE_AOV0, indirect, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-      glBindImageTexture(IMAGE_SAMPLE_AOV1, direct, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+      bindSampleAndSplitImages(f);
       glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }

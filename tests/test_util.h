@@ -39,6 +39,16 @@ inline double meanOf(const Image& img, int channel = 0) {
   return s / double(img.pixels.size());
 }
 
+// The mean and the unbiased sample variance of v (at least two values).
+inline void meanAndVariance(const std::vector<double>& v, double& mean, double& var) {
+  mean = 0;
+  for (double x : v) mean += x;
+  mean /= double(v.size());
+  var = 0;
+  for (double x : v) var += (x - mean) * (x - mean);
+  var /= double(v.size() - 1);
+}
+
 inline int addMaterial(Scene& s, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
   Material m;
   m.name = "m" + std::to_string(s.materials.size());

@@ -259,17 +259,9 @@ TEST(AreaLights, CornellBoxOriginalMisCutsTheReferenceErrorTenfoldWithoutBias) {
     }
     return m;
   };
-  auto stats = [](const std::vector<double>& v, double& mean, double& var) {
-    mean = 0;
-    for (double x : v) mean += x;
-    mean /= double(v.size());
-    var = 0;
-    for (double x : v) var += (x - mean) * (x - mean);
-    var /= double(v.size() - 1);
-  };
   double mm, vm, mb, vb;
-  stats(means("mis"), mm, vm);
-  stats(means("brdf"), mb, vb);
+  test::meanAndVariance(means("mis"), mm, vm);
+  test::meanAndVariance(means("brdf"), mb, vb);
   const double t = (mm - mb) / std::sqrt(vm / 6 + vb / 6);
   EXPECT_LT(std::abs(t), 4.0) << "mis " << mm << " brdf " << mb;
 }

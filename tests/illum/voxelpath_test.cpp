@@ -181,19 +181,11 @@ TEST(VoxelPath, ClosedRoomAgreesWithTheReferenceWithinNoise) {
     o.spp = 64;
     blocks(runRender(o).result.aovs.at("indirect"), ref);
   }
-  auto meanVar = [](const std::vector<double>& v, double& mean, double& var) {
-    mean = 0;
-    for (double x : v) mean += x;
-    mean /= double(v.size());
-    var = 0;
-    for (double x : v) var += (x - mean) * (x - mean);
-    var /= double(v.size() - 1);
-  };
   double worstT = 0, worstRel = 0;
   for (size_t b = 0; b < vp.size(); ++b) {
     double ma, va, mb, vb;
-    meanVar(vp[b], ma, va);
-    meanVar(ref[b], mb, vb);
+    test::meanAndVariance(vp[b], ma, va);
+    test::meanAndVariance(ref[b], mb, vb);
     const double se = std::sqrt(va / seeds + vb / seeds);
     const double t = (ma - mb) / std::max(se, 1e-12), rel = (ma - mb) / mb;
     std::printf("room block %2zu: voxelpath %.5f reference %.5f (%+.2f %%, t %+.2f)\n", b, ma, mb, 100 * rel,
