@@ -16,6 +16,7 @@
 #endif
 
 #include "bindings.glsl"
+#include "brdf.glsl"
 #include "gpu_scene.glsl"
 
 SHARED_BEGIN
@@ -156,6 +157,22 @@ bool lightMapLit(int light, vec3 p, vec3 n, vec3 ng, float cosI, float bias, flo
   // it). Taking the nearer never shadows a plane by itself.
   if (onPlane >= 0.0f) return min(onPlane, own + texel) - bias * texel <= stored;
   return own - bias * texel / max(cosI, 0.2f) <= stored;
+}
+
+// The light of every delta light reflected at p toward wo by `brdf`
+// (shading normal n, geometric normal ng), shadowed through the light maps
+// (lightMapLit with `bias` and `normalOffset` in texels): the deferred direct
+// pass, and voxelpath's glossy lobe at path vertices.
+vec3 lightMapsDirect(BrdfParams brdf, vec3 p, vec3 n, vec3 ng, vec3 wo, float bias, float normalOffset) {
+  vec3 sum = vec3(0.0f);
+  for (int i = 0; i < lights.length(); ++i) {
+    LightSample ls = sampleDeltaLight(lights[i], p);
+    float cosI = dot(ls.wi, n);
+    bool lit = cosI > 0.0f && (ls.radiance.x + ls.radiance.y + ls.radiance.z) > 0.0f;
+    if (lit) lit = lightMapLit(i, p, n, ng, cosI, bias, normalOffset);
+    if (lit) sum += evalBrdf(brdf, n, wo, ls.wi) * ls.radiance * cosI;
+  }
+  return sum;
 }
 
 // --- Reading reflective shadow maps (VGI §5.1): back-projection of a point

@@ -39,13 +39,7 @@ void main() {
     vec3 wo = normalize(uCameraPosition - p);
     // One-sided emitters (emission.w = 0) emit on their front side (NG.w = 1).
     if (materials[m].emission.w > 0.5f || NG.w > 0.5f) L = materials[m].emission.xyz;
-    for (int i = 0; i < lights.length(); ++i) {
-      LightSample ls = sampleDeltaLight(lights[i], p);
-      float cosI = dot(ls.wi, n);
-      bool lit = cosI > 0.0f && (ls.radiance.x + ls.radiance.y + ls.radiance.z) > 0.0f;
-      if (lit) lit = lightMapLit(i, p, n, ng, cosI, uShadowBias, uNormalOffset);
-      if (lit) L += evalBrdf(brdf, n, wo, ls.wi) * ls.radiance * cosI;
-    }
+    L += lightMapsDirect(brdf, p, n, ng, wo, uShadowBias, uNormalOffset);
   }
   imageStore(uSample, px, vec4(L, 1.0f));
 }

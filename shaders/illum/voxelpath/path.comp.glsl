@@ -80,13 +80,13 @@ bool trace(vec3 o, vec3 d, vec3 n, out float t, out uvec3 voxel, out BackProject
   while (nextHit(ray)) {
     t = hitDistance(ray);
     voxel = ray.hit.voxel;
+    precise float height = dot(d, n) * t + uOffset;
+    bool band = uPassThrough != 0 && height < uVoxelDiagonal;
+    // The normal rule needs no back-projection: a band hit it passes costs one fetch.
+    vec4 nv = band ? texelFetch(valueNormal, ivec3(voxel), 0) : vec4(0.0f);
+    if (band && abs(dot(nv.xyz, n)) > 0.8f * length(nv.xyz) && passHit(ray, uVoxelDiagonal)) continue;
     b = rsmBackProject(o, d, t, uVoxelDiagonal, uTraceLength, uRefine != 0);
-    if (uPassThrough != 0) {
-      precise float height = dot(d, n) * t + uOffset;
-      vec4 nv = texelFetch(valueNormal, ivec3(voxel), 0);
-      bool own = abs(dot(nv.xyz, n)) > 0.8f * length(nv.xyz) || b.radiance == vec3(0.0f);
-      if (height < uVoxelDiagonal && own && passHit(ray, uVoxelDiagonal)) continue;
-    }
+    if (band && b.radiance == vec3(0.0f) && passHit(ray, uVoxelDiagonal)) continue;
     return true;
   }
   return false;
@@ -134,15 +134,7 @@ vec3 glossyDirect(Vertex v, vec3 wo) {
   if (v.brdf.ks.x + v.brdf.ks.y + v.brdf.ks.z <= 0.0f) return vec3(0.0f);
   BrdfParams lobe = v.brdf;
   lobe.albedo = vec3(0.0f);
-  vec3 sum = vec3(0.0f);
-  for (int l = 0; l < lights.length(); ++l) {
-    LightSample ls = sampleDeltaLight(lights[l], v.p);
-    float cosI = dot(ls.wi, v.n);
-    if (cosI <= 0.0f || ls.radiance.x + ls.radiance.y + ls.radiance.z <= 0.0f) continue;
-    if (!lightMapLit(l, v.p, v.n, v.n, cosI, uShadowBias, uNormalOffset)) continue;
-    sum += evalBrdf(lobe, v.n, wo, ls.wi) * ls.radiance * cosI;
-  }
-  return sum;
+  return lightMapsDirect(lobe, v.p, v.n, v.n, wo, uShadowBias, uNormalOffset);
 }
 
 vec3 clampContribution(vec3 c) {
