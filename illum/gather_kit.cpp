@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -13,15 +14,16 @@
 
 namespace vgi {
 
-GatherSettings readGatherParams(ParamSet& p, const std::string& what, bool reflect) {
+GatherSettings readGatherParams(ParamSet& p, const std::string& what, bool reflect, bool rays) {
   GatherSettings s;
   s.reflect = reflect;
-  s.rays = p.getInt("rays", 16, what + " rays per gather pixel per frame", 1, 4096);
+  if (rays) s.rays = p.getInt("rays", 16, what + " rays per gather pixel per frame", 1, 4096);
   s.resolution =
       p.getFloat("resolution", 0.5f, what + " resolution: 1, 0.5 or 0.25 of the image", 0.0f, 1.0f);
   if (s.resolution != 1.0f && s.resolution != 0.5f && s.resolution != 0.25f)
     fail("parameter 'resolution': ", s.resolution, " is not one of 1, 0.5, 0.25");
-  s.interleave = p.getInt("interleave", 4, "k: k x k pixel blocks share k^2 direction sets", 1, 8);
+  s.interleave = p.getInt(
+      "interleave", 4, "k: the pixels of k x k blocks take k^2 different sets (of directions or VPLs)", 1, 8);
   s.blur = p.getBool("blur", true, "geometry-aware blur over the interleave window");
   return s;
 }
@@ -60,10 +62,17 @@ void GatherKit::setSampleUniforms(ShaderLibrary& shaders, unsigned prog, int k) 
   shaders.setUniform(prog, "uRotation", k == 0 ? glm::vec2(0.0f) : glm::vec2(halton(k, 5), halton(k, 7)));
 }
 
-void GatherKit::dispatchGather() const {
-  glBindImageTexture(IMAGE_OUTPUT, low_[0], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glDispatchCompute(unsigned(lw_ + 7) / 8, unsigned(lh_ + 7) / 8, 1);
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+void GatherKit::dispatchGather(ShaderLibrary& shaders, unsigned prog, int items, int perDispatch) const {
+  glBindImageTexture(IMAGE_OUTPUT, low_[0], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+  perDispatch = std::max(1, perDispatch);
+  for (int first = 0; first == 0 || first < items; first += perDispatch) {
+    shaders.setUniform(prog, "uBatchFirst", first);
+    shaders.setUniform(prog, "uBatchEnd", std::min(items, first + perDispatch));
+    shaders.setUniform(prog, "uAccumulate", first > 0 ? 1 : 0);
+    glDispatchCompute(unsigned(lw_ + 7) / 8, unsigned(lh_ + 7) / 8, 1);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 void GatherKit::resolve(Frame& f) const {

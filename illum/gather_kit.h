@@ -22,8 +22,9 @@ struct GatherSettings {
   // direct light already in the sample); false: the sample is E itself (AO).
   bool reflect = true;
 };
-// Reads rays, resolution, interleave and blur (`what` names the gathered quantity in the docs).
-GatherSettings readGatherParams(ParamSet& params, const std::string& what, bool reflect);
+// Reads rays (unless !rays: a gather without directions), resolution,
+// interleave and blur (`what` names the gathered quantity in the docs).
+GatherSettings readGatherParams(ParamSet& params, const std::string& what, bool reflect, bool rays = true);
 
 class GatherKit {
  public:
@@ -33,14 +34,23 @@ class GatherKit {
   // uRays, uInterleave once per frame (prepare), uFrame and uRotation per sample.
   void setFrameUniforms(ShaderLibrary& shaders, unsigned program) const;
   void setSampleUniforms(ShaderLibrary& shaders, unsigned program, int sample) const;
-  // Binds the gather buffer at IMAGE_OUTPUT and dispatches the program in use over it.
-  void dispatchGather() const;
+  // Binds the gather buffer at IMAGE_OUTPUT and dispatches the program in use
+  // over it, in batches of `perDispatch` of its `items` (rays, VPL chains):
+  // uBatchFirst, uBatchEnd, uAccumulate per dispatch (gather.glsl says why).
+  void dispatchGather(ShaderLibrary& shaders, unsigned program, int items, int perDispatch) const;
+  // The kit's ray-gathering modules' batch: 16 rays of up to 4 traces each
+  // stay under llvmpipe's 65535 loop iterations per invocation.
+  static constexpr int kRaysPerDispatch = 16;
   // Blur (when on and k > 1), then upsampling + composite into the sample
   // image, and the "indirect" / "direct" outputs when asked for; timed as
   // "blur" and "upsample_composite" (or "composite" at full resolution).
   void resolve(Frame& frame) const;
 
   int width() const { return lw_; }
+  int scale() const { return scale_; }  // image pixels per gather pixel
+  unsigned gatherTexture() const {
+    return low_[0];
+  }  // what the gather pass writes (RGBA32F, w = 1 on a surface)
   int height() const { return lh_; }
   int blurWindow() const { return blur_ ? s_.interleave : 0; }
   const GatherSettings& settings() const { return s_; }

@@ -171,7 +171,7 @@ bool NearFieldMethod::addSample(Frame& f, int k) {
     f.resources.glPyramid().bind(f.shaders(), indirectProg_);
     f.gbuffer().bind();
     kit_.setSampleUniforms(f.shaders(), indirectProg_, k);
-    kit_.dispatchGather();
+    kit_.dispatchGather(f.shaders(), indirectProg_, kit_.settings().rays, GatherKit::kRaysPerDispatch);
   }
   kit_.resolve(f);
   return true;

@@ -88,7 +88,7 @@ class VoxelAoMethod : public Method {
       f.resources.glPyramid().bind(f.shaders(), prog_);
       f.gbuffer().bind();
       kit_.setSampleUniforms(f.shaders(), prog_, k);
-      kit_.dispatchGather();
+      kit_.dispatchGather(f.shaders(), prog_, kit_.settings().rays, GatherKit::kRaysPerDispatch);
     }
     kit_.resolve(f);
     return true;

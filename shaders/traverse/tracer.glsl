@@ -42,7 +42,11 @@ TraceHit traceRay(vec3 origin, vec3 dir, float tmax) {
 #endif
 }
 
-bool visibleBetween(vec3 a, vec3 b) { return traceRay(a, b - a, 1.0f).hit == 0u; }
+// No voxel set on the segment a–b (the tracers take a unit direction and a length).
+bool visibleBetween(vec3 a, vec3 b) {
+  float len = length(b - a);
+  return len <= 0.0f || traceRay(a, (b - a) / len, len).hit == 0u;
+}
 
 // A ray that may go on past voxels its module judges empty (a voxel a light
 // sees through) or the receiver's own: nextHit() traces from where the ray

@@ -21,6 +21,16 @@ uniform int uScale;  // 1, 2 or 4
 // The image texel an indirect pixel stands for.
 ivec2 representative(ivec2 q, ivec2 full) { return min(q * uScale + uScale / 2, full - 1); }
 
+// A gather pass runs in dispatches over batches of its items (rays, VPL
+// chains): items uBatchFirst … uBatchEnd − 1, added to what the earlier
+// dispatches of the sample stored (uAccumulate). llvmpipe ends every loop of
+// an invocation once 65535 loop iterations have run in it in all (gallivm's
+// loop limiter counts the whole invocation), which one pass over 256 rays of
+// a few hundred tracer steps each reaches — the rest were silently dropped.
+uniform int uBatchFirst, uBatchEnd, uAccumulate;
+// What the earlier dispatches stored at q of the pass's rgba32f image (a macro: image formats do not pass).
+#define gatheredBefore(img, q) (uAccumulate != 0 ? imageLoad(img, q) : vec4(0.0f))
+
 uniform vec3 uCameraPosition;
 uniform float uPixelAngle;   // world size of one full-resolution pixel per unit distance
 

@@ -25,7 +25,7 @@
 #include "../gather/gather.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D uIndirect;
+layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uIndirect;
 
 uniform float uRadius;       // r, world units
 uniform float uOffset;       // start offset along the normal, world units
@@ -49,7 +49,7 @@ void main() {
   Basis frame = makeBasis(n);
   vec3 origin = P.xyz + n * uOffset;
   vec3 sum = vec3(0.0f);
-  for (int r = 0; r < uRays; ++r) {
+  for (int r = uBatchFirst; r < uBatchEnd; ++r) {
     vec3 d = gatherDirection(q, r, frame);
     // With uPassThrough the ray goes on past a hit voxel, up to three times,
     // when (a) a light sees through its entry point — nothing is there (a
@@ -76,5 +76,5 @@ void main() {
       if (uPassThrough == 0 || !(b.seenThrough || ownBand) || !passHit(ray, uVoxelDiagonal)) break;
     }
   }
-  imageStore(uIndirect, q, vec4(sum / float(uRays), 1.0f));
+  imageStore(uIndirect, q, vec4(gatheredBefore(uIndirect, q).xyz + sum / float(uRays), 1.0f));
 }

@@ -13,7 +13,7 @@
 #include "../gather/gather.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D uAo;
+layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uAo;
 
 uniform float uRadius;        // r, world units
 uniform float uOffset;        // start offset along the normal, world units
@@ -34,7 +34,7 @@ void main() {
   Basis frame = makeBasis(n);
   vec3 origin = P.xyz + n * uOffset;
   int open = 0;
-  for (int r = 0; r < uRays; ++r) {
+  for (int r = uBatchFirst; r < uBatchEnd; ++r) {
     vec3 d = gatherDirection(q, r, frame);
     ResumableRay ray = resumableRay(origin, d, uRadius);
     while (true) {
@@ -46,5 +46,5 @@ void main() {
       if (uPassThrough == 0 || height >= uVoxelDiagonal || !passHit(ray, uVoxelDiagonal)) break;
     }
   }
-  imageStore(uAo, q, vec4(vec3(float(open) / float(uRays)), 1.0f));
+  imageStore(uAo, q, vec4(gatheredBefore(uAo, q).xyz + vec3(float(open) / float(uRays)), 1.0f));
 }
