@@ -35,6 +35,7 @@
 #include "../../shared/light_maps.glsl"
 #include "../../shared/value_textures.glsl"
 #include "../../traverse/tracer.glsl"
+#include "../voxel_hits.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform image2D uSample;  // holds the direct light; += the path
@@ -45,89 +46,12 @@ uniform int uWriteIndirect, uWriteDirect;
 uniform vec3 uCameraPosition;
 uniform int uMaxDepth;        // 1: direct light only
 uniform int uRrDepth;         // bounces before Russian roulette
-uniform float uOffset;        // ray start offset along the normal, world units
-uniform float uVoxelDiagonal;
-uniform float uTraceLength;   // longer than any ray through the grid
 uniform float uClamp;         // > 0: each vertex's contribution clamped to this (max component)
 uniform int uEnv;             // rays leaving the grid read the environment
-uniform int uGlossy;          // 0: the Phong lobes are dropped (diffuse only)
-uniform int uRefine;          // back-projection: 0 the voxel entry (VGI), 1 the RSM surface's plane
-uniform int uPassThrough;     // pass hits in the start's own band (see trace())
-uniform int uHitPoint;        // 0 voxel entry, 1 voxel centre, 2 on the plane of the voxel's mean normal
 uniform float uShadowBias;    // light-map lookups at hits (glossy lobe), texels
 uniform float uNormalOffset;
 uniform uint uSeed;
 uniform uint uSampleIndex;
-
-// A path vertex as the grid knows it.
-struct Vertex {
-  vec3 p, n;
-  BrdfParams brdf;
-};
-
-// The first voxel hit along (o, d), and its RSM back-projection. With
-// uPassThrough the ray goes on past a hit (up to kMaxPasses times) within a
-// voxel diagonal of the start's tangent plane — the start is only half a
-// diagonal off its surface, so it may be the start's own voxel — when the
-// cell's mean normal is the start's up to sign (the grid keeps the mesh's
-// normals, which need not face the viewer) or the hit gives no light.
-// Measured against reference path (docs/BENCHMARKS.md): the normal rule
-// alone loses 2.5 % of the indirect light (in corners); adding nearfield's
-// pass of voxels a light sees through loses 7 % on the Cornell box (a path
-// that passes them goes on past real, unlit surfaces); this rule: 1.1 % (room) to 1.5 % (Cornell box).
-bool trace(vec3 o, vec3 d, vec3 n, out float t, out uvec3 voxel, out BackProjection b) {
-  ResumableRay ray = resumableRay(o, d, uTraceLength);
-  while (nextHit(ray)) {
-    t = hitDistance(ray);
-    voxel = ray.hit.voxel;
-    precise float height = dot(d, n) * t + uOffset;
-    bool band = uPassThrough != 0 && height < uVoxelDiagonal;
-    // The normal rule needs no back-projection: a band hit it passes costs one fetch.
-    vec4 nv = band ? texelFetch(valueNormal, ivec3(voxel), 0) : vec4(0.0f);
-    if (band && abs(dot(nv.xyz, n)) > 0.8f * length(nv.xyz) && passHit(ray, uVoxelDiagonal)) continue;
-    b = rsmBackProject(o, d, t, uVoxelDiagonal, uTraceLength, uRefine != 0);
-    if (band && b.radiance == vec3(0.0f) && passHit(ray, uVoxelDiagonal)) continue;
-    return true;
-  }
-  return false;
-}
-
-// The hit vertex in voxel `voxel`, entered at distance t along (o, d).
-// Returns false where the grid holds no values there (a cell the binary grid
-// set but no atlas point reached): the path ends.
-bool hitVertex(vec3 o, vec3 d, float t, uvec3 voxel, out Vertex v) {
-  ivec3 c = ivec3(voxel);
-  float occ = texelFetch(valueOccupancy, c, 0).x;
-  if (occ <= 0.0f) return false;
-  vec3 mean = texelFetch(valueNormal, c, 0).xyz / occ;
-  float len = length(mean);
-  // Two sides of a wall in one cell cancel: the side the ray meets is the one facing it.
-  vec3 n = len > 1e-3f ? mean / len : -d;
-  if (dot(n, d) > 0.0f) n = -n;
-  v.n = n;
-  v.brdf.albedo = texelFetch(valueAlbedo, c, 0).xyz / occ;
-  vec4 g = texelFetch(valueGlossy, c, 0) / occ;
-  v.brdf.ks = uGlossy != 0 ? vec3(g.x, g.y, g.z) : vec3(0.0f);
-  v.brdf.exponent = decodeExponent(g.w);
-  precise vec3 entry = o + t * d;
-  v.p = entry;
-  if (uHitPoint != 0) {
-    GridParams grid = gridFromUniforms();
-    vec3 centre = gridToWorld(grid, vec3(voxel) + vec3(0.5f));
-    v.p = centre;
-    if (uHitPoint == 2) {
-      // The plane through the centre with the mean normal, met within the voxel.
-      float cd = dot(d, n);
-      if (cd < -1e-3f) {
-        float ts = clamp(dot(centre - o, n) / cd, t, t + uVoxelDiagonal);
-        v.p = o + ts * d;
-      } else {
-        v.p = entry;
-      }
-    }
-  }
-  return true;
-}
 
 // The glossy lobe's direct light at v toward wo, through the light maps.
 vec3 glossyDirect(Vertex v, vec3 wo) {
