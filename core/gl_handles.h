@@ -2,12 +2,14 @@
 // so a module that throws half-way leaks nothing and a class holding them
 // needs no destructor. A default-constructed handle owns nothing (name 0).
 #pragma once
+#include <cstddef>
 #include <utility>
 
 namespace vgi {
 
 namespace detail {
 void deleteGlTexture(unsigned name);
+void deleteGlBuffer(unsigned name);
 }  // namespace detail
 
 template <void (*Delete)(unsigned)>
@@ -38,8 +40,11 @@ class GlHandle {
 };
 
 using GlTexture = GlHandle<detail::deleteGlTexture>;
+using GlBuffer = GlHandle<detail::deleteGlBuffer>;
 
 // A new 2D texture of one level (glTextureStorage2D), nearest filtering.
 GlTexture makeTexture2D(int width, int height, unsigned internalFormat);
+// A new buffer of `bytes` (glNamedBufferStorage, dynamic storage: updatable from the CPU).
+GlBuffer makeBuffer(size_t bytes);
 
 }  // namespace vgi

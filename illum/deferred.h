@@ -37,6 +37,8 @@ class GBuffer {
   GBuffer& operator=(const GBuffer&) = delete;
   void render(const GpuScene& gpu, const FrameCamera& camera);
   void bind() const;  // at the units of shaders/shared/gbuffer.glsl
+  // Channel c (0 position, 1 normal, 2 albedo, 3 geometric normal; RGBA32F, rows bottom-up).
+  unsigned texture(int c) const { return tex_[c].get(); }
   int width() const { return w_; }
   int height() const { return h_; }
 

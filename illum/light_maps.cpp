@@ -141,6 +141,7 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
   unsigned prog =
       shaders.program({"illum/raster/surface.vert.glsl", "illum/raster/light_map.frag.glsl"}, defs);
   auto s = profiler.scope(reflective_ ? "rsm" : "shadow_maps");
+  ++renders_;
   glUseProgram(prog);
   gpu.bind(shaders, prog);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);

@@ -3,6 +3,7 @@
 // (position, normal, reflected direct radiance; VGI §5.1) — one 2D array
 // texture per channel, a face table as an SSBO.
 #pragma once
+#include <cstdint>
 #include <nlohmann/json_fwd.hpp>
 #include <vector>
 
@@ -48,6 +49,8 @@ class LightMaps {
   // Binds the face table and the map textures (TEXUNIT_LIGHT_*).
   void bind() const;
   int faceCount() const { return int(layout_.faces.size()); }
+  // How many times render() drew the maps: what a pass derived from them (vpl's flux tree) keys on.
+  uint64_t renders() const { return renders_; }
   bool reflective() const { return reflective_; }
   nlohmann::json describe() const;  // for the stats
 
@@ -56,6 +59,7 @@ class LightMaps {
   LightFaceLayout layout_;
   int resolution_;
   bool reflective_;
+  uint64_t renders_ = 0;
   unsigned faceBuffer_ = 0, rangeBuffer_ = 0, fbo_ = 0, depth_ = 0;
   unsigned textures_[4] = {0, 0, 0, 0};  // distance, position, normal, radiance
 };

@@ -9,6 +9,7 @@
 #include "illum/reference.h"
 #include "illum/voxel_ao.h"
 #include "illum/voxelpath.h"
+#include "illum/vpl.h"
 
 namespace vgi {
 
@@ -49,6 +50,15 @@ const std::vector<MethodInfo>& methodRegistry() {
          return Counterpart{"reference",
                             {"integrator=path", "maxdepth=" + std::to_string(p.at("maxdepth").get<int>()),
                              "rr_depth=" + std::to_string(p.at("rr_depth").get<int>())},
+                            {"direct", "indirect"}};
+       }},
+      {"vpl",
+       "GL instant radiosity: RSM + voxel-traced VPL chains, voxel two-point visibility, interleaved (VGI "
+       "5.3)",
+       true, [](ParamSet& p, const Scene& s) { return createVplMethod(p, s); },
+       [](const nlohmann::json& p) {
+         return Counterpart{"reference",
+                            {"integrator=path", "maxdepth=" + std::to_string(p.at("bounces").get<int>() + 1)},
                             {"direct", "indirect"}};
        }},
       {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,

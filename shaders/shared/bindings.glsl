@@ -25,6 +25,8 @@
 #define BINDING_TRACE_HITS 14      // SSBO their hits
 #define BINDING_VALUE_RADIANCE 15  // SSBO multi-valued grid: radiance sums
 #define BINDING_VALUE_RADIANCE_MAX 16  // SSBO uint: the radiance pass's maximum (float bits)
+#define BINDING_VPL_FLUX 17        // SSBO float[]: the RSM flux tree (shared/vpl.glsl)
+#define BINDING_VPLS 18            // SSBO Vpl[] (shared/vpl.glsl): bounce-major, chain-minor
 
 // ---- textures (samplers)
 #define TEXUNIT_GBUFFER_POSITION 0          // world position, w = 1 where a surface was seen

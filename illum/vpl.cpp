@@ -1,0 +1,326 @@
+// `vpl`: instant radiosity (Keller 1997) with voxel visibility, as in
+// Thiedemann et al., "Voxel-based Global Illumination" (I3D 2011, §5.3).
+// Per sample:
+//   1. direct light of the G-buffer point (the deferred pass, as `direct`);
+//   2. the flux tree of the reflective shadow maps (shaders/illum/vpl/
+//      flux_tree.comp; shared/vpl.glsl) and N VPL chains
+//      (shaders/illum/vpl/generate.comp): first-bounce VPLs at RSM texels
+//      drawn proportionally to their reflected flux (Dachsbacher and
+//      Stamminger 2005; importance-sampled, stratified by a rotated R2
+//      sequence), then `bounces` − 1 further VPLs per chain, each at the first
+//      hit of a cosine-distributed ray through the voxel grid (hierarchical
+//      first hit), normal and albedo from the multi-valued grids;
+//   3. the gather (shaders/illum/vpl/gather.comp) in the gather kit's buffer
+//      (illum/gather_kit.h: ½ resolution by default, k×k interleaved subsets
+//      of the chains, VGI/Keller–Heidrich deferred + interleaved sampling),
+//      with the two-point visibility test through the OR-mip pyramid (§4.1)
+//      and the geometry term's 1/d² clamped at d ≥ clamp · the scene's
+//      diagonal; the kit's geometry-aware blur over the k×k window and joint
+//      bilateral upsampling composite albedo × the gathered light into the
+//      sample.
+// Each sample draws a new VPL set, so the sample loop's average converges to
+// the clamped many-light estimate.
+//
+// Light transport: direct light plus `bounces` diffuse interreflections —
+// the exact counterpart is `reference integrator=path maxdepth=bounces+1`.
+// The VPLs and receivers reflect diffusely (the Phong lobes of glossy
+// materials are not part of this method's integral: on a glossy scene the
+// difference is error). The error against the counterpart splits into:
+//   clamp        the energy the geometry clamp removes (clamp=0: none);
+//   visibility   voxel two-point tests — visibility=exact gathers from the
+//                same VPLs (same seed: the same generation pass) with Embree
+//                occlusion rays on the CPU, visibility=none with none;
+//   VPL tracing  bounce VPLs placed through the voxel grid (hit point, the
+//                cell's mean normal and albedo);
+//   the RSM      texel resolution (a VPL stands for a texel's area).
+//
+// Parameters
+// | key         | type   | default      | meaning                                                   |
+// |-------------|--------|--------------|-----------------------------------------------------------|
+// | vpls        | int    | 1024         | N: VPL chains per sample (0: no indirect light)           |
+// | bounces     | int    | 2            | VPLs per chain: 1 = RSM VPLs only (one indirect bounce)   |
+// | interleave  | int    | 4            | k: k×k pixel blocks gather from k² subsets of the chains  |
+// | resolution  | float  | 0.5          | gather resolution: 1, 0.5 or 0.25 of the image            |
+// | blur        | bool   | true         | geometry-aware blur over the k×k window                   |
+// | clamp       | float  | 0.02         | 1/d² → 1/max(d², (clamp · scene diagonal)²); 0 = off       |
+// | visibility  | string | voxels       | voxels (two-point test), exact (Embree, CPU), none        |
+// | offset      | float  | 1.0          | two-point test: both ends moved along their normals, voxel diagonals |
+// | bounce_offset | float | 0.5         | bounce rays' start offset, voxel diagonals (with the own-band pass) |
+// | tracer      | string | hierarchical | hierarchical, dda or march (GLSL define)                  |
+// | voxels      | string | 128          | grid resolution N or WxHxD                                |
+// | voxelizer   | string | atlas        | binary voxelizer (bounces > 1 need atlas: the value grids) |
+// | shadow_res, shadow_bias, normal_offset | … | light maps (the RSMs), as in `direct`        |
+#include "illum/vpl.h"
+
+#include <glad/gl.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/gl_handles.h"
+#include "core/gpu_scene.h"
+#include "core/parallel.h"
+#include "core/shader_library.h"
+#include "illum/deferred.h"
+#include "illum/direct.h"
+#include "illum/gather_kit.h"
+#include "illum/light_maps.h"
+#include "illum/sample_loop.h"
+#include "shaders/shared/bindings.glsl"
+#include "shaders/shared/vpl.glsl"
+#include "traverse/embree_tracer.h"
+#include "traverse/gl_ray_tracer.h"
+#include "voxelize/value_textures.h"
+
+namespace vgi {
+
+namespace {
+
+// Visibility rays per pixel that one gather dispatch traces: a DDA over a
+// 512³ grid takes up to 1539 steps, so 24 rays stay under llvmpipe's 65535
+// loop iterations per invocation (illum/gather/gather.glsl).
+constexpr int kRaysPerDispatch = 24;
+
+class VplMethod : public Method {
+ public:
+  VplMethod(ParamSet& p, const Scene& scene) {
+    chains_ = p.getInt("vpls", 1024, "N: VPL chains per sample (0: no indirect light)", 0, 1 << 20);
+    bounces_ = p.getInt("bounces", 2,
+                        "VPLs per chain: 1 = the RSM texels' VPLs only (one indirect bounce); "
+                        "each further one at the first voxel hit of a diffuse bounce ray",
+                        1, 16);
+    gather_ = readGatherParams(p, "VPL gather", true, false);
+    clamp_ = p.getFloat("clamp", 0.02f,
+                        "geometry term clamp: 1/d^2 becomes 1/max(d^2, (clamp * scene diagonal)^2); 0 = off",
+                        0.0f, 1.0f);
+    visibility_ = p.getString("visibility", "voxels",
+                              "VPL visibility: voxels (VGI 4.1 two-point test through the OR-mip pyramid), "
+                              "exact (Embree occlusion rays on the CPU, from the same VPLs) or none",
+                              {"voxels", "exact", "none"});
+    offset_ = p.getFloat("offset", 1.0f,
+                         "two-point test: receiver and VPL moved along their normals, in voxel diagonals",
+                         0.0f, 100.0f);
+    bounceOffset_ = p.getFloat("bounce_offset", 0.5f,
+                               "bounce rays' start offset along the VPL's normal, in voxel diagonals "
+                               "(own-band hits are passed, as in voxelpath)",
+                               0.0f, 100.0f);
+    tracer_ = readTracerParam(p);
+    // Static + frame grid, the pyramid (≈ 4/3 of a grid); the value grids (≈ 2 more) are checked when built.
+    grid_ = readBinaryGridParams(p, 4, bounces_ > 1);
+    readShadowParams(p, shadow_);
+    diagonal_ = scene.bounds().diagonal();
+  }
+  std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
+  SceneNeeds needs() const override {
+    SceneNeeds n;
+    n.gbuffer = true;
+    n.lightMaps = LightMapNeed{shadow_.resolution, true};
+    if (visibility_ == "voxels" || bounces_ > 1) {
+      n.binaryGrid = grid_;
+      n.orMipPyramid = true;
+    }
+    if (bounces_ > 1) n.valueGrids = ValueGridNeed{{"normal", "albedo"}, ValueMips::None};
+    n.bvh = visibility_ == "exact";
+    return n;
+  }
+  void prepareFrame(Frame& f) override {
+    ShaderLibrary& shaders = f.shaders();
+    const bool grid = f.resources.needs().binaryGrid.has_value();
+    voxelDiagonal_ = grid ? f.resources.voxelDiagonal() : 0.0f;
+    direct_ =
+        std::make_unique<DirectPass>(shaders, f.resources.gpuScene(), shadow_.bias, shadow_.normalOffset);
+    kit_.prepare(f, gather_);
+    ShaderDefines defs;
+    addTracerDefine(defs, tracer_);
+    fluxProg_ = shaders.program({"illum/vpl/flux_tree.comp.glsl"});
+    genProg_ = shaders.program({"illum/vpl/generate.comp.glsl"}, defs);
+    gatherProg_ = shaders.program({"illum/vpl/gather.comp.glsl"}, defs);
+    res_ = unsigned(shadow_.resolution);
+    shaders.setUniform(fluxProg_, "uRes", res_);
+    shaders.setUniform(genProg_, "uRes", res_);
+    shaders.setUniform(genProg_, "uChains", unsigned(chains_));
+    shaders.setUniform(genProg_, "uBounces", bounces_);
+    shaders.setUniform(genProg_, "uSeed", f.request.seed);
+    // The bounce rays: voxelpath's first-hit rule and hit vertex (illum/voxel_hits.glsl), diffuse.
+    shaders.setUniform(genProg_, "uOffset", bounceOffset_ * voxelDiagonal_);
+    shaders.setUniform(genProg_, "uVoxelDiagonal", voxelDiagonal_);
+    shaders.setUniform(genProg_, "uTraceLength", 4.0f * diagonal_ + 1e-6f);
+    shaders.setUniform(genProg_, "uGlossy", 0);
+    shaders.setUniform(genProg_, "uRefine", 1);
+    shaders.setUniform(genProg_, "uPassThrough", 1);
+    shaders.setUniform(genProg_, "uHitPoint", 0);
+    shaders.setUniform(gatherProg_, "uScale", kit_.scale());
+    shaders.setUniform(gatherProg_, "uChains", unsigned(chains_));
+    shaders.setUniform(gatherProg_, "uBounces", bounces_);
+    shaders.setUniform(gatherProg_, "uInterleave", gather_.interleave);
+    shaders.setUniform(gatherProg_, "uMinDistance2", minDistance2());
+    shaders.setUniform(gatherProg_, "uVisibility", visibility_ == "voxels" ? 1 : 0);
+    shaders.setUniform(gatherProg_, "uOffset", offset_ * voxelDiagonal_);
+    const size_t slots = std::max<size_t>(1, size_t(chains_) * size_t(bounces_));
+    if (!vpls_) vpls_ = makeBuffer(slots * sizeof(shared::Vpl));
+  }
+  bool addSample(Frame& f, int k) override {
+    ShaderLibrary& shaders = f.shaders();
+    const unsigned sample = f.sampleImage("image");
+    {
+      auto s = f.profiler.scope("direct");
+      direct_->shade(f.gbuffer(), f.resources.lightMaps(), f.camera, sample);
+    }
+    if (f.resources.lightMaps().renders() != fluxRenders_) {
+      // Only when the maps were drawn again (once per frame for delta lights, per sample for area lights).
+      auto s = f.profiler.scope("flux_tree");
+      buildFluxTree(f);
+      fluxRenders_ = f.resources.lightMaps().renders();
+    }
+    {
+      auto s = f.profiler.scope("vpls");
+      glUseProgram(genProg_);
+      bindGrid(f, genProg_);
+      shaders.setUniform(genProg_, "uSampleIndex", uint32_t(k));
+      // Sample 0 unrotated; later samples rotate the chains' R2 points by a hash of (k, seed).
+      const uint32_t h = k == 0 ? 0u : shared::pcgHash(uint32_t(k) ^ shared::pcgHash(f.request.seed));
+      shaders.setUniform(genProg_, "uRotation", glm::uvec2(h, k == 0 ? 0u : shared::pcgHash(h)));
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, vpls_.get());
+      glDispatchCompute(unsigned(chains_ + 63) / 64, 1, 1);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    {
+      auto s = f.profiler.scope("gather");
+      if (visibility_ == "exact") {
+        gatherExact(f);
+      } else {
+        glUseProgram(gatherProg_);
+        if (visibility_ == "voxels") f.resources.glPyramid().bind(shaders, gatherProg_);
+        f.gbuffer().bind();
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, vpls_.get());
+        // Batches of chains per dispatch: llvmpipe's per-invocation loop limit (gather.glsl).
+        const int sets = gather_.interleave * gather_.interleave;
+        kit_.dispatchGather(shaders, gatherProg_, (chains_ + sets - 1) / sets, batch());
+      }
+    }
+    kit_.resolve(f);
+    return true;
+  }
+  void finishFrame(Frame& f) override {
+    // The last sample's VPLs, per bounce: how many were placed and the flux they carry.
+    std::vector<shared::Vpl> v = readVpls();
+    nlohmann::json placed = nlohmann::json::array(), flux = nlohmann::json::array();
+    for (int b = 0; b < bounces_; ++b) {
+      uint64_t count = 0;
+      double sum = 0;
+      for (int i = 0; i < chains_; ++i) {
+        const shared::Vpl& x = v[size_t(b) * size_t(chains_) + size_t(i)];
+        if (x.position.w == 0.0f) continue;
+        ++count;
+        sum += (double(x.flux.x) + x.flux.y + x.flux.z) / 3.0;
+      }
+      placed.push_back(count);
+      flux.push_back(sum);
+    }
+    f.extra["vpls_placed"] = placed;
+    f.extra["vpl_flux"] = flux;
+    f.extra["voxel_diagonal"] = voxelDiagonal_;
+    f.extra["clamp_distance"] = std::sqrt(minDistance2());
+    f.extra["clamped"] = clamp_ > 0.0f;
+    f.extra["gather_size"] = {kit_.width(), kit_.height()};
+  }
+
+ private:
+  int batch() const { return std::max(1, kRaysPerDispatch / bounces_); }  // chains per subset per dispatch
+  float minDistance2() const { return (clamp_ * diagonal_) * (clamp_ * diagonal_); }
+
+  void bindGrid(Frame& f, unsigned prog) const {
+    f.resources.gpuScene().bind(f.shaders(), prog);
+    f.resources.lightMaps().bind();
+    if (f.resources.needs().binaryGrid) f.resources.glPyramid().bind(f.shaders(), prog);
+    if (f.resources.needs().valueGrids) f.resources.valueTextures().bind();
+  }
+
+  // Level 0 from the RSMs, then each level from the one below (shared/vpl.glsl).
+  void buildFluxTree(Frame& f) {
+    ShaderLibrary& shaders = f.shaders();
+    const unsigned faces = unsigned(f.resources.lightMaps().faceCount());
+    const size_t floats = size_t(faces) * shared::fluxTreeFaceStride(res_);
+    if (floats != fluxFloats_) {
+      flux_ = makeBuffer(std::max<size_t>(1, floats) * sizeof(float));
+      fluxFloats_ = floats;
+    }
+    glUseProgram(fluxProg_);
+    f.resources.gpuScene().bind(shaders, fluxProg_);
+    f.resources.lightMaps().bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPL_FLUX, flux_.get());
+    for (unsigned l = 0; l < shared::fluxTreeLevels(res_); ++l) {
+      const unsigned s = shared::fluxTreeSize(res_, l);
+      shaders.setUniform(fluxProg_, "uLevel", l);
+      glDispatchCompute((s + 7) / 8, (s + 7) / 8, faces);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+  }
+
+  std::vector<shared::Vpl> readVpls() const {
+    std::vector<shared::Vpl> v(std::max<size_t>(1, size_t(chains_) * size_t(bounces_)));
+    glGetNamedBufferSubData(vpls_.get(), 0, GLsizeiptr(v.size() * sizeof(shared::Vpl)), v.data());
+    return v;
+  }
+
+  // visibility=exact: the gather pass's sum (shared/vpl.glsl: vplSubset,
+  // vplGather) on the CPU for the same VPLs and receivers, each VPL tested
+  // with an Embree occlusion ray between the two surface points (moved 10⁻⁴
+  // of the scene diagonal along their normals), written into the kit's buffer.
+  void gatherExact(Frame& f) const {
+    const std::vector<shared::Vpl> v = readVpls();
+    const int W = f.width(), H = f.height();
+    std::vector<glm::vec4> pos(size_t(W) * size_t(H)), nrm(pos.size());
+    glGetTextureImage(f.gbuffer().texture(0), 0, GL_RGBA, GL_FLOAT, GLsizei(pos.size() * sizeof(glm::vec4)),
+                      pos.data());
+    glGetTextureImage(f.gbuffer().texture(1), 0, GL_RGBA, GL_FLOAT, GLsizei(nrm.size() * sizeof(glm::vec4)),
+                      nrm.data());
+    const int lw = kit_.width(), lh = kit_.height(), scale = kit_.scale(), k = gather_.interleave;
+    const float eps = 1e-4f * diagonal_, dMin2 = minDistance2();
+    const EmbreeTracer& bvh = f.resources.bvh();
+    std::vector<glm::vec4> out(size_t(lw) * size_t(lh), glm::vec4(0.0f));
+    parallelFor(size_t(lh), 1, f.request.threads, [&](size_t y0, size_t y1) {
+      for (size_t y = y0; y < y1; ++y)
+        for (int x = 0; x < lw; ++x) {
+          const glm::ivec2 q(x, int(y));
+          const glm::ivec2 rp = glm::min(q * scale + scale / 2, glm::ivec2(W - 1, H - 1));
+          const glm::vec4 P = pos[size_t(rp.y) * size_t(W) + size_t(rp.x)];
+          if (P.w == 0.0f) continue;
+          const glm::vec3 p(P), n = glm::normalize(glm::vec3(nrm[size_t(rp.y) * size_t(W) + size_t(rp.x)]));
+          const glm::vec3 a = p + n * eps;
+          glm::vec3 sum(0.0f);
+          for (int i = int(shared::vplSubset(q, k)); i < chains_; i += k * k)
+            for (int b = 0; b < bounces_; ++b) {
+              const shared::Vpl& l = v[size_t(b) * size_t(chains_) + size_t(i)];
+              if (l.position.w == 0.0f) break;
+              const glm::vec3 c = shared::vplGather(l, p, n, dMin2);
+              if (c == glm::vec3(0.0f)) continue;
+              const glm::vec3 e = glm::vec3(l.position) + glm::vec3(l.normal) * eps;
+              if (!bvh.occluded(a, e - a, 0.0f, 1.0f)) sum += c;
+            }
+          out[y * size_t(lw) + size_t(x)] = glm::vec4(sum * float(k * k), 1.0f);
+        }
+    });
+    glTextureSubImage2D(kit_.gatherTexture(), 0, 0, 0, lw, lh, GL_RGBA, GL_FLOAT, out.data());
+  }
+
+  int chains_ = 1024, bounces_ = 2;
+  GatherSettings gather_;
+  float clamp_ = 0.02f, offset_ = 1.0f, bounceOffset_ = 0.5f, diagonal_ = 0, voxelDiagonal_ = 0;
+  std::string visibility_, tracer_;
+  BinaryGridNeed grid_;
+  ShadowParams shadow_;
+  std::unique_ptr<DirectPass> direct_;
+  GatherKit kit_;
+  unsigned fluxProg_ = 0, genProg_ = 0, gatherProg_ = 0, res_ = 0;
+  GlBuffer vpls_, flux_;
+  size_t fluxFloats_ = 0;
+  uint64_t fluxRenders_ = ~uint64_t(0);
+};
+
+}  // namespace
+
+std::unique_ptr<Method> createVplMethod(ParamSet& params, const Scene& scene) {
+  return std::make_unique<VplMethod>(params, scene);
+}
+
+}  // namespace vgi
