@@ -23,16 +23,7 @@ r --method reference --set integrator=path --set maxdepth=3 --set visibility=vox
 for hp in entry centre plane; do
   r --method voxelpath --set voxels="$VOX" --set hitpoint=$hp --spp "$SPP" -o "$OUT/G_$hp.exr"
 done
-row() {  # label A B
-  python3 - "$1" "$VGI" "$2" "$3" <<'PY'
-import json, subprocess, sys
-label, vgi, a, b = sys.argv[1:]
-def d(x, y):
-    return json.loads(subprocess.run([vgi, "diff", x, y, "--json"], capture_output=True, text=True, check=True).stdout)
-i, m = d(a + ".indirect.exr", b + ".indirect.exr"), d(a + ".exr", b + ".exr")
-print(f"| {label} | {m['relmse']:.4f} | {i['relmse']:.4f} | {i['rel_mae']:.3f} | {i['energy_rgb'][1]:.3f} |")
-PY
-}
+row() { python3 scripts/split_row.py "$VGI" "$@"; }  # label A B
 echo "| comparison | image relMSE | indirect relMSE | indirect rel. MAE | indirect energy |"
 echo "|---|---|---|---|---|"
 row "voxel visibility: reference visibility=voxels vs exact" "$OUT/V" "$OUT/E"

@@ -31,6 +31,16 @@ uniform int uBatchFirst, uBatchEnd, uAccumulate;
 // What the earlier dispatches stored at q of the pass's rgba32f image (a macro: image formats do not pass).
 #define gatheredBefore(img, q) (uAccumulate != 0 ? imageLoad(img, q) : vec4(0.0f))
 
+// The surface gather pixel q stands for (its representative image pixel's):
+// false where no surface was seen there (the pass stores 0).
+bool gatherReceiver(ivec2 q, out vec3 p, out vec3 n) {
+  ivec2 px = representative(q, textureSize(gPosition, 0));
+  vec4 P = texelFetch(gPosition, px, 0);
+  p = P.xyz;
+  n = P.w != 0.0f ? normalize(texelFetch(gNormal, px, 0).xyz) : vec3(0.0f, 0.0f, 1.0f);
+  return P.w != 0.0f;
+}
+
 uniform vec3 uCameraPosition;
 uniform float uPixelAngle;   // world size of one full-resolution pixel per unit distance
 

@@ -24,15 +24,13 @@ void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = imageSize(uAo);
   if (q.x >= size.x || q.y >= size.y) return;
-  ivec2 px = representative(q, textureSize(gPosition, 0));
-  vec4 P = texelFetch(gPosition, px, 0);
-  if (P.w == 0.0f) {
+  vec3 p, n;
+  if (!gatherReceiver(q, p, n)) {
     imageStore(uAo, q, vec4(0.0f));
     return;
   }
-  vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
   Basis frame = makeBasis(n);
-  vec3 origin = P.xyz + n * uOffset;
+  vec3 origin = p + n * uOffset;
   int open = 0;
   for (int r = uBatchFirst; r < uBatchEnd; ++r) {
     vec3 d = gatherDirection(q, r, frame);
