@@ -185,4 +185,9 @@ void GpuScene::draw() const {
   glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * triangles_));
 }
 
+void GpuScene::drawInstanced(int instances) const {
+  glBindVertexArray(vao_);
+  glDrawArraysInstanced(GL_TRIANGLES, 0, GLsizei(3 * triangles_), GLsizei(instances));
+}
+
 }  // namespace vgi

@@ -30,7 +30,8 @@ class GpuScene {
 
   // Binds SSBOs, textures and the environment uniforms of `program`.
   void bind(ShaderLibrary& shaders, unsigned program) const;
-  void draw() const;  // all triangles; gl_PrimitiveID = triangle index
+  void draw() const;                        // all triangles; gl_PrimitiveID = triangle index
+  void drawInstanced(int instances) const;  // the same, `instances` times (gl_InstanceID)
 
   size_t triangleCount() const { return triangles_; }
   const Bounds& bounds() const { return bounds_; }

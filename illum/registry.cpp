@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "illum/avg.h"
 #include "illum/direct.h"
 #include "illum/method.h"
 #include "illum/nearfield.h"
@@ -56,6 +57,15 @@ const std::vector<MethodInfo>& methodRegistry() {
        "GL instant radiosity: RSM + voxel-traced VPL chains, voxel two-point visibility, interleaved (VGI "
        "5.3)",
        true, [](ParamSet& p, const Scene& s) { return createVplMethod(p, s); },
+       [](const nlohmann::json& p) {
+         return Counterpart{"reference",
+                            {"integrator=path", "maxdepth=" + std::to_string(p.at("bounces").get<int>() + 1)},
+                            {"direct", "indirect"}};
+       }},
+      {"avg",
+       "GL instant radiosity with Approximate Visibility Grids: light-traced VPLs, per-VPL shadow maps "
+       "(Bashford-Rogers et al.)",
+       true, [](ParamSet& p, const Scene& s) { return createAvgMethod(p, s); },
        [](const nlohmann::json& p) {
          return Counterpart{"reference",
                             {"integrator=path", "maxdepth=" + std::to_string(p.at("bounces").get<int>() + 1)},

@@ -58,16 +58,14 @@
 
 #include "core/gl_handles.h"
 #include "core/gpu_scene.h"
-#include "core/parallel.h"
 #include "core/shader_library.h"
 #include "illum/deferred.h"
 #include "illum/direct.h"
-#include "illum/gather_kit.h"
 #include "illum/light_maps.h"
 #include "illum/sample_loop.h"
+#include "illum/vpl_kit.h"
 #include "shaders/shared/bindings.glsl"
 #include "shaders/shared/vpl.glsl"
-#include "traverse/embree_tracer.h"
 #include "traverse/gl_ray_tracer.h"
 #include "voxelize/value_textures.h"
 
@@ -75,37 +73,31 @@ namespace vgi {
 
 namespace {
 
-// Visibility rays per pixel that one gather dispatch traces: a DDA over a
-// 512³ grid takes up to 1539 steps, so 24 rays stay under llvmpipe's 65535
-// loop iterations per invocation (illum/gather/gather.glsl).
-constexpr int kRaysPerDispatch = 24;
-
 class VplMethod : public Method {
  public:
   VplMethod(ParamSet& p, const Scene& scene) {
-    chains_ = p.getInt("vpls", 1024, "N: VPL chains per sample (0: no indirect light)", 0, 1 << 20);
-    bounces_ = p.getInt("bounces", 2,
-                        "VPLs per chain: 1 = the RSM texels' VPLs only (one indirect bounce); "
-                        "each further one at the first voxel hit of a diffuse bounce ray",
-                        1, 16);
-    gather_ = readGatherParams(p, "VPL gather", true, false);
-    clamp_ = p.getFloat("clamp", 0.02f,
-                        "geometry term clamp: 1/d^2 becomes 1/max(d^2, (clamp * scene diagonal)^2); 0 = off",
-                        0.0f, 1.0f);
+    readVplParams(p, s_);
+    s_.bounces = p.getInt("bounces", 2,
+                          "VPLs per chain: 1 = the RSM texels' VPLs only (one indirect bounce); "
+                          "each further one at the first voxel hit of a diffuse bounce ray",
+                          1, 16);
     visibility_ = p.getString("visibility", "voxels",
                               "VPL visibility: voxels (VGI 4.1 two-point test through the OR-mip pyramid), "
                               "exact (Embree occlusion rays on the CPU, from the same VPLs) or none",
                               {"voxels", "exact", "none"});
-    offset_ = p.getFloat("offset", 1.0f,
-                         "two-point test: receiver and VPL moved along their normals, in voxel diagonals",
-                         0.0f, 100.0f);
+    s_.visibility = visibility_ == "voxels"  ? VplVisibility::Voxels
+                    : visibility_ == "exact" ? VplVisibility::Exact
+                                             : VplVisibility::None;
+    s_.offset = p.getFloat("offset", 1.0f,
+                           "two-point test: receiver and VPL moved along their normals, in voxel diagonals",
+                           0.0f, 100.0f);
     bounceOffset_ = p.getFloat("bounce_offset", 0.5f,
                                "bounce rays' start offset along the VPL's normal, in voxel diagonals "
                                "(own-band hits are passed, as in voxelpath)",
                                0.0f, 100.0f);
     tracer_ = readTracerParam(p);
     // Static + frame grid, the pyramid (≈ 4/3 of a grid); the value grids (≈ 2 more) are checked when built.
-    grid_ = readBinaryGridParams(p, 4, bounces_ > 1);
+    grid_ = readBinaryGridParams(p, 4, s_.bounces > 1);
     readShadowParams(p, shadow_);
     diagonal_ = scene.bounds().diagonal();
   }
@@ -114,11 +106,11 @@ class VplMethod : public Method {
     SceneNeeds n;
     n.gbuffer = true;
     n.lightMaps = LightMapNeed{shadow_.resolution, true};
-    if (visibility_ == "voxels" || bounces_ > 1) {
+    if (visibility_ == "voxels" || s_.bounces > 1) {
       n.binaryGrid = grid_;
       n.orMipPyramid = true;
     }
-    if (bounces_ > 1) n.valueGrids = ValueGridNeed{{"normal", "albedo"}, ValueMips::None};
+    if (s_.bounces > 1) n.valueGrids = ValueGridNeed{{"normal", "albedo"}, ValueMips::None};
     n.bvh = visibility_ == "exact";
     return n;
   }
@@ -128,17 +120,16 @@ class VplMethod : public Method {
     voxelDiagonal_ = grid ? f.resources.voxelDiagonal() : 0.0f;
     direct_ =
         std::make_unique<DirectPass>(shaders, f.resources.gpuScene(), shadow_.bias, shadow_.normalOffset);
-    kit_.prepare(f, gather_);
+    kit_.prepare(f, s_, tracer_, voxelDiagonal_, diagonal_);
     ShaderDefines defs;
     addTracerDefine(defs, tracer_);
     fluxProg_ = shaders.program({"illum/vpl/flux_tree.comp.glsl"});
     genProg_ = shaders.program({"illum/vpl/generate.comp.glsl"}, defs);
-    gatherProg_ = shaders.program({"illum/vpl/gather.comp.glsl"}, defs);
     res_ = unsigned(shadow_.resolution);
     shaders.setUniform(fluxProg_, "uRes", res_);
     shaders.setUniform(genProg_, "uRes", res_);
-    shaders.setUniform(genProg_, "uChains", unsigned(chains_));
-    shaders.setUniform(genProg_, "uBounces", bounces_);
+    shaders.setUniform(genProg_, "uChains", unsigned(s_.chains));
+    shaders.setUniform(genProg_, "uBounces", s_.bounces);
     shaders.setUniform(genProg_, "uSeed", f.request.seed);
     // The bounce rays: voxelpath's first-hit rule and hit vertex (illum/voxel_hits.glsl), diffuse.
     shaders.setUniform(genProg_, "uOffset", bounceOffset_ * voxelDiagonal_);
@@ -148,15 +139,6 @@ class VplMethod : public Method {
     shaders.setUniform(genProg_, "uRefine", 1);
     shaders.setUniform(genProg_, "uPassThrough", 1);
     shaders.setUniform(genProg_, "uHitPoint", 0);
-    shaders.setUniform(gatherProg_, "uScale", kit_.scale());
-    shaders.setUniform(gatherProg_, "uChains", unsigned(chains_));
-    shaders.setUniform(gatherProg_, "uBounces", bounces_);
-    shaders.setUniform(gatherProg_, "uInterleave", gather_.interleave);
-    shaders.setUniform(gatherProg_, "uMinDistance2", minDistance2());
-    shaders.setUniform(gatherProg_, "uVisibility", visibility_ == "voxels" ? 1 : 0);
-    shaders.setUniform(gatherProg_, "uOffset", offset_ * voxelDiagonal_);
-    const size_t slots = std::max<size_t>(1, size_t(chains_) * size_t(bounces_));
-    if (!vpls_) vpls_ = makeBuffer(slots * sizeof(shared::Vpl));
   }
   bool addSample(Frame& f, int k) override {
     ShaderLibrary& shaders = f.shaders();
@@ -179,55 +161,25 @@ class VplMethod : public Method {
       // Sample 0 unrotated; later samples rotate the chains' R2 points by a hash of (k, seed).
       const uint32_t h = k == 0 ? 0u : shared::pcgHash(uint32_t(k) ^ shared::pcgHash(f.request.seed));
       shaders.setUniform(genProg_, "uRotation", glm::uvec2(h, k == 0 ? 0u : shared::pcgHash(h)));
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, vpls_.get());
-      glDispatchCompute(unsigned(chains_ + 63) / 64, 1, 1);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, kit_.vplBuffer());
+      glDispatchCompute(unsigned(s_.chains + 63) / 64, 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
     {
       auto s = f.profiler.scope("gather");
-      if (visibility_ == "exact") {
-        gatherExact(f);
-      } else {
-        glUseProgram(gatherProg_);
-        if (visibility_ == "voxels") f.resources.glPyramid().bind(shaders, gatherProg_);
-        f.gbuffer().bind();
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, vpls_.get());
-        // Batches of chains per dispatch: llvmpipe's per-invocation loop limit (gather.glsl).
-        const int sets = gather_.interleave * gather_.interleave;
-        kit_.dispatchGather(shaders, gatherProg_, (chains_ + sets - 1) / sets, batch());
-      }
+      kit_.gather(f, [&](unsigned prog) {
+        if (s_.visibility == VplVisibility::Voxels) f.resources.glPyramid().bind(shaders, prog);
+      });
     }
     kit_.resolve(f);
     return true;
   }
   void finishFrame(Frame& f) override {
-    // The last sample's VPLs, per bounce: how many were placed and the flux they carry.
-    std::vector<shared::Vpl> v = readVpls();
-    nlohmann::json placed = nlohmann::json::array(), flux = nlohmann::json::array();
-    for (int b = 0; b < bounces_; ++b) {
-      uint64_t count = 0;
-      double sum = 0;
-      for (int i = 0; i < chains_; ++i) {
-        const shared::Vpl& x = v[size_t(b) * size_t(chains_) + size_t(i)];
-        if (x.position.w == 0.0f) continue;
-        ++count;
-        sum += (double(x.flux.x) + x.flux.y + x.flux.z) / 3.0;
-      }
-      placed.push_back(count);
-      flux.push_back(sum);
-    }
-    f.extra["vpls_placed"] = placed;
-    f.extra["vpl_flux"] = flux;
+    kit_.stats(f);
     f.extra["voxel_diagonal"] = voxelDiagonal_;
-    f.extra["clamp_distance"] = std::sqrt(minDistance2());
-    f.extra["clamped"] = clamp_ > 0.0f;
-    f.extra["gather_size"] = {kit_.width(), kit_.height()};
   }
 
  private:
-  int batch() const { return std::max(1, kRaysPerDispatch / bounces_); }  // chains per subset per dispatch
-  float minDistance2() const { return (clamp_ * diagonal_) * (clamp_ * diagonal_); }
-
   void bindGrid(Frame& f, unsigned prog) const {
     f.resources.gpuScene().bind(f.shaders(), prog);
     f.resources.lightMaps().bind();
@@ -256,63 +208,15 @@ class VplMethod : public Method {
     }
   }
 
-  std::vector<shared::Vpl> readVpls() const {
-    std::vector<shared::Vpl> v(std::max<size_t>(1, size_t(chains_) * size_t(bounces_)));
-    glGetNamedBufferSubData(vpls_.get(), 0, GLsizeiptr(v.size() * sizeof(shared::Vpl)), v.data());
-    return v;
-  }
-
-  // visibility=exact: the gather pass's sum (shared/vpl.glsl: vplSubset,
-  // vplGather) on the CPU for the same VPLs and receivers, each VPL tested
-  // with an Embree occlusion ray between the two surface points (moved 10⁻⁴
-  // of the scene diagonal along their normals), written into the kit's buffer.
-  void gatherExact(Frame& f) const {
-    const std::vector<shared::Vpl> v = readVpls();
-    const int W = f.width(), H = f.height();
-    std::vector<glm::vec4> pos(size_t(W) * size_t(H)), nrm(pos.size());
-    glGetTextureImage(f.gbuffer().texture(0), 0, GL_RGBA, GL_FLOAT, GLsizei(pos.size() * sizeof(glm::vec4)),
-                      pos.data());
-    glGetTextureImage(f.gbuffer().texture(1), 0, GL_RGBA, GL_FLOAT, GLsizei(nrm.size() * sizeof(glm::vec4)),
-                      nrm.data());
-    const int lw = kit_.width(), lh = kit_.height(), scale = kit_.scale(), k = gather_.interleave;
-    const float eps = 1e-4f * diagonal_, dMin2 = minDistance2();
-    const EmbreeTracer& bvh = f.resources.bvh();
-    std::vector<glm::vec4> out(size_t(lw) * size_t(lh), glm::vec4(0.0f));
-    parallelFor(size_t(lh), 1, f.request.threads, [&](size_t y0, size_t y1) {
-      for (size_t y = y0; y < y1; ++y)
-        for (int x = 0; x < lw; ++x) {
-          const glm::ivec2 q(x, int(y));
-          const glm::ivec2 rp = glm::min(q * scale + scale / 2, glm::ivec2(W - 1, H - 1));
-          const glm::vec4 P = pos[size_t(rp.y) * size_t(W) + size_t(rp.x)];
-          if (P.w == 0.0f) continue;
-          const glm::vec3 p(P), n = glm::normalize(glm::vec3(nrm[size_t(rp.y) * size_t(W) + size_t(rp.x)]));
-          const glm::vec3 a = p + n * eps;
-          glm::vec3 sum(0.0f);
-          for (int i = int(shared::vplSubset(q, k)); i < chains_; i += k * k)
-            for (int b = 0; b < bounces_; ++b) {
-              const shared::Vpl& l = v[size_t(b) * size_t(chains_) + size_t(i)];
-              if (l.position.w == 0.0f) break;
-              const glm::vec3 c = shared::vplGather(l, p, n, dMin2);
-              if (c == glm::vec3(0.0f)) continue;
-              const glm::vec3 e = glm::vec3(l.position) + glm::vec3(l.normal) * eps;
-              if (!bvh.occluded(a, e - a, 0.0f, 1.0f)) sum += c;
-            }
-          out[y * size_t(lw) + size_t(x)] = glm::vec4(sum * float(k * k), 1.0f);
-        }
-    });
-    glTextureSubImage2D(kit_.gatherTexture(), 0, 0, 0, lw, lh, GL_RGBA, GL_FLOAT, out.data());
-  }
-
-  int chains_ = 1024, bounces_ = 2;
-  GatherSettings gather_;
-  float clamp_ = 0.02f, offset_ = 1.0f, bounceOffset_ = 0.5f, diagonal_ = 0, voxelDiagonal_ = 0;
+  VplSettings s_;
+  float bounceOffset_ = 0.5f, diagonal_ = 0, voxelDiagonal_ = 0;
   std::string visibility_, tracer_;
   BinaryGridNeed grid_;
   ShadowParams shadow_;
   std::unique_ptr<DirectPass> direct_;
-  GatherKit kit_;
-  unsigned fluxProg_ = 0, genProg_ = 0, gatherProg_ = 0, res_ = 0;
-  GlBuffer vpls_, flux_;
+  VplKit kit_;
+  unsigned fluxProg_ = 0, genProg_ = 0, res_ = 0;
+  GlBuffer flux_;
   size_t fluxFloats_ = 0;
   uint64_t fluxRenders_ = ~uint64_t(0);
 };

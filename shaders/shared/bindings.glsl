@@ -27,6 +27,7 @@
 #define BINDING_VALUE_RADIANCE_MAX 16  // SSBO uint: the radiance pass's maximum (float bits)
 #define BINDING_VPL_FLUX 17        // SSBO float[]: the RSM flux tree (shared/vpl.glsl)
 #define BINDING_VPLS 18            // SSBO Vpl[] (shared/vpl.glsl): bounce-major, chain-minor
+#define BINDING_AVG 19             // SSBO uint[]: the approximate visibility grid's cells (shared/avg.glsl)
 
 // ---- textures (samplers)
 #define TEXUNIT_GBUFFER_POSITION 0          // world position, w = 1 where a surface was seen
@@ -54,6 +55,7 @@
 #define TEXUNIT_PASS_INPUT2 27              // a pass's second input texture
 #define TEXUNIT_VALUE_RADIANCE 28           // sampler3D RGBA16F mean diffuse direct radiance (rgb)
 #define TEXUNIT_ATLAS_RADIANCE 29           // atlas voxelizer: radiance (multi-valued grids)
+#define TEXUNIT_VPL_SHADOW 30               // sampler2D: the VPL shadow-map atlas (avg; illum/vpl/vpl_shadow.glsl)
 
 // ---- images
 #define IMAGE_OUTPUT 0                 // a pass's output

@@ -16,6 +16,8 @@
 #include "cpp_prelude.h"
 #endif
 #include "constants.glsl"
+#include "lights.glsl"
+#include "sampling.glsl"
 
 SHARED_BEGIN
 
@@ -26,6 +28,15 @@ struct Vpl {
   vec4 flux;      // rgb Φ (W), w unused
   uvec4 origin;   // x face, y texel x, z texel y of the first-bounce RSM texel; w bounce (0 first)
 };
+
+SHARED_FN Vpl vplEmpty() {
+  Vpl v;
+  v.position = vec4(0.0f);
+  v.normal = vec4(0.0f);
+  v.flux = vec4(0.0f);
+  v.origin = uvec4(0u);
+  return v;
+}
 
 // Side of level l of a tree over res × res texels.
 SHARED_FN uint fluxTreeSize(uint res, uint l) { return (res + (1u << l) - 1u) >> l; }
@@ -42,6 +53,47 @@ SHARED_FN uint fluxTreeOffset(uint res, uint l) {
   return o;
 }
 SHARED_FN uint fluxTreeFaceStride(uint res) { return fluxTreeOffset(res, fluxTreeLevels(res)); }
+
+// Light tracing from a delta light (the VPLs that `avg` shoots): the flux it
+// emits per unit of its intensity (Φ = I · this) and a ray distributed as its
+// emission. Point: 4π, uniform directions. Spot with I(θ) = I₀ cos^f θ inside
+// cos θ ≥ cos θc: 2π (1 − cos^(f+1) θc) / (f + 1), cos θ drawn by inverting
+// that. Directional (irradiance E): the disc of the scene's bounding sphere
+// (centre, radius) across its direction, π r², from 2r up-stream.
+SHARED_FN float lightEmittedFluxScale(SHARED_IN(PackedLight) L, float radius) {
+  uint type = uint(L.positionType.w + 0.5f);
+  if (type == LIGHT_POINT) return 4.0f * PI;
+  if (type == LIGHT_DIRECTIONAL) return PI * radius * radius;
+  float e = max(L.intensityFalloff.w, 0.0f) + 1.0f;
+  return 2.0f * PI * (1.0f - pow(max(L.directionCosCone.w, 0.0f), e)) / e;
+}
+struct LightRay {
+  vec3 origin, dir;
+};
+SHARED_FN LightRay sampleLightRay(SHARED_IN(PackedLight) L, vec2 u, vec2 v, vec3 centre, float radius) {
+  uint type = uint(L.positionType.w + 0.5f);
+  vec3 axis = vec3(L.directionCosCone.x, L.directionCosCone.y, L.directionCosCone.z);
+  LightRay r;
+  r.origin = vec3(L.positionType.x, L.positionType.y, L.positionType.z);
+  if (type == LIGHT_POINT) {
+    float z = 1.0f - 2.0f * u.x, s = sqrt(max(0.0f, 1.0f - z * z)), phi = 2.0f * PI * u.y;
+    r.dir = vec3(s * cos(phi), s * sin(phi), z);
+    return r;
+  }
+  Basis b = makeBasis(axis);
+  if (type == LIGHT_DIRECTIONAL) {
+    float rr = radius * sqrt(v.x), phi = 2.0f * PI * v.y;
+    r.origin = centre - axis * (2.0f * radius) + b.t * (rr * cos(phi)) + b.b * (rr * sin(phi));
+    r.dir = axis;
+    return r;
+  }
+  float e = max(L.intensityFalloff.w, 0.0f) + 1.0f;
+  float lo = pow(max(L.directionCosCone.w, 0.0f), e);
+  float cosT = pow(max(1.0f - u.x * (1.0f - lo), 0.0f), 1.0f / e);
+  float sinT = sqrt(max(0.0f, 1.0f - cosT * cosT)), phi = 2.0f * PI * u.y;
+  r.dir = basisToWorld(b, vec3(sinT * cos(phi), sinT * sin(phi), cosT));
+  return r;
+}
 
 // The interleave subset (of k²) of gather pixel q: chains i with i mod k² equal to it.
 SHARED_FN uint vplSubset(ivec2 q, int k) { return uint(q.x % k + k * (q.y % k)); }

@@ -12,6 +12,12 @@ flat out int gAxis;       // dominant axis: 0 = x, 1 = y, 2 = z
 flat out vec3 gA;
 flat out vec3 gB;
 flat out vec3 gC;
+#ifdef CONSERVATIVE_VALUES
+in vec3 vWorld[];
+in vec2 vUv[];
+flat out vec3 gWorldNormal;  // the triangle's unit normal in world space
+flat out vec2 gUvCentroid;
+#endif
 
 // Grid coordinates → (u, v, w) with w along `axis`.
 vec3 swizzle(vec3 p, int axis) {
@@ -47,6 +53,12 @@ void main() {
     gA = vGrid[0];
     gB = vGrid[1];
     gC = vGrid[2];
+#ifdef CONSERVATIVE_VALUES
+    vec3 wn = cross(vWorld[1] - vWorld[0], vWorld[2] - vWorld[0]);
+    gWorldNormal = dot(wn, wn) > 0.0f ? normalize(wn) : vec3(0.0f);
+    gUvCentroid = (vUv[0] + vUv[1] + vUv[2]) / 3.0f;
+    gl_PrimitiveID = gl_PrimitiveIDIn;
+#endif
     gl_Position = vec4(s / uViewport * 2.0f - 1.0f, 0.0f, 1.0f);
     EmitVertex();
   }

@@ -117,6 +117,23 @@ TEST(AnalyticSphere, EveryLightTransportMethodGivesItsTruncation) {
       {"vpl", {"bounces=2", "clamp=0", "shadow_res=256"}, 8, 3, 0.02, "and one bounce through the grid"},
       {"vpl", {"bounces=2", "shadow_res=256"}, 8, 3, 0.02, "the default clamp"},
       {"vpl", {"bounces=1", "vpls=1", "interleave=1", "shadow_res=256"}, 4, 2, 0.01, "one VPL is exact here"},
+      // AVG VPLs sit up to half a cell inside the 64³ cells of the wall (and
+      // their maps' centres a cell diagonal along the normal): d² and the
+      // cosines shift by a few per cent of R.
+      // (Each VPL's shadow map draws the 5120 triangles: paraboloids and 256 VPLs keep it short.)
+      {"avg",
+       {"bounces=1", "clamp=0", "vpls=256", "shadow_map=paraboloid", "shadow_res=256"},
+       8,
+       2,
+       0.03,
+       "light-traced VPLs, AVG, paraboloid maps"},
+      {"avg", {"bounces=3", "clamp=0", "visibility=none", "shadow_res=256"}, 8, 4, 0.03, "three bounces, RR"},
+      {"avg",
+       {"bounces=1", "tracing=exact", "visibility=exact", "shadow_res=256"},
+       8,
+       2,
+       0.01,
+       "exact stages"},
       {"voxelpath",
        {"maxdepth=6", "rr_depth=1", "shadow_res=256"},
        128,

@@ -91,8 +91,9 @@ TEST(Vpl, FluxTreeDescentDrawsTexelsInProportionToTheirFlux) {
     // measured to 1 % up to ~1000 texels at n = 1024 (res 64 is checked for zero-flux texels only).
     double tv = 0;
     for (uint32_t i = 0; i < res * res; ++i) tv += std::abs(hits[i] - face1[i] / total);
-    if (res <= 37)
+    if (res <= 37) {
       EXPECT_LT(0.5 * tv, 0.01) << "total variation distance from the flux distribution, res " << res;
+    }
   }
 }
 
@@ -114,18 +115,33 @@ TEST(Vpl, GatherTermIsZeroOnBackFacesAndClampedNearTheVpl) {
 }
 
 // A plate between the lit ceiling and the whole floor: no VPL reaches the
-// floor through either visibility; without visibility they all do.
-TEST(Vpl, AnOccluderBlocksTheVplsInBothVisibilities) {
+// floor through any visibility — vpl's voxel and exact, avg's shadow maps
+// (cube, paraboloid) and exact; without visibility they all do.
+TEST(Vpl, AnOccluderBlocksTheVplsInEveryVisibility) {
   const std::string scene = writePlateScene("vpl_plate_full", 1.0f);
-  auto floorIndirect = [&](const std::string& visibility) {
-    return indirectMean(test::render(
-        scene, "vpl", {"bounces=1", "visibility=" + visibility, "shadow_res=256"}, 32, 2, {"indirect"}));
+  auto floorIndirect = [&](const std::string& method, std::vector<std::string> set) {
+    set.push_back("shadow_res=256");
+    set.push_back("bounces=1");
+    return indirectMean(test::render(scene, method, set, 32, 2, {"indirect"}));
   };
-  const double none = floorIndirect("none"), voxels = floorIndirect("voxels"), exact = floorIndirect("exact");
-  std::printf("floor under a plate: indirect none %.5f, voxels %.5f, exact %.5f\n", none, voxels, exact);
+  const double none = floorIndirect("vpl", {"visibility=none"}),
+               voxels = floorIndirect("vpl", {"visibility=voxels"}),
+               exact = floorIndirect("vpl", {"visibility=exact"}),
+               avgNone = floorIndirect("avg", {"visibility=none"}),
+               avgCube = floorIndirect("avg", {"shadow_map=cube"}),
+               avgPara = floorIndirect("avg", {"shadow_map=paraboloid"}),
+               avgExact = floorIndirect("avg", {"visibility=exact"});
+  std::printf(
+      "floor under a plate: vpl none %.5f, voxels %.5f, exact %.5f; avg none %.5f, cube %.5f, "
+      "paraboloid %.5f, exact %.5f\n",
+      none, voxels, exact, avgNone, avgCube, avgPara, avgExact);
   EXPECT_GT(none, 1e-3);
   EXPECT_LT(voxels, 0.01 * none);
   EXPECT_LT(exact, 0.01 * none);
+  EXPECT_GT(avgNone, 1e-3);
+  EXPECT_LT(avgCube, 0.01 * avgNone);
+  EXPECT_LT(avgPara, 0.01 * avgNone);
+  EXPECT_LT(avgExact, 0.01 * avgNone);
 }
 
 // Half a plate: the floor is partly shadowed from the ceiling's VPLs. With an

@@ -5,8 +5,10 @@
 // vplSubset — chains i ≡ s mod k², each weighted k²), every bounce of each.
 // Visibility (uVisibility): 1 the two-point test of VGI §4.1 through the
 // voxel grid (traverse/tracer.glsl: visibleBetween) between the receiver and
-// the VPL, each moved uOffset along its normal out of its own voxel; 0 none
-// (every VPL is seen: the AVG paper's "without visibility" rows). The kit's
+// the VPL, each moved uOffset along its normal out of its own voxel; 2 the
+// VPL's shadow map in the atlas (vpl_shadow.glsl; `avg`), where a receiver
+// outside the map (no visibility information) counts as seen; 0 none (every
+// VPL is seen: the AVG paper's "without visibility" rows). The kit's
 // blur then averages the k² subsets over each k×k window, and its upsampling
 // composites albedo × the gathered value into the sample.
 // One dispatch visits the subset's chains uBatchFirst … uBatchEnd − 1 (in
@@ -14,6 +16,7 @@
 #include "../gather/gather.glsl"
 #include "../../shared/vpl.glsl"
 #include "../../traverse/tracer.glsl"
+#include "vpl_shadow.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uGathered;
@@ -22,32 +25,53 @@ uniform uint uChains;       // N
 uniform int uBounces;       // VPLs per chain
 uniform int uInterleave;    // k
 uniform float uMinDistance2; // the clamp: d² ≥ this in the geometry term
-uniform int uVisibility;    // 0 none, 1 voxels
+uniform int uVisibility;    // 0 none, 1 voxels, 2 shadow maps
+layout(binding = TEXUNIT_VPL_SHADOW) uniform sampler2D uVplShadow;
+uniform float uVplShadowBias;  // shadow maps: texels (at the receiver's distance, slope-scaled)
+
+// The receiver p (normal n) against the VPL's map: lit unless the map saw a
+// surface nearer than p by more than the bias — uVplShadowBias texels of the
+// map's angular texel there (cube: 2/r; paraboloid: 2(1 + cos θ)/r, twice as
+// coarse at its centre as at its rim) times the distance, over the cosine
+// at the receiver (≥ 0.2: a plane seen at a grazing angle spans more depth per texel).
+bool shadowMapSees(Vpl v, uint slot, vec3 p, vec3 n) {
+  vec3 w = p - vplShadowCentre(v);
+  float dist = length(w);
+  int f = uShadowCube != 0 ? vplShadowFaceOf(w) : 0;
+  vec4 c = vplShadowClip(v, f, w);
+  if (c.w <= 0.0f || (uShadowCube == 0 && c.z <= 0.0f)) return true;
+  vec2 uv = c.xy / c.w;
+  ivec2 t = vplShadowFaceOrigin(slot, f) + clamp(ivec2(floor((uv * 0.5f + 0.5f) * float(uShadowRes))), ivec2(0),
+                                                 ivec2(uShadowRes - 1));
+  float stored = texelFetch(uVplShadow, t, 0).x * uShadowFar;
+  float texel = (uShadowCube != 0 ? 2.0f : 2.0f * (1.0f + c.z)) / float(uShadowRes);
+  float slope = max(abs(dot(n, w)) / max(dist, 1e-30f), 0.2f);
+  return dist - uVplShadowBias * texel * dist / slope <= stored;
+}
 uniform float uOffset;      // the two-point test's offset along each normal, world units
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = imageSize(uGathered);
   if (q.x >= size.x || q.y >= size.y) return;
-  ivec2 px = representative(q, textureSize(gPosition, 0));
-  vec4 P = texelFetch(gPosition, px, 0);
-  if (P.w == 0.0f) {
+  vec3 p, n;
+  if (!gatherReceiver(q, p, n)) {
     imageStore(uGathered, q, vec4(0.0f));
     return;
   }
-  vec3 p = P.xyz;
-  vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
   vec3 a = p + n * uOffset;
   uint sets = uint(uInterleave * uInterleave);
   vec3 sum = vec3(0.0f);
   uint s = vplSubset(q, uInterleave), end = min(uChains, s + uint(uBatchEnd) * sets);
   for (uint i = s + uint(uBatchFirst) * sets; i < end; i += sets) {
     for (int b = 0; b < uBounces; ++b) {
-      Vpl v = vpls[uint(b) * uChains + i];
+      uint slot = uint(b) * uChains + i;
+      Vpl v = vpls[slot];
       if (v.position.w == 0.0f) break;
       vec3 c = vplGather(v, p, n, uMinDistance2);
       bool seen = c != vec3(0.0f);
-      if (seen && uVisibility != 0) seen = visibleBetween(a, v.position.xyz + v.normal.xyz * uOffset);
+      if (seen && uVisibility == 1) seen = visibleBetween(a, v.position.xyz + v.normal.xyz * uOffset);
+      if (seen && uVisibility == 2) seen = shadowMapSees(v, slot, p, n);
       if (seen) sum += c;
     }
   }

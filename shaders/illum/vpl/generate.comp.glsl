@@ -35,15 +35,6 @@ uniform uvec2 uRotation; // this sample's R2 rotation (fixed point)
 uniform uint uSeed;
 uniform uint uSampleIndex;
 
-Vpl emptyVpl() {
-  Vpl v;
-  v.position = vec4(0.0f);
-  v.normal = vec4(0.0f);
-  v.flux = vec4(0.0f);
-  v.origin = uvec4(0u);
-  return v;
-}
-
 float faceTotal(uint f) { return fluxTreeNode(uRes, f, fluxTreeLevels(uRes) - 1u, 0u, 0u); }
 
 void main() {
@@ -96,5 +87,5 @@ void main() {
       }
     }
   }
-  for (; b < uBounces; ++b) vpls[uint(b) * uChains + i] = emptyVpl();
+  for (; b < uBounces; ++b) vpls[uint(b) * uChains + i] = vplEmpty();
 }

@@ -1,0 +1,69 @@
+// What the many-light GL modules share (vpl: VGI §5.3; avg: approximate
+// visibility grids): the VPL buffer (shaders/shared/vpl.glsl: N chains of up
+// to `bounces` VPLs, bounce-major), and the deferred + interleaved gather
+// from it (shaders/illum/vpl/gather.comp) in the gather kit's buffer — with
+// voxel, shadow-map or no visibility on the GPU, or exact (Embree) visibility
+// on the CPU from the same VPLs — then the kit's blur, upsampling and
+// composite; the VPL stats.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/gl_handles.h"
+#include "illum/gather_kit.h"
+#include "shaders/shared/vpl.glsl"
+
+namespace vgi {
+
+class Frame;
+class ParamSet;
+class ShaderLibrary;
+
+enum class VplVisibility { None, Voxels, ShadowMaps, Exact };
+
+struct VplSettings {
+  int chains = 1024;
+  int bounces = 2;
+  GatherSettings gather;
+  float clamp = 0.02f;  // of the scene diagonal
+  VplVisibility visibility = VplVisibility::Voxels;
+  float offset = 1.0f;  // voxel visibility: both ends moved along their normals, voxel diagonals
+  float exactLift =
+      0;  // exact visibility: the VPL end moved this far along its normal (world; 0: 1e-4 · diagonal)
+};
+// Reads vpls (default `chains`), the gather layout (interleave, resolution,
+// blur) and clamp; the module reads bounces, visibility and offset.
+void readVplParams(ParamSet& params, VplSettings& s);
+
+class VplKit {
+ public:
+  // Once per frame: the gather buffers and program, the VPL buffer (kept).
+  // `tracer` is the voxel tracer's define (voxel visibility), voxelDiagonal
+  // the grid's (0 without one), sceneDiagonal the clamp's unit.
+  void prepare(Frame& f, const VplSettings& s, const std::string& tracer, float voxelDiagonal,
+               float sceneDiagonal);
+  unsigned vplBuffer() const { return vpls_.get(); }
+  unsigned gatherProgram() const { return prog_; }
+  // The gather of this sample ("gather" is timed by the caller); bindExtra
+  // binds what the visibility reads besides the G-buffer and the VPLs
+  // (the pyramid, the shadow atlas) to the gather program.
+  void gather(Frame& f, const std::function<void(unsigned program)>& bindExtra) const;
+  void resolve(Frame& f) const { kit_.resolve(f); }
+  std::vector<shared::Vpl> read() const;
+  void write(const std::vector<shared::Vpl>& v) const;
+  // vpls_placed and vpl_flux per bounce (the last sample's), the clamp, the gather size.
+  void stats(Frame& f) const;
+  float minDistance2() const { return dMin_ * dMin_; }
+
+ private:
+  void gatherExact(Frame& f) const;
+  VplSettings s_;
+  GatherKit kit_;
+  GlBuffer vpls_;
+  size_t slots_ = 0;
+  unsigned prog_ = 0;
+  float dMin_ = 0, sceneDiagonal_ = 0;
+};
+
+}  // namespace vgi

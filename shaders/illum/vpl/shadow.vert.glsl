@@ -1,0 +1,30 @@
+// The VPL shadow-map atlas (vpl_shadow.glsl), instanced: instance
+// slot · faces + face draws the scene into that face's square of the atlas,
+// clipped to it (and, for a paraboloid, to the VPL's hemisphere). Empty slots
+// draw nothing.
+#include "vpl_shadow.glsl"
+layout(location = 0) in vec3 inPosition;
+layout(std430, binding = BINDING_VPLS) readonly buffer Vpls { Vpl vpls[]; };
+uniform ivec2 uAtlasSize;
+out vec3 vWorld;
+flat out vec3 vCentre;
+out float gl_ClipDistance[5];
+void main() {
+  int faces = vplShadowFaces();
+  uint s = uint(gl_InstanceID / faces);
+  int f = gl_InstanceID % faces;
+  Vpl v = vpls[s];
+  vWorld = inPosition;
+  vCentre = vplShadowCentre(v);
+  vec4 c = vplShadowClip(v, f, inPosition - vCentre);
+  // The face's clip space → its square of the atlas (affine in x/w, y/w, so in clip space).
+  vec2 o = vec2(vplShadowFaceOrigin(s, f));
+  vec2 scale = float(uShadowRes) / vec2(uAtlasSize), shift = (2.0f * o + float(uShadowRes)) / vec2(uAtlasSize) - 1.0f;
+  gl_Position = vec4(c.xy * scale + c.w * shift, 0.0f, c.w);
+  gl_ClipDistance[0] = c.w + c.x;
+  gl_ClipDistance[1] = c.w - c.x;
+  gl_ClipDistance[2] = c.w + c.y;
+  gl_ClipDistance[3] = c.w - c.y;
+  gl_ClipDistance[4] = uShadowCube != 0 ? c.w - 1e-4f * uShadowFar : c.z + 1e-3f;
+  if (v.position.w == 0.0f) gl_ClipDistance[4] = -1.0f;
+}
