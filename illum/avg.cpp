@@ -43,7 +43,7 @@
 // | bounces         | int    | 3          | VPLs per chain at most (Russian roulette in between)    |
 // | interleave      | int    | 4          | k: k×k subsets of the chains (the paper: 4×4 = 16)       |
 // | resolution, blur | …     | 0.5, true  | the gather kit's buffer and blur                        |
-// | clamp           | float  | 0.02       | 1/d² → 1/max(d², (clamp · scene diagonal)²); 0 = off     |
+// | clamp           | float  | 0.005      | 1/d² → 1/max(d², (clamp · scene diagonal)²); 0 = off     |
 // | shadow_map      | string | cube       | per-VPL maps: cube (exact for large triangles) or paraboloid (the paper's, small triangles) |
 // | vpl_shadow_res  | int    | 32         | a VPL map's side (per cube face), texels                 |
 // | vpl_shadow_bias | float  | 0.5        | the VPL maps' depth bias, texels, slope-scaled (gather.comp). Cornell box against exact visibility (from the lifted VPLs), indirect energy at 0.3 / 0.5 / 0.75: cube 0.980 / 0.997 / 0.999, paraboloid 0.94 / 0.96 / 0.98 (its large triangles warp); the closed sphere's paraboloids: 0.948 at 0.2, 0.9995 at 0.5 |

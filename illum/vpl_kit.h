@@ -26,7 +26,8 @@ struct VplSettings {
   int chains = 1024;
   int bounces = 2;
   GatherSettings gather;
-  float clamp = 0.02f;  // of the scene diagonal
+  float clamp =
+      0.005f;  // of the scene diagonal (docs/BENCHMARKS.md: 0.02 lost 8 % of the indirect light on Sibenik)
   VplVisibility visibility = VplVisibility::Voxels;
   float offset = 1.0f;  // voxel visibility: both ends moved along their normals, voxel diagonals
   float exactLift =

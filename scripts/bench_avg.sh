@@ -3,8 +3,10 @@
 # visibility grids"): the exact counterpart E (reference integrator=path,
 # maxdepth = bounces + 1, rendered once; shared with bench_vpl.sh's when OUT
 # is the same), and per VPL count N:
-#   A  avg (rays marched through the AVG, per-VPL shadow maps, clamp)
-#   P  avg shadow_map=paraboloid
+#   A  avg (rays marched through the AVG, per-VPL shadow maps, clamp);
+#      MAP=paraboloid for the paper's maps (each map draws the whole scene:
+#      on Sibenik's 80k triangles cube maps take minutes a sample on llvmpipe)
+#   P  avg shadow_map=paraboloid (when MAP is cube)
 #   T  avg visibility=exact (the same VPLs, Embree occlusion rays)
 #   X  avg visibility=exact tracing=exact (the same rays through the triangles)
 #   U  X with clamp=0
@@ -23,14 +25,15 @@ B=${6:-3}
 shift $(( $# < 6 ? $# : 6 ))
 COUNTS=${*:-256 1024 4096}
 VGI=${VGI:-build/apps/vgi}
+MAP=${MAP:-cube}
 mkdir -p "$OUT"
 r() { "$VGI" render --scene "$SCENE" --size "$SIZE" --aov direct,indirect --quiet "$@" > /dev/null; }
 E="$OUT/E_maxdepth$((B + 1))"
 [ -f "$E.exr" ] || r --method reference --set integrator=path --set maxdepth=$((B + 1)) --spp "$REF" -o "$E.exr"
 for n in $COUNTS; do
   a() { r --method avg --set bounces=$B --set vpls=$n --spp "$SPP" "$@"; }
-  a -o "$OUT/A$n.exr"
-  a --set shadow_map=paraboloid -o "$OUT/P$n.exr"
+  a --set shadow_map=$MAP -o "$OUT/A$n.exr"
+  [ "$MAP" != cube ] || a --set shadow_map=paraboloid -o "$OUT/P$n.exr"
   a --set visibility=exact -o "$OUT/T$n.exr"
   a --set visibility=exact --set tracing=exact -o "$OUT/X$n.exr"
   a --set visibility=exact --set tracing=exact --set clamp=0 -o "$OUT/U$n.exr"
@@ -40,8 +43,8 @@ echo "| N: comparison | image relMSE | indirect relMSE | indirect rel. MAE | ind
 echo "|---|---|---|---|---|---|"
 for n in $COUNTS; do
   row "$n: all, avg vs exact path" "$OUT/A$n" "$E"
-  row "$n: cube shadow maps, avg vs visibility=exact" "$OUT/A$n" "$OUT/T$n"
-  row "$n: paraboloid shadow maps vs visibility=exact" "$OUT/P$n" "$OUT/T$n"
+  row "$n: $MAP shadow maps, avg vs visibility=exact" "$OUT/A$n" "$OUT/T$n"
+  [ "$MAP" != cube ] || row "$n: paraboloid shadow maps vs visibility=exact" "$OUT/P$n" "$OUT/T$n"
   row "$n: AVG tracing, visibility=exact vs + tracing=exact" "$OUT/T$n" "$OUT/X$n"
   row "$n: clamp, exact stages vs + clamp=0" "$OUT/X$n" "$OUT/U$n"
   row "$n: many-light estimate, exact stages + clamp=0 vs exact path" "$OUT/U$n" "$E"

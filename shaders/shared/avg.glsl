@@ -1,4 +1,4 @@
-// The approximate visibility grid (Bashford-Rogers et al. 2012, §III-A; the
+// The approximate visibility grid (Bashford-Rogers et al. 2011, §III-A; the
 // `avg` module): per cell the sums of the unit normals and the albedos of the
 // triangles that overlap it, and their count — summed (additively, as the
 // paper blends), normalised where read. Fixed point so the GPU can add them

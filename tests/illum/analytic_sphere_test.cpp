@@ -111,8 +111,8 @@ TEST(AnalyticSphere, EveryLightTransportMethodGivesItsTruncation) {
        0.02,
        "two bounces, 256^3"},
       // In a sphere cos θ_v cos θ_x / d² = 1/(4R²) for any two points, so the
-      // VPLs' clamp at d_min (0.02 of the box diagonal 2√3 R) removes
-      // d_min²/(8R²) = 0.06 % of each bounce: within these tolerances.
+      // VPLs' clamp at d_min (0.005 of the box diagonal 2√3 R) removes
+      // d_min²/(8R²) = 0.004 % of each bounce: within these tolerances.
       {"vpl", {"bounces=1", "clamp=0", "shadow_res=256"}, 8, 2, 0.01, "RSM VPLs, voxel visibility"},
       {"vpl", {"bounces=2", "clamp=0", "shadow_res=256"}, 8, 3, 0.02, "and one bounce through the grid"},
       {"vpl", {"bounces=2", "shadow_res=256"}, 8, 3, 0.02, "the default clamp"},

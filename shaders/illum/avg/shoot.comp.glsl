@@ -1,4 +1,4 @@
-// AVG light tracing (Bashford-Rogers et al. 2012, §III-B), one invocation per
+// AVG light tracing (Bashford-Rogers et al. 2011, §III-B), one invocation per
 // VPL chain i < uChains: a ray from a light — lights chosen in proportion to
 // their emitted power (stratified over the chains), the ray distributed as
 // the light emits (shared/vpl.glsl: sampleLightRay) from the chain's point of

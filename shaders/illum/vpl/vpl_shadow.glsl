@@ -1,5 +1,5 @@
 // Per-VPL shadow maps in one atlas (the `avg` module's VPL visibility,
-// Bashford-Rogers et al. 2012 §III-C): the projection the raster pass
+// Bashford-Rogers et al. 2011 §III-C): the projection the raster pass
 // (shadow.vert/.frag) writes with and the gather reads back with, so both
 // agree texel for texel. Each VPL slot owns a tile of the atlas: a cube map
 // (uShadowCube = 1: six faces of r×r, 3×2 in the tile; exact for large
