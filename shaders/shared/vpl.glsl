@@ -59,7 +59,9 @@ SHARED_FN uint fluxTreeFaceStride(uint res) { return fluxTreeOffset(res, fluxTre
 // emission. Point: 4π, uniform directions. Spot with I(θ) = I₀ cos^f θ inside
 // cos θ ≥ cos θc: 2π (1 − cos^(f+1) θc) / (f + 1), cos θ drawn by inverting
 // that. Directional (irradiance E): the disc of the scene's bounding sphere
-// (centre, radius) across its direction, π r², from 2r up-stream.
+// (centre, radius) across its direction, π r², from 2r up-stream. u is
+// the stratified pair (the direction, or a directional light's disc point),
+// v a second one.
 SHARED_FN float lightEmittedFluxScale(SHARED_IN(PackedLight) L, float radius) {
   uint type = uint(L.positionType.w + 0.5f);
   if (type == LIGHT_POINT) return 4.0f * PI;
@@ -82,7 +84,8 @@ SHARED_FN LightRay sampleLightRay(SHARED_IN(PackedLight) L, vec2 u, vec2 v, vec3
   }
   Basis b = makeBasis(axis);
   if (type == LIGHT_DIRECTIONAL) {
-    float rr = radius * sqrt(v.x), phi = 2.0f * PI * v.y;
+    // The direction is fixed: the stratified u places the ray on the disc (v is not needed).
+    float rr = radius * sqrt(u.x), phi = 2.0f * PI * u.y;
     r.origin = centre - axis * (2.0f * radius) + b.t * (rr * cos(phi)) + b.b * (rr * sin(phi));
     r.dir = axis;
     return r;

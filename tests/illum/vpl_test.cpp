@@ -25,7 +25,10 @@ using namespace vgi::shared;
 // when 0): the floor sees the lit ceiling only past the plate. The camera
 // looks at the floor from the open front (z < 0), under the plate. Every
 // surface lies on a plane of a 128³ grid over the unit cube.
-std::string writePlateScene(const std::string& name, float xPlate) {
+const char* const kUpSpot =
+    R"({"type": "spot", "position": [0.5, 0.8, 0.5], "direction": [0, 1, 0], "cone_deg": 50, "intensity": 1})";
+
+std::string writePlateScene(const std::string& name, float xPlate, const std::string& light = kUpSpot) {
   const std::string dir = testing::TempDir();
   std::ofstream(dir + "/" + name + ".mtl") << "newmtl white\nKd 0.8 0.8 0.8\n";
   std::ofstream obj(dir + "/" + name + ".obj");
@@ -38,8 +41,8 @@ std::string writePlateScene(const std::string& name, float xPlate) {
   obj.close();
   const std::string path = dir + "/" + name + ".json";
   std::ofstream(path) << R"({ "meshes": [ {"path": ")" << dir << "/" << name << R"(.obj"} ],
-    "lights": [ {"type": "spot", "position": [0.5, 0.8, 0.5], "direction": [0, 1, 0], "cone_deg": 50,
-                 "intensity": 1} ],
+    "lights": [ )" << light
+                      << R"( ],
     "camera": {"position": [0.5, 0.3, -0.6], "target": [0.5, 0, 0.5], "fov_deg": 40} })";
   return path;
 }
@@ -207,6 +210,20 @@ TEST(Vpl, OneOrManyVplsCarryTheReflectedFluxAndChainsEndOutsideTheGrid) {
   EXPECT_GT(second, 0);
   EXPECT_LT(second, first) << "rays leaving the open sides place no VPL";
   for (const auto& p : many.result.image.pixels) ASSERT_TRUE(std::isfinite(p.x + p.y + p.z));
+}
+
+// A directional light (irradiance E, straight down) lights the top of the
+// 1 m² ceiling: both methods' first VPLs carry its reflected flux 0.8 · E —
+// vpl from the orthographic RSM face, avg from rays shot from a disc
+// across the scene.
+TEST(Vpl, ADirectionalLightsVplsCarryItsReflectedFlux) {
+  const std::string scene = writePlateScene(
+      "vpl_plate_sun", 0.0f, R"({"type": "directional", "direction": [0, -1, 0], "irradiance": 2})");
+  for (const char* method : {"vpl", "avg"}) {
+    const RenderOutput r = test::render(scene, method, {"shadow_res=256", "vpls=1024"}, 16, 1, {"indirect"});
+    const double flux = r.stats["extra"]["vpl_flux"][0];
+    EXPECT_NEAR(flux / (0.8 * 2.0), 1.0, 0.02) << method;
+  }
 }
 
 // 1024 chains in one subset: 1024 per pixel, far past llvmpipe's 65535 loop
