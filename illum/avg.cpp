@@ -209,9 +209,7 @@ class AvgMethod : public Method {
       auto s = f.profiler.scope("direct");
       direct_->shade(f.gbuffer(), f.resources.lightMaps(), f.camera, sample);
     }
-    // Sample 0 unrotated; later samples rotate the chains' R2 points by a hash of (k, seed).
-    const uint32_t h = k == 0 ? 0u : shared::pcgHash(uint32_t(k) ^ shared::pcgHash(f.request.seed));
-    const glm::uvec2 rotation(h, k == 0 ? 0u : shared::pcgHash(h));
+    const glm::uvec2 rotation = vplRotation(k, f.request.seed);
     {
       auto s = f.profiler.scope("vpls");
       if (tracing_ == "exact") {
@@ -308,10 +306,7 @@ class AvgMethod : public Method {
     using namespace shared;
     std::vector<PackedLight> lights;
     for (const Light& l : f.resources.lights()) lights.push_back(packLight(l));
-    auto power = [&](const PackedLight& l) {
-      return (l.intensityFalloff.x + l.intensityFalloff.y + l.intensityFalloff.z) / 3.0f *
-             lightEmittedFluxScale(l, radius_);
-    };
+    auto power = [&](const PackedLight& l) { return lightEmittedPower(l, radius_); };
     float total = 0;
     for (auto& l : lights) total += power(l);
     const int N = s_.chains, B = s_.bounces;

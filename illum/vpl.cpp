@@ -81,13 +81,14 @@ class VplMethod : public Method {
                           "VPLs per chain: 1 = the RSM texels' VPLs only (one indirect bounce); "
                           "each further one at the first voxel hit of a diffuse bounce ray",
                           1, 16);
-    visibility_ = p.getString("visibility", "voxels",
-                              "VPL visibility: voxels (VGI 4.1 two-point test through the OR-mip pyramid), "
-                              "exact (Embree occlusion rays on the CPU, from the same VPLs) or none",
-                              {"voxels", "exact", "none"});
-    s_.visibility = visibility_ == "voxels"  ? VplVisibility::Voxels
-                    : visibility_ == "exact" ? VplVisibility::Exact
-                                             : VplVisibility::None;
+    const std::string visibility =
+        p.getString("visibility", "voxels",
+                    "VPL visibility: voxels (VGI 4.1 two-point test through the OR-mip pyramid), "
+                    "exact (Embree occlusion rays on the CPU, from the same VPLs) or none",
+                    {"voxels", "exact", "none"});
+    s_.visibility = visibility == "voxels"  ? VplVisibility::Voxels
+                    : visibility == "exact" ? VplVisibility::Exact
+                                            : VplVisibility::None;
     s_.offset = p.getFloat("offset", 1.0f,
                            "two-point test: receiver and VPL moved along their normals, in voxel diagonals",
                            0.0f, 100.0f);
@@ -97,6 +98,7 @@ class VplMethod : public Method {
                                0.0f, 100.0f);
     tracer_ = readTracerParam(p);
     // Static + frame grid, the pyramid (≈ 4/3 of a grid); the value grids (≈ 2 more) are checked when built.
+    checkVplMemory(s_);
     grid_ = readBinaryGridParams(p, 4, s_.bounces > 1);
     readShadowParams(p, shadow_);
     diagonal_ = scene.bounds().diagonal();
@@ -106,12 +108,12 @@ class VplMethod : public Method {
     SceneNeeds n;
     n.gbuffer = true;
     n.lightMaps = LightMapNeed{shadow_.resolution, true};
-    if (visibility_ == "voxels" || s_.bounces > 1) {
+    if (s_.visibility == VplVisibility::Voxels || s_.bounces > 1) {
       n.binaryGrid = grid_;
       n.orMipPyramid = true;
     }
     if (s_.bounces > 1) n.valueGrids = ValueGridNeed{{"normal", "albedo"}, ValueMips::None};
-    n.bvh = visibility_ == "exact";
+    n.bvh = s_.visibility == VplVisibility::Exact;
     return n;
   }
   void prepareFrame(Frame& f) override {
@@ -158,9 +160,7 @@ class VplMethod : public Method {
       glUseProgram(genProg_);
       bindGrid(f, genProg_);
       shaders.setUniform(genProg_, "uSampleIndex", uint32_t(k));
-      // Sample 0 unrotated; later samples rotate the chains' R2 points by a hash of (k, seed).
-      const uint32_t h = k == 0 ? 0u : shared::pcgHash(uint32_t(k) ^ shared::pcgHash(f.request.seed));
-      shaders.setUniform(genProg_, "uRotation", glm::uvec2(h, k == 0 ? 0u : shared::pcgHash(h)));
+      shaders.setUniform(genProg_, "uRotation", vplRotation(k, f.request.seed));
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, kit_.vplBuffer());
       glDispatchCompute(unsigned(s_.chains + 63) / 64, 1, 1);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -210,7 +210,7 @@ class VplMethod : public Method {
 
   VplSettings s_;
   float bounceOffset_ = 0.5f, diagonal_ = 0, voxelDiagonal_ = 0;
-  std::string visibility_, tracer_;
+  std::string tracer_;
   BinaryGridNeed grid_;
   ShadowParams shadow_;
   std::unique_ptr<DirectPass> direct_;

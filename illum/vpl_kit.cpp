@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "core/parallel.h"
 #include "core/params.h"
 #include "core/shader_library.h"
@@ -29,6 +30,19 @@ void readVplParams(ParamSet& p, VplSettings& s) {
   s.clamp = p.getFloat("clamp", s.clamp,
                        "geometry term clamp: 1/d^2 becomes 1/max(d^2, (clamp * scene diagonal)^2); 0 = off",
                        0.0f, 1.0f);
+}
+
+void checkVplMemory(const VplSettings& s) {
+  const double mib = double(s.chains) * s.bounces * sizeof(shared::Vpl) / double(1 << 20);
+  if (mib > 256.0)
+    fail("parameters 'vpls' (", s.chains, ") x 'bounces' (", s.bounces, ") need ", mib,
+         " MiB of VPLs (at most 256 MiB)");
+}
+
+glm::uvec2 vplRotation(int k, uint32_t seed) {
+  if (k == 0) return glm::uvec2(0u);
+  const uint32_t h = shared::pcgHash(uint32_t(k) ^ shared::pcgHash(seed));
+  return glm::uvec2(h, shared::pcgHash(h));
 }
 
 void VplKit::prepare(Frame& f, const VplSettings& s, const std::string& tracer, float voxelDiagonal,

@@ -36,6 +36,11 @@ struct VplSettings {
 // Reads vpls (default `chains`), the gather layout (interleave, resolution,
 // blur) and clamp; the module reads bounces, visibility and offset.
 void readVplParams(ParamSet& params, VplSettings& s);
+// Throws, naming vpls and bounces, if their VPL buffer would exceed 256 MiB (4M VPLs).
+void checkVplMemory(const VplSettings& s);
+// The rotation of the chains' R2 points (shared/sampling.glsl: r2Point) for
+// sample k of a run seeded `seed`: none for sample 0, then a hash of (k, seed).
+glm::uvec2 vplRotation(int k, uint32_t seed);
 
 class VplKit {
  public:

@@ -69,6 +69,11 @@ SHARED_FN float lightEmittedFluxScale(SHARED_IN(PackedLight) L, float radius) {
   float e = max(L.intensityFalloff.w, 0.0f) + 1.0f;
   return 2.0f * PI * (1.0f - pow(max(L.directionCosCone.w, 0.0f), e)) / e;
 }
+// The emitted flux, the mean of its channels (what light tracing splits the rays by).
+SHARED_FN float lightEmittedPower(SHARED_IN(PackedLight) L, float radius) {
+  return (L.intensityFalloff.x + L.intensityFalloff.y + L.intensityFalloff.z) / 3.0f *
+         lightEmittedFluxScale(L, radius);
+}
 struct LightRay {
   vec3 origin, dir;
 };

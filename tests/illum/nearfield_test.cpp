@@ -258,6 +258,11 @@ TEST(Modules, BadParametersAndOutputsAreErrors) {
   test::expectError([] { render("builtin:cornell", "vpl", {"vpls=-1"}, 8, 1); }, {"vpls", "-1"});
   test::expectError([] { render("builtin:cornell", "vpl", {"bounces=0"}, 8, 1); }, {"bounces", "0"});
   test::expectError([] { render("builtin:cornell", "vpl", {"clamp=inf"}, 8, 1); }, {"clamp", "inf"});
+  test::expectError(
+      [] {
+        render("builtin:cornell", "vpl", {"vpls=1048576", "bounces=8"}, 8, 1);
+      },
+      {"vpls", "1048576", "bounces", "MiB"});
   test::expectError([] { render("builtin:cornell", "vpl", {"visibility=shadowmaps"}, 8, 1); },
                     {"visibility", "shadowmaps", "voxels"});
   // Bounce VPLs read the value grids, which only the atlas voxelizer makes; one bounce takes any.

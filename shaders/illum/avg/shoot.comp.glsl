@@ -35,10 +35,7 @@ uniform uvec2 uRotation;
 uniform uint uSeed;
 uniform uint uSampleIndex;
 
-float lightPower(uint l) {
-  vec3 I = lights[l].intensityFalloff.xyz;
-  return (I.x + I.y + I.z) / 3.0f * lightEmittedFluxScale(lights[l], uRadius);
-}
+float lightPower(uint l) { return lightEmittedPower(lights[l], uRadius); }
 
 // The first cell with triangles along (o, d) past the start cell; false if none within the grid.
 bool march(vec3 o, vec3 d, out ivec3 cell, out float t) {
