@@ -394,6 +394,9 @@ void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::uvec2 v) {
 void ShaderLibrary::setUniformArray(unsigned p, const std::string& n, const uint32_t* v, int count) {
   glProgramUniform1uiv(p, uniformLocation(p, n), count, v);
 }
+void ShaderLibrary::setUniformArray(unsigned p, const std::string& n, const glm::vec4* v, int count) {
+  glProgramUniform4fv(p, uniformLocation(p, n), count, &v[0].x);
+}
 void ShaderLibrary::setUniform(unsigned p, const std::string& n, glm::ivec3 v) {
   glProgramUniform3i(p, uniformLocation(p, n), v.x, v.y, v.z);
 }

@@ -59,6 +59,7 @@ class ShaderLibrary {
   void setUniform(unsigned program, const std::string& name, const glm::mat4& v);
   // An array uniform `uint name[count]` (its first `count` elements).
   void setUniformArray(unsigned program, const std::string& name, const uint32_t* v, int count);
+  void setUniformArray(unsigned program, const std::string& name, const glm::vec4* v, int count);
   // The location, with the check above (−1 for a dropped one).
   int uniformLocation(unsigned program, const std::string& name);
   // The uniform names a GLSL source declares (`uniform T a, b[2];`, blocks excluded).

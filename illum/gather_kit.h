@@ -24,7 +24,8 @@ struct GatherSettings {
 };
 // Reads rays (unless !rays: a gather without directions), resolution,
 // interleave and blur (`what` names the gathered quantity in the docs).
-GatherSettings readGatherParams(ParamSet& params, const std::string& what, bool reflect, bool rays = true);
+GatherSettings readGatherParams(ParamSet& params, const std::string& what, bool reflect, bool rays = true,
+                                int interleaveDefault = 4);
 
 class GatherKit {
  public:
@@ -45,6 +46,11 @@ class GatherKit {
   // image, and the "indirect" / "direct" outputs when asked for; timed as
   // "blur" and "upsample_composite" (or "composite" at full resolution).
   void resolve(Frame& frame) const;
+  // A second quantity of the gather (an RGBA32F image of the gather size, w = 1
+  // on a surface; e.g. vct's AO) through the same blur and upsampling into the
+  // full-resolution RGBA32F texture `full` (the value itself, no composite);
+  // timed as "blur_<name>" and "upsample_<name>".
+  void resolveValue(Frame& frame, unsigned low, unsigned full, const std::string& name) const;
 
   int width() const { return lw_; }
   int scale() const { return scale_; }  // image pixels per gather pixel

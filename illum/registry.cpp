@@ -8,6 +8,8 @@
 #include "illum/method.h"
 #include "illum/nearfield.h"
 #include "illum/reference.h"
+#include "illum/vct.h"
+#include "illum/vct_ao.h"
 #include "illum/voxel_ao.h"
 #include "illum/voxelpath.h"
 #include "illum/vpl.h"
@@ -70,6 +72,21 @@ const std::vector<MethodInfo>& methodRegistry() {
          return Counterpart{"reference",
                             {"integrator=path", "maxdepth=" + std::to_string(p.at("bounces").get<int>() + 1)},
                             {"direct", "indirect"}};
+       }},
+      {"vct",
+       "GL voxel cone tracing: injected radiance, anisotropic pre-integration, diffuse + specular cones, AO, "
+       "soft shadows (Crassin et al. 2011; Dinse 2015)",
+       true, [](ParamSet& p, const Scene& s) { return createVctMethod(p, s); },
+       [](const nlohmann::json&) {
+         return Counterpart{"reference", {"integrator=path", "maxdepth=2"}, {"direct", "indirect"}};
+       }},
+      {"vct_ao",
+       "GL ambient occlusion by voxel cone tracing: 3/5/8-cone constellations, local jitter, overlap "
+       "(Basgier "
+       "2015)",
+       true, [](ParamSet& p, const Scene& s) { return createVctAoMethod(p, s); },
+       [](const nlohmann::json& p) {
+         return Counterpart{"reference", {"integrator=ao", "radius=" + exactText(p.at("radius"))}, {}};
        }},
       {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
        [](ParamSet& p, const Scene& s) { return createReferenceMethod(p, s); }},

@@ -79,7 +79,8 @@ void SceneNeeds::check(const std::string& method, bool gl) const {
   }
 }
 
-BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids, bool atlasOnly) {
+BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids, bool atlasOnly,
+                                    const std::string& defaultVoxelizer) {
   BinaryGridNeed g;
   g.resolution = parseResolution(
       p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"), "parameter 'voxels'");
@@ -89,7 +90,7 @@ BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids, bool atlasOnly) {
   else
     for (auto& v : voxelizerRegistry()) voxelizers.push_back(v.name);
   g.voxelizer =
-      p.getString("voxelizer", "atlas",
+      p.getString("voxelizer", atlasOnly ? "atlas" : defaultVoxelizer,
                   atlasOnly ? "binary voxelizer: atlas (the multi-valued grids come from its points)"
                             : "binary voxelizer (see vgi voxelize --help)",
                   voxelizers);
@@ -163,6 +164,7 @@ bool SceneResources::update(float time, Profiler& prof) {
         if (!dynamic) break;
       }
       box_ = fitGridBox(b, needs_.binaryGrid->resolution);
+      if (needs_.binaryGrid->cubicCells) box_ = cubicCellBox(box_);
       hasBox_ = true;
     }
     buildGrid(prof);

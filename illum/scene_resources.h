@@ -49,6 +49,9 @@ struct LightMapNeed {
 struct BinaryGridNeed {
   glm::uvec3 resolution{128};
   std::string voxelizer = "atlas";  // a name of voxelizerRegistry()
+  // Cubic cells (cone tracing: a mip level's texel is a cube of 2^l cells):
+  // the fitted box grows about its centre along the shorter axes.
+  bool cubicCells = false;
 };
 
 // Multi-valued grids as 3D textures (voxelize/value_textures.h) over the
@@ -81,7 +84,8 @@ struct SceneNeeds {
 // The `voxels` (N or WxHxD) and `voxelizer` parameters of a module that
 // traces a binary grid; `grids`: how many grid-sized buffers it keeps (the
 // memory check).
-BinaryGridNeed readBinaryGridParams(ParamSet& params, int grids, bool atlasOnly = false);
+BinaryGridNeed readBinaryGridParams(ParamSet& params, int grids, bool atlasOnly = false,
+                                    const std::string& defaultVoxelizer = "atlas");
 
 class SceneResources {
  public:

@@ -36,8 +36,9 @@ class GlPyramid {
   // kernel of the CPU build, so the words equal OrMipPyramid's.
   void build(const GpuGridBuffer& grid, ShaderLibrary& shaders);
   void build(const BinaryGrid& grid, ShaderLibrary& shaders);
-  std::vector<uint32_t> read() const;  // all levels' words
-  uint64_t countLevel0() const;        // set voxels of the grid (reads level 0 back)
+  std::vector<uint32_t> read() const;         // all levels' words
+  unsigned words() const { return buffer_; }  // the SSBO (level 0 = the grid's words, first)
+  uint64_t countLevel0() const;               // set voxels of the grid (reads level 0 back)
 
  private:
   void reduce(ShaderLibrary& shaders);

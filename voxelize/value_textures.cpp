@@ -117,7 +117,8 @@ unsigned ValueTextures::textureOf(const std::string& channel) const {
   return channel_[valueChannelIndex(channel)].get();
 }
 
-void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders, Profiler& prof) {
+void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders, Profiler& prof,
+                            unsigned occupancyWords) {
   {
     auto s = prof.scope("value_resolve");
     ShaderDefines defs;
@@ -126,12 +127,14 @@ void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders,
       std::transform(up.begin(), up.end(), up.begin(), ::toupper);
       defs["VALUE_" + up] = "1";
     }
+    if (occupancyWords) defs["OCCUPANCY_FROM_GRID"] = "1";
     const unsigned prog = shaders.program({"voxelize/value_resolve.comp.glsl"}, defs);
     glUseProgram(prog);
     const glm::uvec3 r = box_.resolution;
     shaders.setUniform(prog, "uResolution", glm::uvec4(r, 0u));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, sums.counts);
+    if (occupancyWords) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_PYRAMID, occupancyWords);
     glBindImageTexture(IMAGE_VALUE_COUNT, count_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32UI);
     glBindImageTexture(IMAGE_VALUE_OCCUPANCY, occupancy_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R8);
     shaders.setUniform(prog, "uRadianceMax", sums.radianceMax);

@@ -15,7 +15,7 @@
 // | normal    | RGBA16F  | mean normal xyz (not renormalised: length < 1 = spread), w 0 |
 // | albedo    | RGBA8    | mean albedo rgb (linear; 1/255 steps), a 0                 |
 // | glossy    | RGBA16F  | mean ks rgb, w the mean exponent code log2(1 + e)          |
-// | radiance  | RGBA16F  | mean diffuse direct radiance rgb (VGI §3, Table 2), w 0     |
+// | radiance  | RGBA16F  | mean diffuse direct radiance rgb (VGI §3, Table 2), premultiplied: w = occupancy |
 // Half floats keep 11 significant bits (normals to 5·10⁻⁴); albedo is 8-bit
 // as in the atlas' source textures. The count texture has no mips.
 //
@@ -57,7 +57,11 @@ class ValueTextures {
   ValueTextures& operator=(const ValueTextures&) = delete;
 
   // Level 0 from the sums ("value_resolve"), then the mips ("value_mips").
-  void resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders, Profiler& profiler);
+  // occupancyWords: a binary grid's words (an OR-mip pyramid, level 0 first)
+  // that decide the occupancy instead of count > 0 (cone tracing's opacity
+  // from any voxelizer); 0: the counts decide.
+  void resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders, Profiler& profiler,
+               unsigned occupancyWords = 0);
   // Binds count, occupancy and the channels at their TEXUNIT_VALUE_* units.
   void bind() const;
   // Binds the six faces of `channel`'s anisotropic chain at TEXUNIT_VALUE_ANISO + face.

@@ -51,6 +51,15 @@ GridBox fitGridBox(const Scene& scene, glm::uvec3 resolution, float time) {
   return fitGridBox(scene.bounds(time), resolution);
 }
 
+GridBox cubicCellBox(const GridBox& box) {
+  const glm::vec3 v = box.voxelSize();
+  const float side = std::max({v.x, v.y, v.z});
+  GridBox g = box;
+  g.extent = glm::vec3(box.resolution) * side;
+  g.origin = box.origin + box.axes * (0.5f * (box.extent - g.extent));
+  return g;
+}
+
 GridBox fitGridBox(Bounds b, glm::uvec3 resolution) {
   if (b.empty()) fail("cannot fit a voxel grid: the scene is empty");
   GridBox g;

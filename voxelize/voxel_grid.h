@@ -34,6 +34,8 @@ glm::uvec3 parseResolution(const std::string& text, const std::string& option = 
 GridBox fitGridBox(const Scene& scene, glm::uvec3 resolution, float time = 0);
 // The same for given bounds (e.g. the union over an animation's frames).
 GridBox fitGridBox(Bounds bounds, glm::uvec3 resolution);
+// The same box grown about its centre so its cells are cubes (the longest cell side).
+GridBox cubicCellBox(const GridBox& box);
 
 // Throws if a grid of this resolution would not fit in memory (names the size).
 void checkGridMemory(glm::uvec3 resolution, int grids = 1);

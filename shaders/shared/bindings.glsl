@@ -62,6 +62,9 @@
 #define IMAGE_SAMPLE 0                 // the sample loop's "image" channel a method writes
 #define IMAGE_SAMPLE_AOV0 1            // the first output channel (e.g. indirect)
 #define IMAGE_SAMPLE_AOV1 2            // the second (e.g. direct)
+#define IMAGE_SAMPLE_AOV2 3            // a third (vct: ao)
+#define IMAGE_SAMPLE_AOV3 4            // a fourth (vct: specular)
+#define IMAGE_OUTPUT2 1                // a pass's second output (vct's diffuse pass: the AO)
 #define IMAGE_ACCUMULATE_SAMPLE 0      // shaders/illum/accumulate.comp
 #define IMAGE_ACCUMULATE_SUM 1
 #define IMAGE_ACCUMULATE_COMPENSATION 2

@@ -9,6 +9,7 @@ layout(binding = TEXUNIT_VALUE_NORMAL) uniform sampler3D valueNormal;
 layout(binding = TEXUNIT_VALUE_ALBEDO) uniform sampler3D valueAlbedo;
 layout(binding = TEXUNIT_VALUE_GLOSSY) uniform sampler3D valueGlossy;
 layout(binding = TEXUNIT_VALUE_COUNT) uniform usampler3D valueCount;
+layout(binding = TEXUNIT_VALUE_RADIANCE) uniform sampler3D valueRadiance;  // premultiplied: w = occupancy
 layout(binding = TEXUNIT_VALUE_ANISO) uniform sampler3D valueAniso0;  // +x
 layout(binding = TEXUNIT_VALUE_ANISO + 1) uniform sampler3D valueAniso1;  // −x
 layout(binding = TEXUNIT_VALUE_ANISO + 2) uniform sampler3D valueAniso2;  // +y

@@ -17,6 +17,12 @@ in vec3 vWorld[];
 in vec2 vUv[];
 flat out vec3 gWorldNormal;  // the triangle's unit normal in world space
 flat out vec2 gUvCentroid;
+flat out vec3 gWorld0;  // the corners in world space (gA, gB, gC's), and their uvs
+flat out vec3 gWorld1;
+flat out vec3 gWorld2;
+flat out vec2 gUv0;
+flat out vec2 gUv1;
+flat out vec2 gUv2;
 #endif
 
 // Grid coordinates → (u, v, w) with w along `axis`.
@@ -57,6 +63,12 @@ void main() {
     vec3 wn = cross(vWorld[1] - vWorld[0], vWorld[2] - vWorld[0]);
     gWorldNormal = dot(wn, wn) > 0.0f ? normalize(wn) : vec3(0.0f);
     gUvCentroid = (vUv[0] + vUv[1] + vUv[2]) / 3.0f;
+    gWorld0 = vWorld[0];
+    gWorld1 = vWorld[1];
+    gWorld2 = vWorld[2];
+    gUv0 = vUv[0];
+    gUv1 = vUv[1];
+    gUv2 = vUv[2];
     gl_PrimitiveID = gl_PrimitiveIDIn;
 #endif
     gl_Position = vec4(s / uViewport * 2.0f - 1.0f, 0.0f, 1.0f);

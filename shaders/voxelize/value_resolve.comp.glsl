@@ -3,6 +3,11 @@
 // CPU decode's own function), written into the channel's 3D texture (level 0),
 // with the point count and the occupancy (1 where the cell has points).
 // Channels compiled in: VALUE_NORMAL, VALUE_ALBEDO, VALUE_GLOSSY, VALUE_RADIANCE.
+// The radiance texture is premultiplied: (L·α, α), α the occupancy (what cone
+// tracing reads, Dinse 2015 §3.1). OCCUPANCY_FROM_GRID: α is the bit of a
+// binary grid (the OR-mip pyramid's level 0 at BINDING_PYRAMID, any voxelizer
+// of the registry) instead of count > 0; a cell without points or without
+// the bit then holds 0 in every channel.
 #include "../shared/value_grid.glsl"
 #include "../shared/bindings.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
@@ -27,6 +32,9 @@ layout(std430, binding = BINDING_VALUE_RADIANCE) readonly buffer RadianceSums { 
 layout(rgba16f, binding = IMAGE_VALUE_RADIANCE) uniform writeonly image3D oRadiance;
 uniform float uRadianceMax;
 #endif
+#ifdef OCCUPANCY_FROM_GRID
+layout(std430, binding = BINDING_PYRAMID) readonly buffer PyramidWords { uint pyramidWords[]; };
+#endif
 void main() {
   uvec3 cell = gl_GlobalInvocationID;
   if (cell.x >= uResolution.x || cell.y >= uResolution.y || cell.z >= uResolution.z) return;
@@ -34,7 +42,13 @@ void main() {
   uint n = counts[i / 4u];
   ivec3 c = ivec3(cell);
   imageStore(oCount, c, uvec4(n));
-  imageStore(oOccupancy, c, vec4(n > 0u ? 1.0f : 0.0f));
+#ifdef OCCUPANCY_FROM_GRID
+  bool occupied = (pyramidWords[columnWordIndex(cell.x, cell.y, depthWord(cell.z), uResolution)] & depthBit(cell.z)) != 0u;
+  if (!occupied) n = 0u;
+#else
+  bool occupied = n > 0u;
+#endif
+  imageStore(oOccupancy, c, vec4(occupied ? 1.0f : 0.0f));
 #ifdef VALUE_NORMAL
   imageStore(oNormal, c, n > 0u ? decodeValueMean(uvec4(normalSums[i], normalSums[i + 1u], normalSums[i + 2u], normalSums[i + 3u]), n, VALUE_CHANNEL_NORMAL) : vec4(0.0f));
 #endif
@@ -45,6 +59,8 @@ void main() {
   imageStore(oGlossy, c, n > 0u ? decodeValueMean(uvec4(glossySums[i], glossySums[i + 1u], glossySums[i + 2u], glossySums[i + 3u]), n, VALUE_CHANNEL_GLOSSY) : vec4(0.0f));
 #endif
 #ifdef VALUE_RADIANCE
-  imageStore(oRadiance, c, n > 0u ? decodeRadianceMean(uvec4(radianceSums[i], radianceSums[i + 1u], radianceSums[i + 2u], 0u), n, uRadianceMax) : vec4(0.0f));
+  vec4 radiance = occupied ? vec4(0.0f, 0.0f, 0.0f, 1.0f) : vec4(0.0f);
+  if (n > 0u) radiance = decodeRadianceMean(uvec4(radianceSums[i], radianceSums[i + 1u], radianceSums[i + 2u], 0u), n, uRadianceMax) + vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  imageStore(oRadiance, c, radiance);
 #endif
 }

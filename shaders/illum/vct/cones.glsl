@@ -1,0 +1,147 @@
+// Voxel cone tracing (Crassin et al., "Interactive Indirect Illumination Using
+// Voxel Cone Tracing", 2011; Dinse 2015 §3.2–3.3; Basgier 2015 §5.2) through
+// the pre-integrated volume of voxelize/value_textures: the radiance channel
+// premultiplied (L·α, α = opacity), with its isotropic chain and, under
+// VCT_ANISOTROPIC, the six-direction chain from the grid's level 1.
+//
+// A cone (apex, unit axis d, half-angle tan θ) is marched front to back:
+// at distance t its diameter is D = max(2 t tan θ, v) (v a voxel), the sample
+// is taken at mip level log2(D / v) (quadrilinear: trilinear within a level,
+// linear between levels), the step is uConeStep · D (the last one ends at the
+// cone's length), and the sample's opacity is corrected for the step,
+// α' = 1 − (1 − α)^(step / cell) with cell = v · 2^lod, so a medium gives the
+// same transmittance whatever the step (Crassin et al. §4.2; the VCT thesis'
+// Algorithm 1 omits it). Premultiplied radiance scales with α'/α:
+//   C += (1 − A) · c · α'/α,   A += (1 − A) · α'.
+// Anisotropic lookups mix the three faces facing −d… as seen along d, weighted
+// by d² (shared/value_grid.glsl: anisoWeights; the thesis' |d| weights do not
+// sum to 1); below level 1 the level-0 cell (isotropic) is blended in.
+// Receiver guard (ours; `plane_guard`): a cone from a surface samples at
+// height h = h0 + t·cos(d, n) above the receiver's tangent plane; a level-l
+// sample blends texels reaching 1.5·2^l voxels below it, so the level is
+// capped at log2(h / 1.5 v) and the receiver's own voxels never enter its
+// cones (without it an open floor occludes itself: AO 0.56 instead of 1 with
+// the anisotropic chain). guardSlope < 0: no cap (shadow cones, tests).
+// Empty-space skipping (Dinse 2015 Alg. 1): where a sample is empty, the
+// largest empty parent texel of the isotropic chain around the sample is left
+// in one jump — samples that would have blended in a non-empty neighbour
+// inside that texel are skipped (the artefact the thesis shows, Fig. 18a).
+//
+// Bound by ConeVolume::bind (illum/cone_kit.h): the textures, the grid
+// uniforms, uVoxelSize, uMaxLod, uConeStep. A pass that defines CONE_SAMPLE
+// supplies its own coneSample() (the tests' uniform medium).
+#include "../../shared/constants.glsl"
+#include "../../shared/sampling.glsl"
+#include "../../shared/value_textures.glsl"
+#include "../../voxelize/grid_uniforms.glsl"
+uniform float uVoxelSize;  // world size of a level-0 cell
+uniform float uMaxLod;     // the chains' last level
+uniform float uConeStep;   // step = uConeStep × the cone's diameter
+
+#ifndef CONE_SAMPLE
+// The volume along unit direction d at uvw, mip level lod (premultiplied rgb, opacity w).
+vec4 coneSample(vec3 uvw, vec3 d, float lod) {
+  vec4 s0 = textureLod(valueRadiance, uvw, lod);
+#ifdef VCT_ANISOTROPIC
+  if (lod <= 0.0f || uMaxLod < 1.0f) return s0;
+  if (lod < 1.0f) return mix(s0, valueAniso(uvw, d, 1.0f), lod);
+  return valueAniso(uvw, d, lod);
+#else
+  return s0;
+#endif
+}
+
+// World distance from grid point q along dg (grid cells per world unit) out of
+// the largest empty texel around q of the isotropic chain, from level
+// floor(lod) up; 0 where the texel at floor(lod) is not empty.
+float emptySkip(vec3 q, vec3 dg, float lod) {
+  int level = -1;
+  ivec3 cell = ivec3(floor(q));
+  for (int l = int(floor(lod)); l <= int(uMaxLod); ++l) {
+    if (texelFetch(valueRadiance, cell >> l, l).w > 0.0f) break;
+    level = l;
+  }
+  if (level < 0) return 0.0f;
+  float side = exp2(float(level));
+  vec3 lo = floor(q / side) * side, hi = lo + side;
+  float t = 1e30f;
+  for (int a = 0; a < 3; ++a) {
+    if (dg[a] > 1e-12f) t = min(t, (hi[a] - q[a]) / dg[a]);
+    if (dg[a] < -1e-12f) t = min(t, (lo[a] - q[a]) / dg[a]);
+  }
+  return t;
+}
+#endif
+
+struct ConeResult {
+  vec3 radiance;    // gathered front to back (premultiplied)
+  float opacity;    // A
+  float occlusion;  // within aoRadius, each sample's α' weakened by 1/(1 + λ t / aoRadius)
+  float escaped;    // 1 if the cone left the grid (the environment shows through 1 − A)
+  int samples;
+};
+
+const int kMaxConeSamples = 4096;
+
+// The cone from `apex` along unit d with half-angle tan θ = tanHalf, up to maxDist.
+ConeResult traceCone(vec3 apex, vec3 d, float tanHalf, float maxDist, float aoRadius, float falloff, bool skipEmpty,
+                     float guardHeight, float guardSlope) {
+  GridParams g = gridFromUniforms();
+  vec3 res = vec3(g.resolution.xyz);
+  vec3 qa = worldToGrid(g, apex);
+  vec3 dg = worldToGrid(g, apex + d) - qa;
+  ConeResult r;
+  r.radiance = vec3(0.0f);
+  r.opacity = 0.0f;
+  r.occlusion = 0.0f;
+  r.escaped = 0.0f;
+  r.samples = 0;
+  float t = 0.0f;
+  for (int i = 0; i < kMaxConeSamples && t < maxDist && r.opacity < 0.999f; ++i) {
+    float diameter = max(2.0f * t * tanHalf, uVoxelSize);
+    float lod = min(log2(diameter / uVoxelSize), uMaxLod);
+    float step = min(uConeStep * diameter, maxDist - t);
+    if (guardSlope >= 0.0f) {
+      float h = guardHeight + (t + 0.5f * step) * guardSlope;
+      lod = max(min(lod, log2(max(h, 1e-30f) / (1.5f * uVoxelSize))), 0.0f);
+    }
+    vec3 q = qa + dg * (t + 0.5f * step);
+    if (any(lessThan(q, vec3(0.0f))) || any(greaterThan(q, res))) {
+      r.escaped = 1.0f;
+      break;
+    }
+    vec4 s = coneSample(q / res, d, lod);
+    ++r.samples;
+    float a = clamp(s.w, 0.0f, 1.0f);
+    float cell = uVoxelSize * exp2(lod);
+    float ac = 1.0f - pow(1.0f - a, step / cell);
+    if (a > 1e-7f) r.radiance += (1.0f - r.opacity) * vec3(s.x, s.y, s.z) * (ac / a);
+    if (t < aoRadius) {
+      float aa = 1.0f - pow(1.0f - a, min(step, aoRadius - t) / cell);
+      r.occlusion += (1.0f - r.occlusion) * aa / (1.0f + falloff * t / aoRadius);
+    }
+    r.opacity += (1.0f - r.opacity) * ac;
+    float advance = step;
+#ifndef CONE_SAMPLE
+    if (skipEmpty && a < 1e-4f) advance = max(step, emptySkip(q, dg, lod) + 0.5f * step);
+#endif
+    t += advance;
+  }
+  return r;
+}
+
+// A Phong lobe cos^e as a cone: the half-angle where the lobe falls to half
+// its peak, cos θ = 2^(−1/e) (e = 1: 60°, 10: 21°, 100: 6.7°, 1000: 2.1°).
+float phongConeTanHalf(float e) {
+  float c = pow(0.5f, 1.0f / max(e, 1e-3f));
+  return sqrt(max(1.0f - c * c, 0.0f)) / max(c, 1e-3f);
+}
+
+// The tangent frame of n turned by angle phi about n (the constellations' azimuth).
+Basis turnedBasis(vec3 n, float phi) {
+  Basis b = makeBasis(n);
+  vec3 t = cos(phi) * b.t + sin(phi) * b.b;
+  b.b = cross(n, t);
+  b.t = t;
+  return b;
+}

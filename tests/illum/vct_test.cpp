@@ -1,0 +1,262 @@
+// Voxel cone tracing (illum/vct.cpp, illum/vct_ao.cpp, illum/cone_kit.h,
+// shaders/illum/vct/cones.glsl): the volume's pre-integration on the GPU
+// against the C++ builders of the same kernels, a single opaque cell seen
+// along each axis, the cone march through a uniform medium against the closed
+// form, AO of an open plane and under a parallel plane, finite results at
+// grazing normals and for cones leaving the grid, the constellations' weights,
+// and bad parameters. The point-lit sphere is in analytic_sphere_test.cpp.
+#include <glad/gl.h>
+
+#include <cmath>
+#include <glm/gtc/packing.hpp>
+#include <random>
+
+#include "core/gl_context.h"
+#include "core/profiler.h"
+#include "core/shader_library.h"
+#include "illum/cone_kit.h"
+#include "render_util.h"
+#include "shaders/shared/bindings.glsl"
+#include "shaders/shared/value_grid.glsl"
+#include "test_util.h"
+#include "traverse/gl_ray_tracer.h"
+#include "voxelize/value_textures.h"
+
+namespace vgi {
+
+namespace {
+
+float toHalf(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
+float halfStep(float x) { return std::max(std::abs(x) * (1.0f / 1024.0f), 1.0f / 16777216.0f); }
+
+GridBox unitBox(glm::uvec3 res) {
+  GridBox b;
+  b.origin = glm::vec3(0.0f);
+  b.extent = glm::vec3(res) / float(res.x);
+  b.resolution = res;
+  return b;
+}
+
+// A volume resolved on the GPU from given counts, radiance sums and an
+// occupancy grid (what ConeVolume::update hands ValueTextures::resolve).
+struct VolumeFixture {
+  std::unique_ptr<GlContext> gl = GlContext::create();
+  ShaderLibrary shaders;
+  Profiler prof{true};
+  GridBox box;
+  std::unique_ptr<ValueTextures> tex;
+  VolumeFixture(const GridBox& b, ValueMips mips, const BinaryGrid& grid, const std::vector<uint32_t>& counts,
+                const std::vector<uint32_t>& sums, float radianceMax)
+      : box(b) {
+    GlPyramid pyramid(box);
+    pyramid.build(grid, shaders);
+    GlBuffer c = makeBuffer(counts.size() * 4), s = makeBuffer(sums.size() * 4);
+    glNamedBufferSubData(c.get(), 0, GLsizeiptr(counts.size() * 4), counts.data());
+    glNamedBufferSubData(s.get(), 0, GLsizeiptr(sums.size() * 4), sums.data());
+    tex = std::make_unique<ValueTextures>(box, std::vector<std::string>{"radiance"}, mips);
+    ValueSumBuffers v;
+    v.counts = c.get();
+    v.sums[shared::VALUE_CHANNEL_RADIANCE] = s.get();
+    v.radianceMax = radianceMax;
+    tex->resolve(v, shaders, prof, pyramid.words());
+    glFinish();
+  }
+};
+
+void compareHalf(const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu,
+                 const std::string& what) {
+  ASSERT_EQ(gpu.size(), cpu.size()) << what;
+  int bad = 0;
+  for (size_t i = 0; i < gpu.size(); ++i)
+    for (int k = 0; k < 4; ++k)
+      if (std::abs(gpu[i][k] - toHalf(cpu[i][k])) > halfStep(cpu[i][k]) && bad++ < 5)
+        ADD_FAILURE() << what << " texel " << i << " c" << k << ": " << gpu[i][k] << " vs " << cpu[i][k];
+  EXPECT_EQ(bad, 0) << what;
+}
+
+}  // namespace
+
+// Level 0 is (mean radiance, 1) where the grid's bit is set and the cell was
+// lit, (0, 0, 0, 1) where set and never injected, 0 elsewhere; every level
+// above, isotropic and each anisotropic face, equals the C++ builder applied
+// to the GPU's level below (GPU == CPU up to a half-float step).
+TEST(ConeVolume, PreIntegrationOnTheGpuEqualsTheCppBuilders) {
+  const GridBox box = unitBox({32, 16, 128});
+  BinaryGrid grid(box);
+  const size_t cells = box.cellCount();
+  std::vector<uint32_t> counts(cells, 0), sums(cells * 4, 0);
+  std::mt19937 rng(5);
+  const float radianceMax = 2.0f;
+  for (uint32_t z = 0; z < box.resolution.z; ++z)
+    for (uint32_t y = 0; y < box.resolution.y; ++y)
+      for (uint32_t x = 0; x < box.resolution.x; ++x) {
+        const size_t i = (size_t(z) * box.resolution.y + y) * box.resolution.x + x;
+        if (rng() % 3 == 0) grid.set(x, y, z);
+        counts[i] = rng() % 4;  // some set cells without injected light, some lit cells without the bit
+        for (uint32_t k = 0; k < 3 && counts[i]; ++k)
+          sums[i * 4 + k] = counts[i] * shared::toFixedRadiance(float(rng() % 1000) / 500.0f, radianceMax);
+      }
+  for (ValueMips mips : {ValueMips::Isotropic, ValueMips::Anisotropic}) {
+    VolumeFixture v(box, mips, grid, counts, sums, radianceMax);
+    std::vector<glm::vec4> want(cells, glm::vec4(0.0f));
+    for (uint32_t z = 0; z < box.resolution.z; ++z)
+      for (uint32_t y = 0; y < box.resolution.y; ++y)
+        for (uint32_t x = 0; x < box.resolution.x; ++x) {
+          const size_t i = (size_t(z) * box.resolution.y + y) * box.resolution.x + x;
+          if (!grid.test(x, y, z)) continue;
+          want[i] = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+          if (counts[i])
+            want[i] += shared::decodeRadianceMean(
+                glm::uvec4(sums[i * 4], sums[i * 4 + 1], sums[i * 4 + 2], 0u), counts[i], radianceMax);
+        }
+    const std::vector<glm::vec4> level0 = v.tex->read("radiance", 0);
+    compareHalf(level0, want, "level 0");
+    for (int l = 1; l < v.tex->levels(); ++l)
+      compareHalf(v.tex->read("radiance", l),
+                  isoMipLevel(v.tex->read("radiance", l - 1), v.tex->levelSize(l - 1)),
+                  "isotropic level " + std::to_string(l));
+    if (mips == ValueMips::Anisotropic)
+      for (uint32_t f = 0; f < 6; ++f) {
+        const std::vector<glm::vec4> l1 = v.tex->readAniso("radiance", int(f), 1);
+        compareHalf(l1, anisoMipLevel(level0, v.tex->levelSize(0), f),
+                    "aniso level 1 face " + std::to_string(f));
+        compareHalf(v.tex->readAniso("radiance", int(f), 2), anisoMipLevel(l1, v.tex->levelSize(1), f),
+                    "aniso level 2 face " + std::to_string(f));
+      }
+    EXPECT_EQ(v.gl->errorCount(), 0);
+  }
+}
+
+// One lit opaque cell (radiance L) in an empty grid: in the anisotropic chain
+// every face sees it with opacity 4^-l at level l (one of the block's four
+// lines, composed with empty cells) and radiance L·4^-l; a thin cone through
+// its centre along each of the six axis directions — in either chain —
+// gathers L with opacity 1, and a cone beside it gathers nothing.
+TEST(ConeVolume, ASingleOpaqueCellSeenAlongEachAxis) {
+  const GridBox box = unitBox({64, 64, 128});
+  BinaryGrid grid(box);
+  const glm::uvec3 c(21, 42, 77);
+  grid.set(c.x, c.y, c.z);
+  std::vector<uint32_t> counts(box.cellCount(), 0), sums(box.cellCount() * 4, 0);
+  const size_t i = (size_t(c.z) * box.resolution.y + c.y) * box.resolution.x + c.x;
+  const float radianceMax = 1.0f;
+  const glm::vec3 L(0.8f, 0.4f, 0.2f);
+  counts[i] = 1;
+  for (int k = 0; k < 3; ++k) sums[i * 4 + k] = shared::toFixedRadiance(L[k], radianceMax);
+  for (ValueMips mips : {ValueMips::Anisotropic, ValueMips::Isotropic}) {
+    VolumeFixture v(box, mips, grid, counts, sums, radianceMax);
+    if (mips == ValueMips::Anisotropic)
+      for (int l = 1; l <= 3; ++l)
+        for (int f = 0; f < 6; ++f) {
+          const std::vector<glm::vec4> t = v.tex->readAniso("radiance", f, l);
+          const glm::uvec3 s = v.tex->levelSize(l), p = c >> glm::uvec3(l);
+          const glm::vec4 got = t[(size_t(p.z) * s.y + p.y) * s.x + p.x];
+          const float a = std::pow(0.25f, float(l));
+          EXPECT_NEAR(got.w, a, halfStep(a)) << "level " << l << " face " << f;
+          EXPECT_NEAR(got.x, L.x * a, 4 * halfStep(L.x * a)) << "level " << l << " face " << f;
+        }
+    const glm::vec3 voxel = box.voxelSize();
+    const glm::vec3 centre = box.origin + (glm::vec3(c) + 0.5f) * voxel;
+    std::vector<ProbeCone> cones;
+    for (int axis = 0; axis < 3; ++axis)
+      for (float sign : {1.0f, -1.0f}) {
+        glm::vec3 d(0.0f);
+        d[axis] = sign;
+        // Steps of a voxel, samples at the centres of the steps: the tenth sample is the cell's centre.
+        cones.push_back({centre - d * (9.5f * voxel.x), d, 0.0f, 20.0f * voxel.x});
+        cones.push_back({centre - d * (9.5f * voxel.x) + glm::vec3(d.y, d.z, d.x) * (3.0f * voxel.x), d, 0.0f,
+                         20.0f * voxel.x});  // three cells beside it
+      }
+    const std::vector<ProbeResult> r = traceConesGl(*v.tex, v.shaders, cones, 1.0f, false);
+    for (size_t k = 0; k < r.size(); k += 2) {
+      const std::string what = std::string(mips == ValueMips::Anisotropic ? "anisotropic" : "isotropic") +
+                               " direction " + std::to_string(k / 2);
+      EXPECT_NEAR(r[k].radianceOpacity.w, 1.0f, 1e-3f) << what;
+      EXPECT_NEAR(r[k].radianceOpacity.x, L.x, 2e-3f) << what;
+      EXPECT_NEAR(r[k].radianceOpacity.z, L.z, 2e-3f) << what;
+      EXPECT_EQ(r[k + 1].radianceOpacity.w, 0.0f) << what << " (beside)";
+    }
+    EXPECT_EQ(v.gl->errorCount(), 0);
+  }
+}
+
+// A cone through a uniform medium of opacity α per voxel (each level-l cell
+// 1 − (1 − α)^(2^l), as the anisotropic chain composes it) has the opacity
+// 1 − (1 − α)^(length / voxel) whatever its aperture and step: the step
+// correction of cones.glsl against the closed form.
+TEST(ConeVolume, OpacityThroughAUniformMediumMatchesTheClosedForm) {
+  const GridBox box = unitBox({128, 128, 128});
+  BinaryGrid grid(box);
+  std::vector<uint32_t> counts(box.cellCount(), 0), sums(box.cellCount() * 4, 0);
+  VolumeFixture v(box, ValueMips::Anisotropic, grid, counts, sums, 1.0f);
+  const float voxel = box.voxelSize().x;
+  for (float alpha : {0.01f, 0.05f, 0.2f})
+    for (float step : {0.3f, 1.0f, 2.5f}) {
+      std::vector<ProbeCone> cones;
+      for (float tanHalf : {0.0f, 0.05f, 0.3f, 1.0f})
+        for (float length : {3.0f, 17.5f, 60.0f})
+          cones.push_back({glm::vec3(0.1f, 0.2f, 0.15f), glm::normalize(glm::vec3(1.0f, 0.7f, 0.4f)), tanHalf,
+                           length * voxel});
+      const std::vector<ProbeResult> r = traceConesGl(*v.tex, v.shaders, cones, step, false, alpha);
+      for (size_t k = 0; k < r.size(); ++k) {
+        const float expected = 1.0f - std::pow(1.0f - alpha, cones[k].length / voxel);
+        EXPECT_NEAR(r[k].radianceOpacity.w, expected, 2e-4f + 1e-3f * expected)
+            << "alpha " << alpha << " step " << step << " tan " << cones[k].tanHalf << " length "
+            << cones[k].length / voxel;
+      }
+    }
+}
+
+// Both methods on the Cornell box at grazing views and with cones leaving the
+// grid (long cones, a wide aperture): every output finite, AO within [0, 1],
+// and the outputs add up (image = direct + indirect).
+TEST(Vct, OutputsAreFiniteAndAddUp) {
+  RenderOutput v = test::render("builtin:cornell", "vct",
+                                {"max_distance=100", "aperture=120", "shadows=true", "voxels=64x64x128"}, 48,
+                                2, {"direct", "indirect", "ao", "specular"});
+  const Image& img = v.result.image;
+  const Image& d = v.result.aovs.at("direct");
+  const Image& in = v.result.aovs.at("indirect");
+  const Image& ao = v.result.aovs.at("ao");
+  for (size_t i = 0; i < img.pixels.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_TRUE(std::isfinite(img.pixels[i][k])) << i;
+      ASSERT_TRUE(std::isfinite(v.result.aovs.at("specular").pixels[i][k])) << i;
+      EXPECT_NEAR(img.pixels[i][k], d.pixels[i][k] + in.pixels[i][k], 1e-4f + 1e-4f * img.pixels[i][k]) << i;
+      EXPECT_GE(ao.pixels[i][k], 0.0f);
+      EXPECT_LE(ao.pixels[i][k], 1.0f + 1e-5f);
+    }
+  EXPECT_GT(test::meanOf(in, 0), 0.0);
+  RenderOutput a =
+      test::render("builtin:cornell", "vct_ao", {"cones=3", "radius=100", "voxels=64x64x128"}, 48, 1);
+  for (auto& p : a.result.image.pixels) ASSERT_TRUE(std::isfinite(p.x) && p.x >= 0.0f && p.x <= 1.0f + 1e-5f);
+}
+
+TEST(Vct, BadParametersAreRefused) {
+  auto refused = [](const std::string& method, std::vector<std::string> set,
+                    std::initializer_list<std::string> needles) {
+    test::expectError([&] { test::render("builtin:cornell", method, set, 16, 1); }, needles);
+  };
+  refused("vct", {"radiance=atlas", "voxelizer=conservative"},
+          {"voxelizer", "conservative", "radiance=atlas"});
+  refused("vct", {"diffuse_cones=0"}, {"diffuse_cones", "0"});
+  refused("vct", {"aperture=nan"}, {"aperture"});
+  refused("vct", {"voxels=1024"}, {"voxels", "GiB"});
+  refused("vct_ao", {"cones=4"}, {"cones", "4"});
+  refused("vct_ao", {"aperture=150", "overlap=1.5"}, {"aperture", "overlap"});
+  refused("vct_ao", {"radiance=atlas"}, {"radiance"});
+}
+
+// The constellations' weights are the cosine-weighted hemisphere's shares:
+// they sum to 1, and a symmetric ring's axes share equally.
+TEST(ConeVolume, ConstellationWeightsPartitionTheHemisphere) {
+  for (auto c : {ringConstellation(true, 5, 63.4349f), ringConstellation(false, 3, 45.0f),
+                 ringConstellation(true, 4, 55.0f), ringConstellation(true, 7, 60.0f)}) {
+    double sum = 0;
+    for (auto& w : c) sum += w.w;
+    EXPECT_NEAR(sum, 1.0, 1e-6);
+    for (size_t k = 2; k < c.size(); ++k) EXPECT_NEAR(c[k].w, c[1].w, 2e-3);
+  }
+}
+
+}  // namespace vgi
