@@ -216,26 +216,34 @@ TEST(Modules, AoUnderAParallelPlaneIsHOverRSquared) {
 }
 
 // vct_ao under the same parallel plane (cubic cells, anisotropic chain,
-// receiver guard): the cone discretisation's tolerance is the voxel rays' 0.03.
-// (On the open floor alone the cones still occlude themselves: 0.76 instead of
-// 1, docs/BENCHMARKS.md — not asserted here.)
-TEST(Modules, VctAoUnderAParallelPlaneIsHOverRSquared) {
+// receiver guard) and on the open floor alone. Under the plane the cones'
+// discretisation shows: the 8-cone ring's axes at 60° meet the plane exactly
+// at r, so they count half of it (measured 0.335 against 0.25: tolerance 0.1);
+// the open floor must not occlude itself (the guard): AO 1 for 5 and 8 cones.
+TEST(Modules, VctAoUnderAParallelPlaneAndOnAnOpenFloor) {
   const std::string dir = testing::TempDir() + "/vgi_vct_ao_planes";
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/planes.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n"
                                         "v -2 0.5 -2\nv 2 0.5 -2\nv 2 0.5 2\nv -2 0.5 2\n"
                                         "f 1 2 3\nf 1 3 4\nf 5 7 6\nf 5 8 7\n";
-  std::ofstream(dir + "/planes.json") << "{\"meshes\": [{\"path\": \"planes.obj\"}],\n"
-                                      << "\"camera\": {\"position\": [0, 0.25, 0], \"target\": [0, "
-                                         "0, 0.001], \"up\": [0, 0, 1], \"fov_deg\": 20}}\n";
-  RenderOutput out = test::render(dir + "/planes.json", "vct_ao", {"radius=1", "voxels=128"}, 16, 4);
-  double mean = 0;
-  for (auto& p : out.result.image.pixels) {
-    ASSERT_TRUE(std::isfinite(p.x));
-    mean += p.x;
-  }
-  mean /= double(out.result.image.pixels.size());
-  EXPECT_NEAR(mean, 0.25, 0.03);
+  std::ofstream(dir + "/floor.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 2 3\nf 1 3 4\n";
+  for (const char* mesh : {"planes", "floor"})
+    std::ofstream(dir + "/" + mesh + ".json") << "{\"meshes\": [{\"path\": \"" << mesh << ".obj\"}],\n"
+                                              << "\"camera\": {\"position\": [0, 0.25, 0], \"target\": [0, "
+                                                 "0, 0.001], \"up\": [0, 0, 1], \"fov_deg\": 20}}\n";
+  auto meanAo = [&](const char* mesh, const char* cones) {
+    RenderOutput out =
+        test::render(dir + "/" + mesh + ".json", "vct_ao", {"radius=1", "voxels=128", cones}, 16, 4);
+    double mean = 0;
+    for (auto& p : out.result.image.pixels) {
+      EXPECT_TRUE(std::isfinite(p.x));
+      mean += p.x;
+    }
+    return mean / double(out.result.image.pixels.size());
+  };
+  EXPECT_NEAR(meanAo("planes", "cones=8"), 0.25, 0.1);
+  EXPECT_NEAR(meanAo("floor", "cones=8"), 1.0, 1e-4);
+  EXPECT_NEAR(meanAo("floor", "cones=5"), 1.0, 1e-4);
 }
 
 }  // namespace vgi

@@ -18,10 +18,13 @@
 // sum to 1); below level 1 the level-0 cell (isotropic) is blended in.
 // Receiver guard (ours; `plane_guard`): a cone from a surface samples at
 // height h = h0 + t·cos(d, n) above the receiver's tangent plane; a level-l
-// sample blends texels reaching 1.5·2^l voxels below it, so the level is
-// capped at log2(h / 1.5 v) and the receiver's own voxels never enter its
-// cones (without it an open floor occludes itself: AO 0.56 instead of 1 with
-// the anisotropic chain). guardSlope < 0: no cap (shadow cones, tests).
+// sample blends texels reaching 1.5·2^l voxels below it and the receiver's
+// voxels reach a voxel above its plane, so the level is capped at the integer
+// floor(log2((h − v) / 1.5 v)) (an integer: trilinear filtering between
+// levels would read the coarser one) and the step shrinks to that footprint;
+// the receiver's own voxels never enter its cones (without it an open floor
+// occludes itself: AO 0.56 instead of 1 with the anisotropic chain).
+// guardSlope < 0: no cap (tests).
 // Empty-space skipping (Dinse 2015 Alg. 1): where a sample is empty, the
 // largest empty parent texel of the isotropic chain around the sample is left
 // in one jump — samples that would have blended in a non-empty neighbour
@@ -103,7 +106,11 @@ ConeResult traceCone(vec3 apex, vec3 d, float tanHalf, float maxDist, float aoRa
     float step = min(uConeStep * diameter, maxDist - t);
     if (guardSlope >= 0.0f) {
       float h = guardHeight + (t + 0.5f * step) * guardSlope;
-      lod = max(min(lod, log2(max(h, 1e-30f) / (1.5f * uVoxelSize))), 0.0f);
+      float cap = max(floor(log2(max(h - uVoxelSize, 1e-30f) / (1.5f * uVoxelSize))), 0.0f);
+      if (lod > cap) {
+        lod = cap;  // and the step follows the footprint actually sampled
+        step = min(uConeStep * uVoxelSize * exp2(lod), maxDist - t);
+      }
     }
     vec3 q = qa + dg * (t + 0.5f * step);
     if (any(lessThan(q, vec3(0.0f))) || any(greaterThan(q, res))) {
