@@ -19,7 +19,8 @@
 
 namespace vgi {
 
-ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool anisotropicDefault) {
+ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool anisotropicDefault,
+                                        bool absWeightsDefault) {
   ConeVolumeSettings s;
   if (withRadiance)
     s.radiance =
@@ -46,6 +47,11 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
   if (gib > 8.0)
     fail("parameter 'voxels': ", s.grid.resolution.x, "x", s.grid.resolution.y, "x", s.grid.resolution.z,
          " needs ", gib, " GiB for the cone-tracing volume (at most 8 GiB)");
+  s.absWeights =
+      p.getString("face_weights", absWeightsDefault ? "abs" : "squared",
+                  "anisotropic lookups mix the three faces by abs (|d|, the VCT thesis; an oblique "
+                  "wall stays opaque) or squared (d^2, summing to 1)",
+                  {"abs", "squared"}) == "abs";
   s.step = p.getFloat("step", 1.0f, "cone march step, in cone diameters (at least a voxel)", 0.05f, 8.0f);
   readShadowParams(p, s.shadow);
   return s;
@@ -138,6 +144,7 @@ void ConeVolume::inject(Frame& f) {
 
 void ConeVolume::addDefines(const ConeVolumeSettings& s, ShaderDefines& defs) {
   if (s.anisotropic) defs["VCT_ANISOTROPIC"] = "1";
+  if (s.absWeights) defs["VCT_ABS_WEIGHTS"] = "1";
 }
 
 namespace {

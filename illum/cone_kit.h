@@ -36,11 +36,13 @@ struct ConeVolumeSettings {
   BinaryGridNeed grid;
   std::string radiance = "inject";  // inject | atlas | none
   bool anisotropic = true;
-  float step = 1.0f;    // the march's step, in cone diameters
-  ShadowParams shadow;  // the light maps' (injection and direct light)
+  bool absWeights = true;  // the faces mixed by |d| (the thesis) or d²
+  float step = 1.0f;       // the march's step, in cone diameters
+  ShadowParams shadow;     // the light maps' (injection and direct light)
 };
-// Reads voxels, voxelizer, anisotropic, step and (withRadiance) radiance.
-ConeVolumeSettings readConeVolumeParams(ParamSet& params, bool withRadiance, bool anisotropicDefault);
+// Reads voxels, voxelizer, anisotropic, face_weights, step and (withRadiance) radiance.
+ConeVolumeSettings readConeVolumeParams(ParamSet& params, bool withRadiance, bool anisotropicDefault,
+                                        bool absWeightsDefault);
 // What a cone module needs besides the G-buffer: light maps, the binary grid
 // and its pyramid, and with radiance=atlas the value grids.
 void addConeVolumeNeeds(SceneNeeds& needs, const ConeVolumeSettings& s);

@@ -18,9 +18,10 @@
 //      with the falloff λ; soft shadows by a cone toward each light.
 // Deviations, stated: the opacity correction for the step length (Crassin et
 // al. §4.2; the thesis' Algorithm 1 has none, which makes the result depend on
-// the step); anisotropic faces weighted by d² (they sum to 1; the thesis' |d|
-// do not); the constellation turns per interleave set and per sample, so
-// `vgi render --spp N` converges over azimuths.
+// the step); cubic cells; a receiver guard on the mip level (cones.glsl); the
+// constellation turns per interleave set and per sample, so `vgi render --spp
+// N` converges over azimuths. The faces are mixed by |d| as the thesis does
+// (`face_weights=squared`: by d², measured worse).
 //
 // Outputs: indirect (diffuse + specular), direct, ao, specular. The image is
 // direct + indirect (AO is an output only: the counterpart's integral has none).
@@ -33,6 +34,7 @@
 // | voxelizer     | string | conservative     | the opacity's binary voxelizer (registry)       |
 // | radiance      | string | inject           | inject or atlas (see above)                     |
 // | anisotropic   | bool   | true             | six-direction chain; false: isotropic           |
+// | face_weights  | string | abs              | abs (|d|, the thesis) or squared (d²)           |
 // | step          | float  | 1                | march step in cone diameters                    |
 // | diffuse_cones | int    | 6                | 1, or n: normal + n−1 on a ring at 63.4° (6: icosahedron) |
 // | aperture      | float  | 60               | diffuse cones' full opening angle, degrees      |
@@ -74,7 +76,7 @@ class VctMethod : public Method {
  public:
   VctMethod(ParamSet& p, const Scene& scene) {
     const float diag = scene.bounds().diagonal();
-    vol_ = readConeVolumeParams(p, true, true);
+    vol_ = readConeVolumeParams(p, true, true, true);
     cones_ = p.getInt("diffuse_cones", 6,
                       "diffuse cones: 1 (the normal) or n (the normal + n-1 on a ring at 63.4 deg; 6: "
                       "icosahedron vertices)",

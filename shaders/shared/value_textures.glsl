@@ -41,10 +41,10 @@ vec4 valueAnisoFace(uint f, vec3 uvw, float lod) {
 }
 
 // The anisotropic chain seen along unit direction d (premultiplied rgb, alpha
-// = occupancy composed front to back), at the grid's level lod ≥ 1.
-vec4 valueAniso(vec3 uvw, vec3 d, float lod) {
+// = occupancy composed front to back), at the grid's level lod ≥ 1, the three
+// faces weighted by w (anisoWeights(d): d², summing to 1; or |d|, Dinse 2015).
+vec4 valueAniso(vec3 uvw, vec3 d, float lod, vec3 w) {
   uvec3 f = anisoFaces(d);
-  vec3 w = anisoWeights(d);
   return w.x * valueAnisoFace(f.x, uvw, lod) + w.y * valueAnisoFace(f.y, uvw, lod) +
          w.z * valueAnisoFace(f.z, uvw, lod);
 }

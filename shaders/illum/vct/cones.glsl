@@ -13,9 +13,12 @@
 // same transmittance whatever the step (Crassin et al. §4.2; the VCT thesis'
 // Algorithm 1 omits it). Premultiplied radiance scales with α'/α:
 //   C += (1 − A) · c · α'/α,   A += (1 − A) · α'.
-// Anisotropic lookups mix the three faces facing −d… as seen along d, weighted
-// by d² (shared/value_grid.glsl: anisoWeights; the thesis' |d| weights do not
-// sum to 1); below level 1 the level-0 cell (isotropic) is blended in.
+// Anisotropic lookups mix the three faces seen along d by |d| (the VCT
+// thesis, Alg. 1; VCT_ABS_WEIGHTS) — the weights sum to up to √3, which keeps
+// a thin wall hit obliquely opaque — or by d² (anisoWeights, summing to 1:
+// such a wall reads cos²θ + sin²θ·2^-l, and the closed sphere's bounce drops
+// from 0.92 to 0.75 of the exact); below level 1 the level-0 cell
+// (isotropic) is blended in.
 // Receiver guard (ours; `plane_guard`): a cone from a surface samples at
 // height h = h0 + t·cos(d, n) above the receiver's tangent plane; a level-l
 // sample blends texels reaching 1.5·2^l voxels below it and the receiver's
@@ -46,9 +49,14 @@ uniform float uConeStep;   // step = uConeStep × the cone's diameter
 vec4 coneSample(vec3 uvw, vec3 d, float lod) {
   vec4 s0 = textureLod(valueRadiance, uvw, lod);
 #ifdef VCT_ANISOTROPIC
+#ifdef VCT_ABS_WEIGHTS
+  vec3 w = abs(d);  // the thesis' weights: Σ up to √3, so an oblique wall stays opaque
+#else
+  vec3 w = anisoWeights(d);
+#endif
   if (lod <= 0.0f || uMaxLod < 1.0f) return s0;
-  if (lod < 1.0f) return mix(s0, valueAniso(uvw, d, 1.0f), lod);
-  return valueAniso(uvw, d, lod);
+  if (lod < 1.0f) return mix(s0, valueAniso(uvw, d, 1.0f, w), lod);
+  return valueAniso(uvw, d, lod, w);
 #else
   return s0;
 #endif
@@ -122,7 +130,8 @@ ConeResult traceCone(vec3 apex, vec3 d, float tanHalf, float maxDist, float aoRa
     float a = clamp(s.w, 0.0f, 1.0f);
     float cell = uVoxelSize * exp2(lod);
     float ac = 1.0f - pow(1.0f - a, step / cell);
-    if (a > 1e-7f) r.radiance += (1.0f - r.opacity) * vec3(s.x, s.y, s.z) * (ac / a);
+    // Premultiplied: the colour scales with α'/α (α unclamped: |d| weights may sum past 1).
+    if (s.w > 1e-7f) r.radiance += (1.0f - r.opacity) * vec3(s.x, s.y, s.z) * (ac / s.w);
     if (t < aoRadius) {
       float aa = 1.0f - pow(1.0f - a, min(step, aoRadius - t) / cell);
       r.occlusion += (1.0f - r.occlusion) * aa / (1.0f + falloff * t / aoRadius);
