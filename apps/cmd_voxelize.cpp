@@ -33,7 +33,7 @@ void addVoxelizeCommand(CLI::App& app) {
   struct Options {
     std::string scene = "builtin:cornell", voxels = "128", voxelizer = "atlas", stats, dump, gl = "auto",
                 kind = "binary", textures = "none";
-    float time = 0, texelsPerVoxel = kAutoTexelsPerVoxel, footprint = 1.0f;
+    float time = 0, texelsPerVoxel = kAutoTexelsPerVoxel, footprint = 1.0f, hybridCutoff = 4.0f;
     int threads = 0, atlasResolution = 0, frames = 1;
     float timeStep = 1.0f / 30.0f;
     bool noCache = false;
@@ -67,6 +67,10 @@ void addVoxelizeCommand(CLI::App& app) {
                   "atlas: each point also sets the cells within this many texels that its triangle overlaps "
                   "(0 = the paper's single point)")
       ->capture_default_str();
+  cmd->add_option("--hybrid-cutoff", o->hybridCutoff,
+                  "hybrid: triangles whose area projected on their dominant plane is under this many cells^2 "
+                  "are voxelized triangle-parallel")
+      ->capture_default_str();
   cmd->add_flag("--no-cache", o->noCache, "atlas: do not read or write the atlas cache");
   cmd->add_option("--frames", o->frames,
                   "atlas: voxelize N frames from --time (static once, dynamic per frame)")
@@ -95,6 +99,9 @@ void addVoxelizeCommand(CLI::App& app) {
     if (!(o->footprint >= 0.0f && o->footprint <= 4.0f))
       fail("--atlas-footprint ", o->footprint, ": must be in [0, 4] texels");
     req.atlasFootprint = o->footprint;
+    if (!(o->hybridCutoff >= 0.0f && o->hybridCutoff <= 1e6f))
+      fail("--hybrid-cutoff ", o->hybridCutoff, ": must be in [0, 1e6] cells^2");
+    req.hybridCutoff = o->hybridCutoff;
     req.atlasResolution = o->atlasResolution;
     req.atlasCacheDir = o->noCache ? "" : defaultAtlasCacheDir();
     std::unique_ptr<GlContext> gl;

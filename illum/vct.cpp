@@ -41,6 +41,7 @@
 // | max_distance  | float  | 1 · scene diag.  | cone length (diffuse, specular), world units    |
 // | offset        | float  | 1                | apex offset along the normal, voxel diagonals   |
 // | plane_guard   | bool   | true             | mip level capped above the receiver's plane (cones.glsl) |
+// | diffuse       | bool   | true             | the diffuse cones' light (false: their AO only) |
 // | specular      | bool   | true             | the specular cone (materials with ks > 0)       |
 // | skip_empty    | bool   | true             | empty-space skipping of the specular cone       |
 // | ao            | bool   | true             | the ao output                                   |
@@ -88,6 +89,8 @@ class VctMethod : public Method {
                        "cap a cone sample's mip level so it cannot reach the receiver's tangent plane (ours; "
                        "false: the thesis' cones)");
     offset_ = p.getFloat("offset", 1.0f, "cone apex offset along the normal, voxel diagonals", 0.0f, 100.0f);
+    diffuse_ = p.getBool("diffuse", true,
+                         "diffuse indirect light from the diffuse cones (false: they give the AO only)");
     specular_ = p.getBool("specular", true, "specular cone along the reflected view direction (ks > 0)");
     skipEmpty_ = p.getBool("skip_empty", true, "empty-space skipping of the specular cone");
     ao_ = p.getBool("ao", true, "the ao output (the diffuse cones' opacity)");
@@ -135,6 +138,7 @@ class VctMethod : public Method {
     shaders.setUniform(d, "uAoRadius", aoRadius_);
     shaders.setUniform(d, "uFalloff", falloff_);
     shaders.setUniform(d, "uEnv", env_ ? 1 : 0);
+    shaders.setUniform(d, "uDiffuse", diffuse_ ? 1.0f : 0.0f);
     shaders.setUniform(d, "uGuard", guard_ ? 1 : 0);
     shaders.setUniform(s, "uGuard", guard_ ? 1 : 0);
     const int ring = std::max(1, cones_ - 1);
@@ -219,7 +223,8 @@ class VctMethod : public Method {
   ConeVolumeSettings vol_;
   int cones_ = 6;
   float aperture_ = 60, maxDistance_ = 1, offset_ = 1, aoRadius_ = 1, falloff_ = 0, shadowAperture_ = 3;
-  bool guard_ = true, specular_ = true, skipEmpty_ = true, ao_ = true, shadows_ = false, env_ = true;
+  bool guard_ = true, diffuse_ = true, specular_ = true, skipEmpty_ = true, ao_ = true, shadows_ = false,
+       env_ = true;
   GatherSettings gather_;
   std::vector<glm::vec4> constellation_;
   GatherKit kit_;

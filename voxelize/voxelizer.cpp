@@ -18,6 +18,12 @@ const std::vector<VoxelizerInfo>& voxelizerRegistry() {
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) {
          return voxelizeConservativeGl(r, p, s);
        }},
+      {"hybrid",
+       "GL hybrid (Rauwendaal & Bailey 2013): small triangles triangle-parallel in the geometry shader, "
+       "large "
+       "ones conservatively rasterized, one pass",
+       true,
+       [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeHybridGl(r, p, s); }},
       {"exact", "CPU triangle-box overlap (separating axes): the reference", false,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json&) {
          auto s = p.scope("voxelize_exact");

@@ -36,6 +36,9 @@ struct VoxelizeRequest {
   // Multi-valued grids to build as well (atlas voxelizer): "normal", "albedo",
   // "glossy", "radiance" (AtlasVoxelizer::insertRadiance). Only these are built.
   std::vector<std::string> valueGrids;
+  // Hybrid voxelizer: triangles projected on their dominant plane smaller than
+  // this (cells²) are voxelized triangle-parallel.
+  float hybridCutoff = 4.0f;
 };
 
 struct VoxelizerInfo {

@@ -3,6 +3,12 @@
 // along its dominant axis (largest projected area, so at most ~3 cells deep per
 // pixel) and push its edges out by a pixel's semi-diagonal so every pixel it
 // touches gets a fragment.
+// HYBRID (Rauwendaal & Bailey 2013, as Basgier 2015 §3.4–3.5 builds it in one
+// pass): a triangle whose area projected on its dominant plane is under
+// uCutoff cells² (and whose box spans at most kHybridMaxCells cells) is
+// voxelized here, triangle-parallel — every cell of its bounding box that the
+// triangle–box test confirms is set — and emits nothing; larger ones go on to
+// the fragment-parallel path. uHybridCounts counts both kinds.
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 in vec3 vGrid[];
@@ -25,6 +31,32 @@ flat out vec2 gUv1;
 flat out vec2 gUv2;
 #endif
 
+#ifdef HYBRID
+#include "../shared/voxel_grid.glsl"
+#include "../shared/triangle_box.glsl"
+#include "../shared/bindings.glsl"
+layout(std430, binding = BINDING_GRID_WORDS) buffer Columns { uint words[]; };
+layout(std430, binding = BINDING_VOXEL_COUNTER) buffer HybridCounts { uint hybridCounts[2]; };  // small, large
+uniform float uCutoff;
+const int kHybridMaxCells = 512;
+
+// Sets the cells the triangle overlaps in its bounding box (grid coordinates);
+// false (nothing set) when the box spans more than kHybridMaxCells cells.
+bool voxelizeSmall(vec3 a, vec3 b, vec3 c) {
+  ivec3 res = ivec3(uResolution.xyz);
+  ivec3 lo = clamp(ivec3(floor(min(a, min(b, c)))), ivec3(0), res - 1);
+  ivec3 hi = clamp(ivec3(floor(max(a, max(b, c)))), ivec3(0), res - 1);
+  ivec3 span = hi - lo + 1;
+  if (span.x * span.y * span.z > kHybridMaxCells) return false;
+  for (int z = lo.z; z <= hi.z; ++z)
+    for (int y = lo.y; y <= hi.y; ++y)
+      for (int x = lo.x; x <= hi.x; ++x)
+        if (triangleOverlapsBox(vec3(x, y, z) + 0.5f, vec3(0.5f), a, b, c))
+          atomicOr(words[columnWordIndex(uint(x), uint(y), depthWord(uint(z)), uResolution)], depthBit(uint(z)));
+  return true;
+}
+#endif
+
 // Grid coordinates → (u, v, w) with w along `axis`.
 vec3 swizzle(vec3 p, int axis) {
   if (axis == 0) return vec3(p.y, p.z, p.x);
@@ -36,6 +68,14 @@ void main() {
   vec3 n = cross(vGrid[1] - vGrid[0], vGrid[2] - vGrid[0]);
   vec3 an = abs(n);
   int axis = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
+#ifdef HYBRID
+  // The area projected on the dominant plane: half the normal's dominant component.
+  if (0.5f * max(an.x, max(an.y, an.z)) < uCutoff && voxelizeSmall(vGrid[0], vGrid[1], vGrid[2])) {
+    atomicAdd(hybridCounts[0], 1u);
+    return;
+  }
+  atomicAdd(hybridCounts[1], 1u);
+#endif
   vec2 p0 = swizzle(vGrid[0], axis).xy, p1 = swizzle(vGrid[1], axis).xy, p2 = swizzle(vGrid[2], axis).xy;
   if ((p1.x - p0.x) * (p2.y - p0.y) - (p1.y - p0.y) * (p2.x - p0.x) < 0.0f) {  // make it counter-clockwise
     vec2 t = p1;

@@ -131,7 +131,8 @@ TEST(ConeVolume, PreIntegrationOnTheGpuEqualsTheCppBuilders) {
 // every face sees it with opacity 4^-l at level l (one of the block's four
 // lines, composed with empty cells) and radiance L·4^-l; a thin cone through
 // its centre along each of the six axis directions — in either chain —
-// gathers L with opacity 1, and a cone beside it gathers nothing.
+// gathers L with opacity 1, and a cone beside it gathers nothing; degenerate
+// cones (179.9° wide, zero length, outside the grid) stay finite.
 TEST(ConeVolume, ASingleOpaqueCellSeenAlongEachAxis) {
   const GridBox box = unitBox({64, 64, 128});
   BinaryGrid grid(box);
@@ -167,8 +168,22 @@ TEST(ConeVolume, ASingleOpaqueCellSeenAlongEachAxis) {
         cones.push_back({centre - d * (9.5f * voxel.x) + glm::vec3(d.y, d.z, d.x) * (3.0f * voxel.x), d, 0.0f,
                          20.0f * voxel.x});  // three cells beside it
       }
+    // Degenerate cones: 179.9° wide, zero length, starting outside the grid, leaving it at once.
+    const size_t axisCones = cones.size();
+    for (float tanHalf : {0.0f, 1e3f})
+      for (float length : {0.0f, 1e-9f, 5.0f})
+        for (glm::vec3 apex : {centre, glm::vec3(-1.0f), glm::vec3(box.extent) * 0.999f})
+          cones.push_back({apex, glm::normalize(glm::vec3(1.0f, 1e-7f, 0.0f)), tanHalf, length});
     const std::vector<ProbeResult> r = traceConesGl(*v.tex, v.shaders, cones, 1.0f, false);
-    for (size_t k = 0; k < r.size(); k += 2) {
+    for (size_t k = axisCones; k < r.size(); ++k) {
+      for (int c = 0; c < 4; ++c) {
+        ASSERT_TRUE(std::isfinite(r[k].radianceOpacity[c])) << "degenerate cone " << k;
+        ASSERT_TRUE(std::isfinite(r[k].occlusionEscapedSamples[c])) << "degenerate cone " << k;
+      }
+      EXPECT_GE(r[k].radianceOpacity.w, 0.0f);
+      EXPECT_LE(r[k].radianceOpacity.w, 1.0f);
+    }
+    for (size_t k = 0; k < axisCones; k += 2) {
       const std::string what = std::string(mips == ValueMips::Anisotropic ? "anisotropic" : "isotropic") +
                                " direction " + std::to_string(k / 2);
       EXPECT_NEAR(r[k].radianceOpacity.w, 1.0f, 1e-3f) << what;
@@ -245,6 +260,8 @@ TEST(Vct, BadParametersAreRefused) {
   refused("vct_ao", {"cones=4"}, {"cones", "4"});
   refused("vct_ao", {"aperture=150", "overlap=1.5"}, {"aperture", "overlap"});
   refused("vct_ao", {"radiance=atlas"}, {"radiance"});
+  refused("vct", {"face_weights=cubed"}, {"face_weights", "cubed"});
+  refused("vct", {"step=0"}, {"step", "0"});
 }
 
 // The constellations' weights are the cosine-weighted hemisphere's shares:

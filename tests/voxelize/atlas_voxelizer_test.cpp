@@ -222,7 +222,8 @@ namespace vgi {
 // The conservative GPU voxelizer confirms each candidate cell with the float
 // triangle–box test: it must agree with the exact CPU voxelizer up to float
 // rounding on contacts — on hard inputs (huge, tiny, sliver, boundary-aligned
-// triangles) and on a non-cubic grid.
+// triangles) and on a non-cubic grid. So must the hybrid at any cutoff, which
+// counts every triangle in exactly one of its two paths.
 TEST(ConservativeVoxelizer, MatchesTheExactVoxelizer) {
   GlFixture f;
   Scene cornell = loadScene("builtin:cornell");
@@ -246,9 +247,25 @@ TEST(ConservativeVoxelizer, MatchesTheExactVoxelizer) {
       Profiler prof(true);
       nlohmann::json stats;
       BinaryGrid g = voxelizeConservativeGl(r, prof, stats);
-      GridComparison c = compareGrids(g, voxelizeExact(*s, r.box));
+      const BinaryGrid exact = voxelizeExact(*s, r.box);
+      GridComparison c = compareGrids(g, exact);
       EXPECT_GE(c.recall(), 0.9995) << res.x << "x" << res.y << "x" << res.z;
       EXPECT_GE(c.precision(), 0.9995) << res.x << "x" << res.y << "x" << res.z;
+      // The hybrid: all fragment-parallel (cutoff 0), the default, all small ones triangle-parallel.
+      for (float cutoff : {0.0f, 4.0f, 1e6f}) {
+        r.hybridCutoff = cutoff;
+        nlohmann::json hs;
+        GridComparison h = compareGrids(voxelizeHybridGl(r, prof, hs), exact);
+        EXPECT_GE(h.recall(), 0.9995) << "hybrid " << cutoff << " " << res.x << "x" << res.y << "x" << res.z;
+        EXPECT_GE(h.precision(), 0.9995)
+            << "hybrid " << cutoff << " " << res.x << "x" << res.y << "x" << res.z;
+        const uint32_t small = hs.at("triangles_parallel"), large = hs.at("fragment_parallel");
+        size_t triangles = 0;
+        for (auto& m : s->meshes) triangles += m.triangles.size();
+        EXPECT_EQ(small + large, uint32_t(triangles)) << "every triangle once";
+        if (cutoff == 0.0f) EXPECT_EQ(small, 0u);
+        if (cutoff == 1e6f && s == &hard) EXPECT_GT(small, 150u);  // the random ones (≤ 512-cell boxes)
+      }
     }
   EXPECT_EQ(f.gl->errorCount(), 0);
 }

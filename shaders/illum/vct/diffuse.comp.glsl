@@ -27,6 +27,7 @@ uniform float uTurn;         // the constellation's azimuth this sample
 uniform float uSetTurn;      // … plus this per interleave set (k×k blocks, the kit's blur averages them)
 uniform int uSets;           // k
 uniform int uEnv;            // cones leaving the grid see the environment
+uniform float uDiffuse;      // 1, or 0 with diffuse=false (the cones then give the AO alone)
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
@@ -51,6 +52,6 @@ void main() {
     E += uCones[k].w * L;
     ao += uCones[k].w * (1.0f - c.occlusion);
   }
-  imageStore(uIndirect, q, vec4(gatheredBefore(uIndirect, q).xyz + E, 1.0f));
+  imageStore(uIndirect, q, vec4(gatheredBefore(uIndirect, q).xyz + uDiffuse * E, 1.0f));
   imageStore(uAoLow, q, vec4(vec3(gatheredBefore(uAoLow, q).x + ao), 1.0f));
 }

@@ -15,5 +15,5 @@ void main() {
   results[4 * i] = vec4(textureLod(valueOccupancy, uvw, lod).x, float(texture(valueCount, uvw).x), 0.0f, 0.0f);
   results[4 * i + 1] = textureLod(valueNormal, uvw, lod);
   results[4 * i + 2] = valueMean(valueAlbedo, uvw, lod);
-  results[4 * i + 3] = lod >= 1.0f ? valueAniso(uvw, uDirection, lod) : vec4(0.0f);
+  results[4 * i + 3] = lod >= 1.0f ? valueAniso(uvw, uDirection, lod, anisoWeights(uDirection)) : vec4(0.0f);
 }
