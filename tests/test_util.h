@@ -4,13 +4,31 @@
 
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/packing.hpp>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/image.h"
 #include "core/scene.h"
 
 namespace vgi::test {
+
+// The value a half-float texel stores for x, and one half-float step of x
+// (the CPU's rounding of ties may differ from the GL's).
+inline float toHalf(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
+inline float halfStep(float x) { return std::max(std::abs(x) * (1.0f / 1024.0f), 1.0f / 16777216.0f); }
+// GPU texels against the CPU's values, within a half-float step each.
+inline void compareHalf(const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu,
+                        const std::string& what) {
+  ASSERT_EQ(gpu.size(), cpu.size()) << what;
+  int bad = 0;
+  for (size_t i = 0; i < gpu.size(); ++i)
+    for (int k = 0; k < 4; ++k)
+      if (std::abs(gpu[i][k] - toHalf(cpu[i][k])) > halfStep(cpu[i][k]) && bad++ < 5)
+        ADD_FAILURE() << what << " texel " << i << " c" << k << ": " << gpu[i][k] << " vs " << cpu[i][k];
+  EXPECT_EQ(bad, 0) << what;
+}
 
 inline std::string dataPath(const std::string& rel) { return std::string(VGI_TEST_DATA) + "/" + rel; }
 

@@ -182,24 +182,33 @@ TEST(ShaderLibrary, TwoResourcesOfAProgramOnOneUnitAreAnError) {
   test::expectError([&] { shaders.program({"clash.comp.glsl"}); }, {"clash.comp.glsl", "unit 4", "A", "B"});
 }
 
-// Analytic AO: a point under a parallel plane at height h, cosine rays of
-// length r: AO = min(1, (h/r)^2); with nothing above, AO = 1. voxel_ao and
-// its exact counterpart both.
-TEST(Modules, AoUnderAParallelPlaneIsHOverRSquared) {
-  const std::string dir = testing::TempDir() + "/vgi_ao_planes";
+namespace {
+// The AO scenes of the two tests below in TempDir()/name: planes.json (a 4 m
+// floor and a parallel plane 0.5 above it) and floor.json (the floor alone),
+// seen from 0.25 above the floor's centre, looking down.
+std::string writeAoPlaneScenes(const std::string& name) {
+  const std::string dir = testing::TempDir() + "/" + name;
   std::filesystem::create_directories(dir);
   std::ofstream(dir + "/planes.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n"
                                         "v -2 0.5 -2\nv 2 0.5 -2\nv 2 0.5 2\nv -2 0.5 2\n"
                                         "f 1 2 3\nf 1 3 4\nf 5 7 6\nf 5 8 7\n";
   std::ofstream(dir + "/floor.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 2 3\nf 1 3 4\n";
-  for (const char* mesh : {"planes.obj", "floor.obj"}) {
-    std::ofstream(dir + "/" + mesh + ".json") << "{\"meshes\": [{\"path\": \"" << mesh << "\"}],\n"
+  for (const char* mesh : {"planes", "floor"})
+    std::ofstream(dir + "/" + mesh + ".json") << "{\"meshes\": [{\"path\": \"" << mesh << ".obj\"}],\n"
                                               << "\"camera\": {\"position\": [0, 0.25, 0], \"target\": [0, "
                                                  "0, 0.001], \"up\": [0, 0, 1], \"fov_deg\": 20}}\n";
-  }
+  return dir;
+}
+}  // namespace
+
+// Analytic AO: a point under a parallel plane at height h, cosine rays of
+// length r: AO = min(1, (h/r)^2); with nothing above, AO = 1. voxel_ao and
+// its exact counterpart both.
+TEST(Modules, AoUnderAParallelPlaneIsHOverRSquared) {
+  const std::string dir = writeAoPlaneScenes("vgi_ao_planes");
   const float expected[2] = {0.25f, 1.0f};  // (0.5 / 1)^2; unoccluded
   for (int s = 0; s < 2; ++s) {
-    const std::string scene = dir + "/" + (s == 0 ? "planes.obj" : "floor.obj") + ".json";
+    const std::string scene = dir + "/" + (s == 0 ? "planes" : "floor") + ".json";
     for (const char* method : {"voxel_ao", "reference"}) {
       std::vector<std::string> set = {"radius=1"};
       if (std::string(method) == "reference")
@@ -221,16 +230,7 @@ TEST(Modules, AoUnderAParallelPlaneIsHOverRSquared) {
 // at r, so they count half of it (measured 0.335 against 0.25: tolerance 0.1);
 // the open floor must not occlude itself (the guard): AO 1 for 5 and 8 cones.
 TEST(Modules, VctAoUnderAParallelPlaneAndOnAnOpenFloor) {
-  const std::string dir = testing::TempDir() + "/vgi_vct_ao_planes";
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir + "/planes.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n"
-                                        "v -2 0.5 -2\nv 2 0.5 -2\nv 2 0.5 2\nv -2 0.5 2\n"
-                                        "f 1 2 3\nf 1 3 4\nf 5 7 6\nf 5 8 7\n";
-  std::ofstream(dir + "/floor.obj") << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nf 1 2 3\nf 1 3 4\n";
-  for (const char* mesh : {"planes", "floor"})
-    std::ofstream(dir + "/" + mesh + ".json") << "{\"meshes\": [{\"path\": \"" << mesh << ".obj\"}],\n"
-                                              << "\"camera\": {\"position\": [0, 0.25, 0], \"target\": [0, "
-                                                 "0, 0.001], \"up\": [0, 0, 1], \"fov_deg\": 20}}\n";
+  const std::string dir = writeAoPlaneScenes("vgi_vct_ao_planes");
   auto meanAo = [&](const char* mesh, const char* cones) {
     RenderOutput out =
         test::render(dir + "/" + mesh + ".json", "vct_ao", {"radius=1", "voxels=128", cones}, 16, 4);

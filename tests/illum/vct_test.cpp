@@ -26,8 +26,9 @@ namespace vgi {
 
 namespace {
 
-float toHalf(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
-float halfStep(float x) { return std::max(std::abs(x) * (1.0f / 1024.0f), 1.0f / 16777216.0f); }
+using test::compareHalf;
+using test::halfStep;
+using test::toHalf;
 
 GridBox unitBox(glm::uvec3 res) {
   GridBox b;
@@ -62,17 +63,6 @@ struct VolumeFixture {
     glFinish();
   }
 };
-
-void compareHalf(const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu,
-                 const std::string& what) {
-  ASSERT_EQ(gpu.size(), cpu.size()) << what;
-  int bad = 0;
-  for (size_t i = 0; i < gpu.size(); ++i)
-    for (int k = 0; k < 4; ++k)
-      if (std::abs(gpu[i][k] - toHalf(cpu[i][k])) > halfStep(cpu[i][k]) && bad++ < 5)
-        ADD_FAILURE() << what << " texel " << i << " c" << k << ": " << gpu[i][k] << " vs " << cpu[i][k];
-  EXPECT_EQ(bad, 0) << what;
-}
 
 }  // namespace
 

@@ -263,8 +263,12 @@ TEST(ConservativeVoxelizer, MatchesTheExactVoxelizer) {
         size_t triangles = 0;
         for (auto& m : s->meshes) triangles += m.triangles.size();
         EXPECT_EQ(small + large, uint32_t(triangles)) << "every triangle once";
-        if (cutoff == 0.0f) EXPECT_EQ(small, 0u);
-        if (cutoff == 1e6f && s == &hard) EXPECT_GT(small, 150u);  // the random ones (≤ 512-cell boxes)
+        if (cutoff == 0.0f) {
+          EXPECT_EQ(small, 0u);
+        }
+        if (cutoff == 1e6f && s == &hard) {
+          EXPECT_GT(small, 150u);  // the random ones (≤ 512-cell boxes)
+        }
       }
     }
   EXPECT_EQ(f.gl->errorCount(), 0);

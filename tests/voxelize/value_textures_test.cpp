@@ -25,10 +25,10 @@ namespace vgi {
 
 namespace {
 
-// The value the GPU stores for x in a half-float texel, and the tolerance of
-// one half-float step (the CPU's rounding of ties may differ from the GL's).
-float toHalf(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
-float halfStep(float x) { return std::max(std::abs(x) * (1.0f / 1024.0f), 1.0f / 16777216.0f); }
+// Half-float texels against the CPU (test_util.h).
+using test::compareHalf;
+using test::halfStep;
+using test::toHalf;
 
 struct ValueFixture {
   std::unique_ptr<GlContext> gl = GlContext::create();
@@ -99,16 +99,6 @@ TEST(ValueTextures, GpuResolveEqualsTheCpuDecodeOfTheSameSums) {
 TEST(ValueTextures, GpuMipLevelsEqualTheCppBuildersOfTheSameKernels) {
   ValueFixture s({64, 48, 128}, ValueMips::Anisotropic);
   EXPECT_EQ(s.tex->levels(), 8);  // 128 → 1 along the longest axis
-  auto compareHalf = [](const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu,
-                        const char* what) {
-    ASSERT_EQ(gpu.size(), cpu.size()) << what;
-    int bad = 0;
-    for (size_t i = 0; i < gpu.size(); ++i)
-      for (int c = 0; c < 4; ++c)
-        if (std::abs(gpu[i][c] - toHalf(cpu[i][c])) > halfStep(cpu[i][c]) && bad++ < 5)
-          ADD_FAILURE() << what << " texel " << i << " c" << c << ": " << gpu[i][c] << " vs " << cpu[i][c];
-    EXPECT_EQ(bad, 0) << what;
-  };
   // Isotropic: each level from the GPU's level below, through isoMipLevel.
   for (int l = 1; l < s.tex->levels(); ++l) {
     const std::vector<glm::vec4> below = s.tex->read("normal", l - 1);
