@@ -20,7 +20,7 @@
 namespace vgi {
 
 ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool anisotropicDefault,
-                                        bool absWeightsDefault) {
+                                        bool absWeightsDefault, float stepDefault) {
   ConeVolumeSettings s;
   if (withRadiance)
     s.radiance =
@@ -52,7 +52,8 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
                   "anisotropic lookups mix the three faces by abs (|d|, the VCT thesis; an oblique "
                   "wall stays opaque) or squared (d^2, summing to 1)",
                   {"abs", "squared"}) == "abs";
-  s.step = p.getFloat("step", 1.0f, "cone march step, in cone diameters (at least a voxel)", 0.05f, 8.0f);
+  s.step =
+      p.getFloat("step", stepDefault, "cone march step, in cone diameters (at least a voxel)", 0.05f, 8.0f);
   readShadowParams(p, s.shadow);
   return s;
 }

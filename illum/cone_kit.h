@@ -42,7 +42,7 @@ struct ConeVolumeSettings {
 };
 // Reads voxels, voxelizer, anisotropic, face_weights, step and (withRadiance) radiance.
 ConeVolumeSettings readConeVolumeParams(ParamSet& params, bool withRadiance, bool anisotropicDefault,
-                                        bool absWeightsDefault);
+                                        bool absWeightsDefault, float stepDefault);
 // What a cone module needs besides the G-buffer: light maps, the binary grid
 // and its pyramid, and with radiance=atlas the value grids.
 void addConeVolumeNeeds(SceneNeeds& needs, const ConeVolumeSettings& s);

@@ -49,6 +49,7 @@
 // | falloff       | float  | 0                | AO: λ of 1/(1 + λ t / ao_radius)                |
 // | shadows       | bool   | false            | cone-traced soft shadows instead of shadow maps |
 // | shadow_aperture | float | 3               | the shadow cones' opening angle, degrees        |
+// | shadow_stop   | float  | 4                | shadow cones end this many widths before the light |
 // | env           | bool   | true             | cones leaving the grid see the environment      |
 // | resolution, interleave, blur |  | 0.5, 2, true | the gather kit's (diffuse cones and AO)      |
 // | shadow_res, shadow_bias, shadow_normal_offset |  |  | the light maps'                        |
@@ -77,7 +78,7 @@ class VctMethod : public Method {
  public:
   VctMethod(ParamSet& p, const Scene& scene) {
     const float diag = scene.bounds().diagonal();
-    vol_ = readConeVolumeParams(p, true, true, true);
+    vol_ = readConeVolumeParams(p, true, true, true, 1.0f);
     cones_ = p.getInt("diffuse_cones", 6,
                       "diffuse cones: 1 (the normal) or n (the normal + n-1 on a ring at 63.4 deg; 6: "
                       "icosahedron vertices)",
@@ -103,6 +104,9 @@ class VctMethod : public Method {
         p.getBool("shadows", false, "cone-traced soft shadows of the delta lights instead of shadow maps");
     shadowAperture_ =
         p.getFloat("shadow_aperture", 3.0f, "shadow cones' full opening angle, degrees", 0.0f, 90.0f);
+    shadowStop_ = p.getFloat(
+        "shadow_stop", 4.0f,
+        "shadow cones end this many cone widths (at least voxel diagonals) before the light", 0.0f, 100.0f);
     env_ = p.getBool("env", true, "cones leaving the grid see the environment");
     gather_ = readGatherParams(p, "diffuse cone", true, false, 2);
     constellation_ = ringConstellation(true, cones_ - 1, glm::degrees(std::atan(2.0f)));
@@ -155,6 +159,7 @@ class VctMethod : public Method {
     shaders.setUniform(s, "uOffset", offset_ * diag);
     shaders.setUniform(s, "uMaxDistance", maxDistance_);
     shaders.setUniform(s, "uVoxelDiagonal", diag);
+    shaders.setUniform(s, "uShadowStop", shadowStop_);
     shaders.setUniform(s, "uWriteIndirect", f.wants("indirect") ? 1 : 0);
     shaders.setUniform(s, "uWriteDirect", f.wants("direct") ? 1 : 0);
     shaders.setUniform(s, "uWriteAo", f.wants("ao") ? 1 : 0);
@@ -222,7 +227,8 @@ class VctMethod : public Method {
   static constexpr int kConesPerDispatch = 16;
   ConeVolumeSettings vol_;
   int cones_ = 6;
-  float aperture_ = 60, maxDistance_ = 1, offset_ = 1, aoRadius_ = 1, falloff_ = 0, shadowAperture_ = 3;
+  float aperture_ = 60, maxDistance_ = 1, offset_ = 1, aoRadius_ = 1, falloff_ = 0, shadowAperture_ = 3,
+        shadowStop_ = 4;
   bool guard_ = true, diffuse_ = true, specular_ = true, skipEmpty_ = true, ao_ = true, shadows_ = false,
        env_ = true;
   GatherSettings gather_;

@@ -21,7 +21,9 @@
 //   Cornell AO energy 1.41 of the exact against 0.98 anisotropic), and the
 //   faces mixed by d² (`face_weights=squared`; the thesis' |d| weights sum to
 //   up to √3 and over-occlude: energy 0.80). `vct` keeps |d|, which its
-//   radiance needs (closed sphere: 0.92 of the bounce against 0.75).
+//   radiance needs (closed sphere: 0.92 of the bounce against 0.75); and
+//   steps of half a cone diameter (the AO's samples at a whole diameter alias
+//   with the voxel lattice into a plaid pattern the jitter does not remove).
 // The gather kit runs it at 1, ½ or ¼ resolution with its blur and joint
 // bilateral upsampling; the constellation also turns per interleave set and per
 // sample (`vgi render --spp N` averages azimuths).
@@ -39,7 +41,7 @@
 // | falloff    | float  | 0                  | λ of 1/(1 + λ t / r)                              |
 // | offset     | float  | 1.5                | origin offset along the normal, voxel diagonals  |
 // | plane_guard | bool  | true               | mip level capped above the receiver's plane (cones.glsl) |
-// | voxels, voxelizer, anisotropic (true), face_weights (squared), step | | | the volume's (illum/cone_kit.h) |
+// | voxels, voxelizer, anisotropic (true), face_weights (squared), step (0.5) | | | the volume's (illum/cone_kit.h) |
 // | resolution, interleave, blur |   | 0.5, 2, true | the gather kit's                             |
 #include "illum/vct_ao.h"
 
@@ -84,7 +86,7 @@ class VctAoMethod : public Method {
                        "false: the thesis' cones)");
     offset_ =
         p.getFloat("offset", 1.5f, "cone origin offset along the normal, voxel diagonals", 0.0f, 100.0f);
-    vol_ = readConeVolumeParams(p, false, true, false);
+    vol_ = readConeVolumeParams(p, false, true, false, 0.5f);
     gather_ = readGatherParams(p, "AO cone", false, false, 2);
     constellation_ = cones_ == 3   ? ringConstellation(false, 3, 45.0f)
                      : cones_ == 5 ? ringConstellation(true, 4, 55.0f)

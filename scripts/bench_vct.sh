@@ -43,6 +43,13 @@ if has 1; then
     "$V" render --method vct $(sets "$s") --spp 4 --size $S -o "$OUT/vct.exr" --aov indirect --quiet >/dev/null 2>&1
     echo "| $s | $(metrics "$OUT/vct.indirect.exr" "$OUT/ref.indirect.exr") |"
   done
+  echo "| soft shadows (direct AOV) | direct relMSE | direct rel. MAE | direct energy |"
+  echo "|---|---|---|---|"
+  for s in "shadows=false" "shadows=true" "shadows=true shadow_stop=1" "shadows=true shadow_aperture=1" \
+    "shadows=true shadow_aperture=8"; do
+    "$V" render --method vct $(sets "$s") --spp 4 --size $S -o "$OUT/vct.exr" --aov direct --quiet >/dev/null 2>&1
+    echo "| $s (cones_full $(python3 -c "import json; print('%.0f' % json.load(open('$OUT/vct.json'))['timings_ms']['cones_full'])") ms) | $(metrics "$OUT/vct.direct.exr" "$OUT/ref.direct.exr") |"
+  done
 fi
 if has 2; then
   "$V" render --method vct_ao --spp 1 --size 16x16 -o "$OUT/r.exr" --quiet >/dev/null 2>&1
@@ -53,7 +60,7 @@ if has 2; then
   echo "|---|---|---|---|"
   "$V" render --method voxel_ao --set radius=$R --spp 16 --size $S -o "$OUT/vao.exr" --quiet >/dev/null 2>&1
   echo "| voxel_ao (voxel rays) | $(metrics "$OUT/vao.exr" "$OUT/refao.exr") |"
-  for s in "cones=3" "cones=5" "cones=8" "cones=8 anisotropic=false" "cones=8 face_weights=abs" \
+  for s in "cones=3" "cones=5" "cones=8" "cones=8 step=1" "cones=8 anisotropic=false" "cones=8 face_weights=abs" \
     "cones=8 plane_guard=false" "cones=8 overlap=1.3" "cones=8 jitter=false" "cones=8 voxels=256" \
     "cones=5 voxels=256" "cones=8 voxelizer=hybrid"; do
     "$V" render --method vct_ao $(sets "$s") --spp 1 --size $S -o "$OUT/ao.exr" --quiet >/dev/null 2>&1
