@@ -48,4 +48,5 @@ void addDiffCommand(CLI::App& app);
 void addVoxelizeCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
+void addSweepCommand(CLI::App& app);
 }  // namespace vgi::app

@@ -92,6 +92,7 @@ int main(int argc, char** argv) {
   vgi::app::addInfoCommand(app);
   vgi::app::addDiffCommand(app);
   vgi::app::addCompareCommand(app);
+  vgi::app::addSweepCommand(app);
   vgi::app::addVoxelizeCommand(app);
   vgi::app::addBenchCommand(app);
   try {

@@ -117,10 +117,11 @@ std::string methodFor(const RenderOptions& opt, const Scene& scene) {
 }
 }  // namespace
 
-nlohmann::json resolveParameters(const RenderOptions& opt) {
+nlohmann::json resolveParameters(const RenderOptions& opt, std::vector<std::string>* outputs) {
   Scene scene = loadScene(opt.scene);
   ParamSet params;
-  createMethod(opt, findMethod(methodFor(opt, scene)), scene, params);
+  std::unique_ptr<Method> method = createMethod(opt, findMethod(methodFor(opt, scene)), scene, params);
+  if (outputs) *outputs = method->outputs();
   return params.resolved();
 }
 

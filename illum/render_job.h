@@ -55,8 +55,9 @@ RenderOutput runRender(const RenderOptions& options, const FrameSink& onFrame = 
                        const CheckpointSink& onCheckpoint = {});
 
 // The method's parameters as a render with these options would resolve them
-// (scene-dependent defaults included), without rendering.
-nlohmann::json resolveParameters(const RenderOptions& options);
+// (scene-dependent defaults included), without rendering; `outputs`, when
+// given, receives the extra outputs (AOVs) the method can write.
+nlohmann::json resolveParameters(const RenderOptions& options, std::vector<std::string>* outputs = nullptr);
 
 // Writes <stem>.exr, <stem>.png and <stem>.json (stats) for output path `path`
 // (.exr or .png), and <stem>.<aov>.exr/.png per extra output; returns the files written.

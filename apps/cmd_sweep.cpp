@@ -1,0 +1,52 @@
+// vgi sweep: illum/sweep.h — an experiment file expanded into independent
+// `vgi render` processes (run here one after another, or printed for a batch
+// system), and the results collected into DIR/results.csv and results.json.
+#include <cstdio>
+#include <filesystem>
+
+#include "apps/commands.h"
+#include "core/error.h"
+#include "illum/sweep.h"
+
+namespace vgi::app {
+
+void addSweepCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "sweep", "Run an experiment file: every method x parameter point against its reference, error vs time");
+  auto file = std::make_shared<std::string>();
+  auto dir = std::make_shared<std::string>();
+  auto print = std::make_shared<bool>(false);
+  auto collect = std::make_shared<bool>(false);
+  cmd->add_option("experiment", *file, "the experiment file (JSON; see illum/sweep.h)")->required();
+  cmd->add_option("-o,--output", *dir, "the output folder (renders, results.csv, results.json)")->required();
+  cmd->add_flag("--print-commands", *print,
+                "print one vgi command per reference and point (for GNU parallel or a job array) and render "
+                "nothing");
+  cmd->add_flag("--collect", *collect, "render nothing: collect the results of whatever finished in DIR");
+  cmd->callback([=] {
+    if (*print && *collect) fail("--print-commands and --collect: give one of them");
+    const Experiment e = loadExperiment(*file, *dir);
+    std::error_code ec;
+    std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+    if (ec || self.empty()) self = "vgi";
+    if (*print) {
+      // The renders' folders are made here, so each command runs as it is (nothing renders).
+      for (auto& r : e.references)
+        if (r.file.empty()) {
+          std::filesystem::create_directories(r.dir);
+          std::printf("%s\n", sweepCommand(r, self).c_str());
+        }
+      for (auto& p : e.points) {
+        std::filesystem::create_directories(p.render.dir);
+        std::printf("%s\n", sweepCommand(p.render, self).c_str());
+      }
+      return;
+    }
+    if (!*collect) runSweep(e, self);
+    const nlohmann::json rows = writeSweepResults(e);
+    std::fprintf(stderr, "sweep %s: %zu points, %zu rows: wrote %s/results.csv and results.json\n",
+                 e.name.c_str(), e.points.size(), rows.size(), e.dir.c_str());
+  });
+}
+
+}  // namespace vgi::app

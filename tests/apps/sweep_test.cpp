@@ -1,0 +1,142 @@
+// vgi sweep (illum/sweep.h) as a user runs it: the shipped smoke experiment
+// (two methods × two settings on a 32² Cornell box) renders, its CSV has one
+// row per point and checkpoint, errors fall with the checkpoints, a second run
+// renders nothing, a point whose render was killed is rendered again; bad
+// experiment files are refused before anything renders.
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "apps/cli_util.h"
+
+namespace vgi {
+
+using test::CliRun;
+using test::tmp;
+using test::vgi;
+
+namespace {
+const std::string kSmoke = std::string(VGI_TEST_DATA) + "/../../scenes/experiments/smoke.json";
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string l; std::getline(ss, l);)
+    if (!l.empty()) out.push_back(l);
+  return out;
+}
+
+size_t countOf(const std::string& s, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
+  return n;
+}
+}  // namespace
+
+TEST(Sweep, SmokeExperimentRunsCollectsAndResumes) {
+  const std::string dir = tmp("sweep_smoke");
+  std::filesystem::remove_all(dir);
+  // The command list: one reference per counterpart (nearfield's, voxel_ao's), one render per point.
+  CliRun list = vgi("sweep " + kSmoke + " -o " + dir + " --print-commands");
+  ASSERT_EQ(list.code, 0) << list.output;
+  EXPECT_EQ(lines(list.output).size(), 6u) << list.output;
+  EXPECT_EQ(countOf(list.output, "integrator=nearfield"), 1u) << list.output;
+  EXPECT_EQ(countOf(list.output, "integrator=ao"), 1u) << list.output;
+  for (auto& f : std::filesystem::recursive_directory_iterator(dir))
+    EXPECT_TRUE(f.is_directory()) << "--print-commands wrote " << f.path();
+
+  CliRun run = vgi("sweep " + kSmoke + " -o " + dir);
+  ASSERT_EQ(run.code, 0) << run.output;
+  EXPECT_NE(run.output.find("[6/6]"), std::string::npos) << run.output;
+  const std::vector<std::string> csv = lines(std::string(
+      std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(dir + "/results.csv")), {}));
+  ASSERT_EQ(csv.size(), 1u + 4u * 4u) << "header + 4 points x (checkpoints 1, 2, 4 and 8 spp)";
+  EXPECT_EQ(csv[0].rfind("scene,method,label,point,rays,voxels,spp,time_ms", 0), 0u) << csv[0];
+  EXPECT_NE(csv[0].find("image_relmse,image_relmse_relative,image_rel_mae,image_ssim"), std::string::npos);
+  EXPECT_NE(csv[0].find("indirect_rel_mae"), std::string::npos) << csv[0];
+  const nlohmann::json results = nlohmann::json::parse(std::ifstream(dir + "/results.json"));
+  const nlohmann::json& rows = results["rows"];
+  ASSERT_EQ(rows.size(), 16u);
+  // Each point's error falls from 1 to 8 samples (both methods are consistent estimators of their limit,
+  // whose noise dominates at 32² and few samples); time grows with the samples.
+  std::map<std::string, std::map<int, nlohmann::json>> byPoint;
+  for (auto& r : rows) byPoint[r["point"]][r["spp"].get<int>()] = r;
+  ASSERT_EQ(byPoint.size(), 4u);
+  for (auto& [point, bySpp] : byPoint) {
+    EXPECT_LT(bySpp[8]["image"]["rel_mae"].get<double>(), bySpp[1]["image"]["rel_mae"].get<double>())
+        << point;
+    EXPECT_GT(bySpp[8]["sample_ms"].get<double>(), bySpp[1]["sample_ms"].get<double>()) << point;
+    EXPECT_FALSE(bySpp[8]["gl_renderer"].get<std::string>().empty());
+  }
+  // nearfield writes the indirect channel, voxel_ao does not.
+  for (auto& r : rows) EXPECT_EQ(r.contains("indirect"), r["method"] == "nearfield") << r.dump();
+
+  // A second run renders nothing; collecting alone gives the same rows.
+  const std::string point = dir + "/points/" + rows[0]["point"].get<std::string>();
+  const auto stamp = std::filesystem::last_write_time(point + "/render.json");
+  CliRun again = vgi("sweep " + kSmoke + " -o " + dir);
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_EQ(again.output.find("[1/"), std::string::npos) << again.output;
+  EXPECT_EQ(std::filesystem::last_write_time(point + "/render.json"), stamp);
+  CliRun collect = vgi("sweep " + kSmoke + " -o " + dir + " --collect");
+  ASSERT_EQ(collect.code, 0) << collect.output;
+  EXPECT_NE(collect.output.find("16 rows"), std::string::npos) << collect.output;
+
+  // A killed point (its final JSON never written) is rendered again, alone; meanwhile only the
+  // checkpoints it finished are collected.
+  std::filesystem::remove(point + "/render.json");
+  CliRun partial = vgi("sweep " + kSmoke + " -o " + dir + " --collect");
+  ASSERT_EQ(partial.code, 0) << partial.output;
+  EXPECT_NE(partial.output.find("15 rows"), std::string::npos) << "its checkpoints stay: " << partial.output;
+  CliRun resume = vgi("sweep " + kSmoke + " -o " + dir);
+  ASSERT_EQ(resume.code, 0) << resume.output;
+  EXPECT_NE(resume.output.find("[1/1]"), std::string::npos) << resume.output;
+  EXPECT_NE(resume.output.find("16 rows"), std::string::npos) << resume.output;
+}
+
+TEST(Sweep, BadExperimentFilesAreRefusedBeforeAnythingRenders) {
+  const std::string dir = tmp("sweep_bad");
+  auto refused = [&](const std::string& name, const std::string& json,
+                     std::initializer_list<std::string> needles, const std::string& out = "") {
+    const std::string file = tmp(name + ".json");
+    std::ofstream(file) << json;
+    std::filesystem::remove_all(dir);
+    CliRun r = vgi("sweep " + file + " -o " + (out.empty() ? dir : out));
+    EXPECT_EQ(r.code, 2) << name << ": " << r.output;
+    for (auto& n : needles)
+      EXPECT_NE(r.output.find(n), std::string::npos) << name << ": '" << n << "' in " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/points")) << name << " rendered";
+  };
+  const std::string head = R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 2, )";
+  refused("unknown_method", head + R"("methods": [{"method": "nearfeld"}]})", {"nearfeld", "methods[0]"});
+  refused("unknown_param", head + R"("methods": [{"method": "nearfield", "grid": {"rayz": [4]}}]})",
+          {"rayz"});
+  refused("empty_grid", head + R"("methods": [{"method": "nearfield", "grid": {"rays": []}}]})",
+          {"grid.rays", "[]"});
+  refused("out_of_range", head + R"("methods": [{"method": "nearfield", "grid": {"rays": [4, 0]}}]})",
+          {"rays", "0"});
+  refused("unknown_key", head + R"("methods": [{"method": "nearfield"}], "sceens": []})", {"sceens"});
+  refused("no_methods", head + R"("methods": []})", {"methods"});
+  refused("bad_size",
+          R"({"scenes": ["builtin:cornell"], "size": "16y16", "spp": 2, "methods": [{"method": "direct"}]})",
+          {"16y16"});
+  refused("bad_spp",
+          R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 0, "methods": [{"method": "direct"}]})",
+          {"spp", "0"});
+  // A reference image of another size.
+  const std::string ref = tmp("sweep_ref_8x8.exr");
+  ASSERT_EQ(vgi("render --method direct --size 8x8 --spp 1 --quiet -o " + ref).code, 0);
+  refused("ref_size", head + R"("reference": {"file": ")" + ref + R"("}, "methods": [{"method": "direct"}]})",
+          {ref, "8x8", "16x16"});
+  refused("ref_missing",
+          head + R"("reference": {"file": "/nonexistent/r.exr"}, "methods": [{"method": "direct"}]})",
+          {"/nonexistent/r.exr"});
+  refused("unwritable", head + R"("methods": [{"method": "direct"}]})",
+          {"/proc/vgi_sweep", "cannot be written"}, "/proc/vgi_sweep");
+  CliRun missing = vgi("sweep " + tmp("no_such_experiment.json") + " -o " + dir);
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.output.find("no_such_experiment.json"), std::string::npos) << missing.output;
+}
+
+}  // namespace vgi
