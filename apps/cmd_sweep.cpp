@@ -2,10 +2,12 @@
 // `vgi render` processes (run here one after another, or printed for a batch
 // system), and the results collected into DIR/results.csv and results.json.
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "apps/commands.h"
 #include "core/error.h"
+#include "core/shader_library.h"
 #include "illum/sweep.h"
 
 namespace vgi::app {
@@ -46,6 +48,16 @@ void addSweepCommand(CLI::App& app) {
     const nlohmann::json rows = writeSweepResults(e);
     std::fprintf(stderr, "sweep %s: %zu points, %zu rows: wrote %s/results.csv and results.json\n",
                  e.name.c_str(), e.points.size(), rows.size(), e.dir.c_str());
+    // The plots, Pareto tables and HTML report (Debian's python3 with python3-matplotlib).
+    const std::string script =
+        (std::filesystem::path(defaultShaderDir()).parent_path() / "scripts" / "sweep_report.py").string();
+    const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const std::string report = python + " '" + script + "' '" + e.dir + "' 2>&1";
+    if (std::system(report.c_str()) != 0)
+      fail("sweep: the report (", script,
+           ") failed; it needs python3-matplotlib (scripts/setup.sh installs it)");
+    std::fprintf(stderr, "sweep %s: wrote the plots, pareto.md / pareto.tex and %s/report.html\n",
+                 e.name.c_str(), e.dir.c_str());
   });
 }
 

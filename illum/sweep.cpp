@@ -431,6 +431,13 @@ nlohmann::json collectSweep(const Experiment& e) {
 
 nlohmann::json writeSweepResults(const Experiment& e) {
   const nlohmann::json rows = collectSweep(e);
+  // Each finished point's signed error map against its reference (the report's third image).
+  for (const SweepPoint& p : e.points) {
+    const std::string a = stemOfRender(p.render) + ".exr",
+                      b = stemOfRender(e.references[p.reference]) + ".exr";
+    if (sweepRenderDone(p.render, e.spp) && fs::exists(b))
+      writeSignedError(signedDifference(readImage(a), readImage(b)), p.render.dir + "/error.png");
+  }
   nlohmann::json out = {{"experiment", e.name},
                         {"file", e.path},
                         {"size", {e.width, e.height}},

@@ -3,6 +3,7 @@
 // row per point and checkpoint, errors fall with the checkpoints, a second run
 // renders nothing, a point whose render was killed is rendered again; bad
 // experiment files are refused before anything renders.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -71,6 +72,40 @@ TEST(Sweep, SmokeExperimentRunsCollectsAndResumes) {
   }
   // nearfield writes the indirect channel, voxel_ao does not.
   for (auto& r : rows) EXPECT_EQ(r.contains("indirect"), r["method"] == "nearfield") << r.dump();
+
+  // The plots, tables and report; the report opened in headless chromium: every image and plot
+  // loads, and its first A/B slider moves its image (the page's own load check, sweep_report.py).
+  for (const char* f :
+       {"convergence_builtin_cornell.png", "convergence_builtin_cornell.pdf", "passes_builtin_cornell.png",
+        "passes_builtin_cornell.pdf", "pareto.md", "pareto.tex", "report.html"})
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + f)) << f;
+  EXPECT_NE(
+      std::string(std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(dir + "/pareto.tex")), {})
+          .find("\\toprule"),
+      std::string::npos);
+  if (std::filesystem::exists("/usr/bin/chromium")) {
+    const std::string browser =
+        "timeout 120 /usr/bin/chromium --headless --no-sandbox --disable-gpu --hide-scrollbars "
+        "--virtual-time-budget=5000 ";
+    CliRun dom = {0, ""};
+    {
+      FILE* p = popen((browser + "--dump-dom file://" + dir + "/report.html 2>/dev/null").c_str(), "r");
+      char buf[4096];
+      for (size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) dom.output.append(buf, n);
+      dom.code = pclose(p);
+    }
+    EXPECT_NE(dom.output.find("data-broken=\"0\""), std::string::npos) << dom.output.substr(0, 2000);
+    EXPECT_NE(dom.output.find("data-slider=\"moved\""), std::string::npos) << dom.output.substr(0, 2000);
+    EXPECT_EQ(dom.output.find("data-images=\"0\""), std::string::npos);
+    const std::string shot = dir + "/report_screenshot.png";
+    EXPECT_EQ(std::system((browser + "--window-size=1200,2400 --screenshot=" + shot + " file://" + dir +
+                           "/report.html > /dev/null 2>&1")
+                              .c_str()),
+              0);
+    EXPECT_GT(std::filesystem::file_size(shot), 10000u) << "the screenshot of the report";
+  } else {
+    ADD_FAILURE() << "/usr/bin/chromium is missing: scripts/setup.sh installs it";
+  }
 
   // A second run renders nothing; collecting alone gives the same rows.
   const std::string point = dir + "/points/" + rows[0]["point"].get<std::string>();

@@ -1,0 +1,244 @@
+#!/usr/bin/python3
+"""The plots, Pareto tables and HTML report of a `vgi sweep` output folder.
+
+Usage: sweep_report.py DIR   (vgi sweep runs it after writing DIR/results.json)
+
+Writes into DIR:
+  convergence_<scene>.png/.pdf  log-log error (rel. MAE of the image, and of each
+                                AOV) against time, one line per point, a marker per checkpoint
+  passes_<scene>.png/.pdf       per-pass time of each point's final render (one frame)
+  pareto.md, pareto.tex         per scene, the points on the error-vs-time Pareto front
+                                (Markdown and LaTeX booktabs)
+  report.html                   the tables, the plots and, per point, its image, the
+                                reference and the error map with an A/B slider and a crop
+Needs Debian's python3-matplotlib (scripts/setup.sh installs it).
+"""
+import html
+import json
+import math
+import os
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def slug(s):
+    return re.sub(r"[^A-Za-z0-9]+", "_", s).strip("_") or "scene"
+
+
+def point_name(row):
+    params = ", ".join(f"{k}={v}" for k, v in sorted(row["params"].items()))
+    return row["label"] + (f" ({params})" if params else "")
+
+
+def channels_of(rows):
+    chans = []
+    for r in rows:
+        for c in r:
+            if isinstance(r[c], dict) and "rel_mae" in r[c] and c not in chans:
+                chans.append(c)
+    return sorted(chans, key=lambda c: (c != "image", c))
+
+
+def pareto(rows, channel):
+    """Rows not dominated in (time, error): nothing is both faster and more accurate."""
+    pts = [r for r in rows if channel in r]
+    pts.sort(key=lambda r: (r["time_ms"], r[channel]["rel_mae"]))
+    front, best = [], math.inf
+    for r in pts:
+        if r[channel]["rel_mae"] < best:
+            front.append(r)
+            best = r[channel]["rel_mae"]
+    return front
+
+
+def main(out):
+    with open(os.path.join(out, "results.json")) as f:
+        res = json.load(f)
+    rows = res["rows"]
+    scenes = []
+    for r in rows:
+        if r["scene"] not in scenes:
+            scenes.append(r["scene"])
+    md = [f"# {res['experiment']}: error against time\n"]
+    tex = ["% vgi sweep " + res["experiment"] + " (booktabs)"]
+    sections = []
+    for scene in scenes:
+        srows = [r for r in rows if r["scene"] == scene]
+        chans = channels_of(srows)
+        points = {}
+        for r in srows:
+            points.setdefault(r["point"], []).append(r)
+        for p in points.values():
+            p.sort(key=lambda r: r["spp"])
+        # Convergence: error vs time, one line per point.
+        fig, axes = plt.subplots(1, len(chans), figsize=(5.5 * len(chans), 4.2), squeeze=False)
+        for ax, ch in zip(axes[0], chans):
+            for pid, p in sorted(points.items(), key=lambda kv: point_name(kv[1][0])):
+                xs = [r["time_ms"] for r in p if ch in r]
+                ys = [max(r[ch]["rel_mae"], 1e-6) for r in p if ch in r]
+                if xs:
+                    ax.plot(xs, ys, marker="o", ms=3, label=point_name(p[0]))
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("time (ms, set-up + samples)")
+            ax.set_ylabel(f"rel. MAE ({ch})")
+            ax.set_title(f"{scene}: {ch}")
+            ax.grid(True, which="both", alpha=0.3)
+        axes[0][0].legend(fontsize=6, loc="best")
+        fig.tight_layout()
+        conv = f"convergence_{slug(scene)}"
+        for ext in ("png", "pdf"):
+            fig.savefig(os.path.join(out, f"{conv}.{ext}"), dpi=110)
+        plt.close(fig)
+        # Per-pass time of each point's final render.
+        finals = [max(p, key=lambda r: r["spp"]) for p in points.values()]
+        passes = []
+        timings = []
+        for r in finals:
+            t = {}
+            path = os.path.join(out, "points", r["point"], "render.json")
+            if os.path.exists(path):
+                with open(path) as f:
+                    t = json.load(f).get("timings_ms", {})
+            timings.append(t)
+            for k, v in t.items():
+                if k not in passes and v >= 0.5:
+                    passes.append(k)
+        fig, ax = plt.subplots(figsize=(10, 0.45 * len(finals) + 1.8))
+        left = [0.0] * len(finals)
+        cmap = plt.get_cmap("tab20")
+        for i, k in enumerate(passes):
+            vals = [t.get(k, 0.0) for t in timings]
+            ax.barh(range(len(finals)), vals, left=left, color=cmap(i % 20), label=k)
+            left = [a + b for a, b in zip(left, vals)]
+        ax.set_yticks(range(len(finals)))
+        ax.set_yticklabels([point_name(r) for r in finals], fontsize=7)
+        ax.set_xlabel("ms (all passes of the final render)")
+        ax.set_title(f"{scene}: per-pass time")
+        ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        fig.tight_layout()
+        bars = f"passes_{slug(scene)}"
+        for ext in ("png", "pdf"):
+            fig.savefig(os.path.join(out, f"{bars}.{ext}"), dpi=110)
+        plt.close(fig)
+        # Pareto tables: per reference (the points that estimate the same integral).
+        front = []
+        for ref in sorted({r["reference"] for r in srows}):
+            front += pareto([r for r in srows if r["reference"] == ref], "image")
+        md.append(f"\n## {scene}: Pareto front (image rel. MAE against time, per reference)\n")
+        head = "| point | spp | time ms | " + " | ".join(f"{c} rel. MAE | {c} relMSE" for c in chans) + " |"
+        md.append(head)
+        md.append("|" + "---|" * (3 + 2 * len(chans)))
+        tex.append("\\begin{tabular}{l r r " + "r r " * len(chans) + "}\n\\toprule")
+        tex.append("point & spp & time (ms) & " + " & ".join(f"{c} rel.\\ MAE & {c} relMSE" for c in chans)
+                   + " \\\\\n\\midrule")
+        for r in front:
+            cells = []
+            tcells = []
+            for c in chans:
+                if c in r:
+                    cells += [f"{r[c]['rel_mae']:.4f}", f"{r[c]['relmse']:.5f}"]
+                else:
+                    cells += ["", ""]
+            tcells = [x for x in cells]
+            md.append(f"| {point_name(r)} | {r['spp']} | {r['time_ms']:.0f} | " + " | ".join(cells) + " |")
+            name = point_name(r).replace("_", "\\_").replace("&", "\\&").replace("%", "\\%")
+            tex.append(f"{name} & {r['spp']} & {r['time_ms']:.0f} & " + " & ".join(tcells) + " \\\\")
+        tex.append("\\bottomrule\n\\end{tabular}\n")
+        sections.append((scene, conv, bars, front, chans, finals))
+    with open(os.path.join(out, "pareto.md"), "w") as f:
+        f.write("\n".join(md) + "\n")
+    with open(os.path.join(out, "pareto.tex"), "w") as f:
+        f.write("\n".join(tex) + "\n")
+    write_html(out, res, sections)
+
+
+SLIDER_JS = """
+// After loading: how many images failed (body data-broken), and whether moving the first
+// slider moves its image's clip (body data-slider) — what a headless browser test reads.
+window.addEventListener('load', function () {
+  var broken = 0, imgs = document.images;
+  for (var i = 0; i < imgs.length; ++i) if (!imgs[i].complete || imgs[i].naturalWidth === 0) ++broken;
+  document.body.dataset.images = imgs.length;
+  document.body.dataset.broken = broken;
+  var s = document.querySelector("input[type=range]");
+  if (s) {
+    var top = document.getElementById(s.id.slice(0, -1) + 't'), before = top.style.clipPath;
+    s.value = 80;
+    s.dispatchEvent(new Event('input'));
+    document.body.dataset.slider = top.style.clipPath !== before ? 'moved' : 'stuck';
+  }
+});
+function slide(id, v) {
+  document.getElementById(id).style.clipPath = 'inset(0 ' + (100 - v) + '% 0 0)';
+}
+function pick(id, which, src) {
+  document.getElementById(id + which).src = src;
+}
+"""
+
+
+def write_html(out, res, sections):
+    h = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
+         f"<title>vgi sweep: {html.escape(res['experiment'])}</title>",
+         "<style>body{font:14px sans-serif;margin:24px;max-width:1200px}"
+         "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 6px;font-size:12px}"
+         ".ab{position:relative;display:inline-block;image-rendering:pixelated}"
+         ".ab img{display:block;width:384px}.ab .top{position:absolute;left:0;top:0}"
+         ".crop{width:192px;height:192px;overflow:hidden;display:inline-block;margin-left:8px}"
+         ".crop img{width:768px;margin:-192px 0 0 -192px;image-rendering:pixelated}</style>",
+         f"<script>{SLIDER_JS}</script></head><body>",
+         f"<h1>{html.escape(res['experiment'])}</h1>",
+         f"<p>{res['points']} points, {res['size'][0]}×{res['size'][1]}, {res['spp']} spp "
+         f"(checkpoints {res['checkpoints']}), relMSE ε {res['epsilon']}, relative ε {res['relative_epsilon']}. "
+         "Rows, parameters and every metric: <a href='results.csv'>results.csv</a>, "
+         "<a href='results.json'>results.json</a>; tables: <a href='pareto.md'>pareto.md</a>, "
+         "<a href='pareto.tex'>pareto.tex</a>.</p>"]
+    n = 0
+    for scene, conv, bars, front, chans, finals in sections:
+        h.append(f"<h2>{html.escape(scene)}</h2>")
+        h.append(f"<img class='plot' src='{conv}.png' alt='convergence'><br>")
+        h.append(f"<img class='plot' src='{bars}.png' alt='per-pass time'>")
+        h.append("<h3>Pareto front (image rel. MAE against time, per reference)</h3><table><tr><th>point</th><th>spp</th>"
+                 "<th>time ms</th>" + "".join(f"<th>{c} rel. MAE</th><th>{c} relMSE</th>" for c in chans) + "</tr>")
+        for r in front:
+            h.append(f"<tr><td>{html.escape(point_name(r))}</td><td>{r['spp']}</td><td>{r['time_ms']:.0f}</td>"
+                     + "".join(f"<td>{r[c]['rel_mae']:.4f}</td><td>{r[c]['relmse']:.5f}</td>" if c in r
+                               else "<td></td><td></td>" for c in chans) + "</tr>")
+        h.append("</table><h3>Images</h3><p>Drag the slider: left of it the first image, right of it the "
+                 "second; choose either from the method, the reference and the error map (red = too bright, "
+                 "blue = too dark). Right: a 4× crop of the centre.</p>")
+        for r in finals:
+            n += 1
+            pid = f"ab{n}"
+            img = f"points/{r['point']}/render.png"
+            ref = f"references/{r['reference']}/ref.png"
+            err = f"points/{r['point']}/error.png"
+            opts = [("method", img), ("reference", ref), ("error", err)]
+            sel = lambda which, default: (  # noqa: E731
+                f"<select onchange=\"pick('{pid}','{which}',this.value)\">"
+                + "".join(f"<option value='{src}'{' selected' if name == default else ''}>{name}</option>"
+                          for name, src in opts) + "</select>")
+            h.append(f"<h4>{html.escape(point_name(r))} — {r['spp']} spp, image rel. MAE "
+                     f"{r['image']['rel_mae']:.4f}</h4>" if "image" in r else f"<h4>{html.escape(point_name(r))}</h4>")
+            h.append(f"<div>{sel('b', 'method')} | {sel('t', 'reference')} "
+                     f"<input type='range' min='0' max='100' value='50' id='{pid}s' "
+                     f"oninput=\"slide('{pid}t', this.value)\"></div>")
+            h.append(f"<div class='ab'><img id='{pid}b' src='{img}' alt='A'>"
+                     f"<img id='{pid}t' class='top' src='{ref}' alt='B' style='clip-path:inset(0 50% 0 0)'></div>"
+                     f"<div class='crop'><img src='{img}' alt='crop'></div>"
+                     f"<div class='crop'><img src='{ref}' alt='crop of the reference'></div>")
+    h.append("</body></html>")
+    with open(os.path.join(out, "report.html"), "w") as f:
+        f.write("\n".join(h) + "\n")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit("usage: sweep_report.py DIR")
+    main(sys.argv[1])
