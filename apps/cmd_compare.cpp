@@ -27,6 +27,7 @@ void addCompareCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   auto out = std::make_shared<std::string>("compare.exr");
   auto refSpp = std::make_shared<int>(256);
+  auto reference = std::make_shared<std::string>();
   auto diffOptions = std::make_shared<DiffOptions>();
   opt->method = "nearfield";
   args->size = "256x256";
@@ -34,6 +35,9 @@ void addCompareCommand(CLI::App& app) {
   // parameters the registry derives from the method's.)
   addRenderOptions(cmd, *opt, *args);
   cmd->add_option("--ref-spp", *refSpp, "the exact counterpart's samples per pixel")->capture_default_str();
+  cmd->add_option("--reference", *reference,
+                  "an existing image of the exact counterpart (e.g. an earlier stem.exact.exr; its AOVs and "
+                  "stats beside it) instead of rendering it");
   addDiffOptions(cmd, *diffOptions);
   cmd->add_option("-o,--output", *out,
                   "stem.exr: writes stem.<method>.*, stem.exact.* (images, AOVs, stats) and stem.json (the "
@@ -44,7 +48,7 @@ void addCompareCommand(CLI::App& app) {
     opt->methodGiven = true;  // compare is about this method: a preset written for another one is an error
     checkOutputPath(*out);
     installInterruptHandler();
-    const Comparison c = compareWithCounterpart(*opt, *refSpp, *diffOptions);
+    const Comparison c = compareWithCounterpart(*opt, *refSpp, *diffOptions, *reference);
     if (!c.complete) {
       std::fprintf(stderr, "interrupted before both renders had a full sample: nothing written\n");
       throw Interrupted{};
@@ -58,7 +62,7 @@ void addCompareCommand(CLI::App& app) {
     const int frames = c.frames;
 
     std::printf("%s vs exact (%s %s, %d spp) on %s, %dx%d\n", opt->method.c_str(),
-                c.counterpart.method.c_str(), joined(c.counterpart.set).c_str(), *refSpp, opt->scene.c_str(),
+                c.counterpart.method.c_str(), joined(c.counterpart.set).c_str(), c.refSpp, opt->scene.c_str(),
                 opt->width, opt->height);
     std::printf("  %-10s%s\n", "channel", diffHeader());
     std::vector<std::string> channels = {"image"};
@@ -68,8 +72,11 @@ void addCompareCommand(CLI::App& app) {
         "  time: %s %.1f ms per frame + %.0f ms set-up (%d frames, timed passes; wall %.0f ms) on %s\n",
         opt->method.c_str(), perFrame, setup, frames, approx.stats["wall_ms"].get<double>(),
         approx.stats["gl_renderer"].get<std::string>().c_str());
-    std::printf("        exact %.0f ms (wall %.0f ms)\n", exact.stats["total_ms"].get<double>(),
-                exact.stats["wall_ms"].get<double>());
+    if (exact.stats.contains("total_ms") && exact.stats.contains("wall_ms"))
+      std::printf("        exact %.0f ms (wall %.0f ms)%s\n", exact.stats["total_ms"].get<double>(),
+                  exact.stats["wall_ms"].get<double>(), reference->empty() ? "" : ", when it was rendered");
+    else
+      std::printf("        exact: the reference image %s\n", reference->c_str());
     std::fflush(stdout);
     std::fprintf(stderr, "wrote %s and %zu image/stat files\n", json.c_str(), files.size() - 1);
     if (c.interrupted) throw Interrupted{};

@@ -1,6 +1,8 @@
 #include "illum/compare.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 
 #include "core/error.h"
 #include "core/output_files.h"
@@ -8,7 +10,8 @@
 
 namespace vgi {
 
-Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const DiffOptions& diff) {
+Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const DiffOptions& diff,
+                                  const std::string& referenceFile) {
   if (refSpp < 1 || refSpp > 1 << 20) fail("--ref-spp ", refSpp, ": must be in [1, 1048576]");
   const MethodInfo& info = findMethod(opt.method);
   if (!info.counterpart)
@@ -19,6 +22,32 @@ Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const Di
   // The counterpart gets the method's resolved parameters (defaults that
   // depend on the scene included, e.g. the radius).
   c.counterpart = info.counterpart(resolveParameters(opt));
+  if (!referenceFile.empty()) {
+    // The counterpart given as an image: read (and size-checked) before the method renders.
+    const std::string stem = std::filesystem::path(referenceFile).replace_extension("").string();
+    c.exact.result.image = readImage(referenceFile);
+    const Image& ref = c.exact.result.image;
+    if (ref.width != opt.width || ref.height != opt.height)
+      fail("--reference '", referenceFile, "' is ", ref.width, "x", ref.height, ", the render is ", opt.width,
+           "x", opt.height);
+    std::vector<std::string> aovs;
+    for (auto& a : c.counterpart.aovs)
+      if (std::filesystem::exists(stem + "." + a + ".exr")) {
+        c.exact.result.aovs[a] = readImage(stem + "." + a + ".exr");
+        aovs.push_back(a);
+      }
+    c.counterpart.aovs = aovs;
+    c.exact.result.sppCompleted = 1;
+    std::ifstream statsFile(stem + ".json");
+    try {
+      if (statsFile) c.exact.stats = nlohmann::json::parse(statsFile);
+    } catch (const std::exception&) {
+      c.exact.stats = nlohmann::json::object();  // not a stats file: the image alone
+    }
+    if (!c.exact.stats.is_object()) c.exact.stats = nlohmann::json::object();
+    c.exact.stats["reference_file"] = referenceFile;
+    refSpp = c.exact.stats.value("spp", 0);
+  }
   RenderOptions m = opt;
   m.aovs = c.counterpart.aovs;
   c.approx = runRender(m);
@@ -28,7 +57,8 @@ Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const Di
   r.preset.clear();
   r.spp = refSpp;
   r.aovs = c.counterpart.aovs;
-  if (!interruptRequested()) c.exact = runRender(r);
+  if (referenceFile.empty() && !interruptRequested()) c.exact = runRender(r);
+  c.refSpp = refSpp;
   c.complete = c.approx.result.sppCompleted > 0 && c.exact.result.sppCompleted > 0;
   if (!c.complete) return c;
   c.interrupted = c.approx.result.interrupted || c.exact.result.interrupted;
@@ -59,13 +89,14 @@ nlohmann::json Comparison::summary() const {
   s["gl_renderer"] = approx.stats["gl_renderer"];
   s["git_revision"] = approx.stats["git_revision"];
   for (auto& [name, d] : errors) s["error"][name] = d.toJson();
+  if (exact.stats.contains("reference_file")) s["exact"]["file"] = exact.stats["reference_file"];
   s["time"] = {{"method_total_ms", approx.stats["total_ms"]},
                {"method_ms_per_frame", msPerFrame},
                {"method_setup_ms", setupMs},
                {"method_wall_ms", approx.stats["wall_ms"]},
                {"method_timings_ms", approx.stats["timings_ms"]},
-               {"exact_total_ms", exact.stats["total_ms"]},
-               {"exact_wall_ms", exact.stats["wall_ms"]}};
+               {"exact_total_ms", exact.stats.value("total_ms", nlohmann::json())},
+               {"exact_wall_ms", exact.stats.value("wall_ms", nlohmann::json())}};
   s["interrupted"] = interrupted;
   return s;
 }

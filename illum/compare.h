@@ -32,7 +32,11 @@ struct Comparison {
 
 // Renders `method` (its options as given) and its counterpart with refSpp
 // samples. Throws if the method has no counterpart or refSpp is out of range.
-Comparison compareWithCounterpart(const RenderOptions& method, int refSpp, const DiffOptions& diff = {});
+// referenceFile: an existing image of the counterpart (its AOVs beside it as
+// <stem>.<aov>.exr, its stats as <stem>.json when present) instead of
+// rendering it; refused if its size differs.
+Comparison compareWithCounterpart(const RenderOptions& method, int refSpp, const DiffOptions& diff = {},
+                                  const std::string& referenceFile = "");
 
 // Writes stem.<method>.*, stem.exact.* (images, AOVs, stats), the signed
 // error images stem.error[.<aov>].exr/.png and stem.json; returns the image

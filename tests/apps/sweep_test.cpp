@@ -175,3 +175,29 @@ TEST(Sweep, BadExperimentFilesAreRefusedBeforeAnythingRenders) {
 }
 
 }  // namespace vgi
+
+namespace vgi {
+// `vgi compare --reference FILE`: the counterpart read from an earlier comparison's exact image (its
+// AOVs and stats beside it) gives the same errors as rendering it; an image of another size is refused.
+TEST(Sweep, CompareAcceptsAnExistingReference) {
+  const std::string a = tmp("cmpref_a.exr"), b = tmp("cmpref_b.exr");
+  test::CliRun first =
+      test::vgi("compare --method nearfield --spp 2 --ref-spp 16 --size 24x24 --quiet -o " + a);
+  ASSERT_EQ(first.code, 0) << first.output;
+  const std::string exact = tmp("cmpref_a.exact.exr");
+  test::CliRun second =
+      test::vgi("compare --method nearfield --spp 2 --size 24x24 --quiet --reference " + exact + " -o " + b);
+  ASSERT_EQ(second.code, 0) << second.output;
+  const nlohmann::json ja = nlohmann::json::parse(std::ifstream(tmp("cmpref_a.json")));
+  const nlohmann::json jb = nlohmann::json::parse(std::ifstream(tmp("cmpref_b.json")));
+  for (const char* ch : {"image", "indirect", "direct"})
+    EXPECT_EQ(ja["error"][ch]["relmse"], jb["error"][ch]["relmse"]) << ch;
+  EXPECT_EQ(jb["exact"]["file"], exact);
+  EXPECT_EQ(jb["exact"]["spp"], 16);
+  test::CliRun wrong =
+      test::vgi("compare --method nearfield --spp 1 --size 20x24 --quiet --reference " + exact + " -o " + b);
+  EXPECT_EQ(wrong.code, 2);
+  EXPECT_NE(wrong.output.find("24x24"), std::string::npos) << wrong.output;
+  EXPECT_NE(wrong.output.find("20x24"), std::string::npos) << wrong.output;
+}
+}  // namespace vgi
