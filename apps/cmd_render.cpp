@@ -73,6 +73,9 @@ void addRenderCommand(CLI::App& app) {
       "--checkpoints", *checkpoints,
       "sample counts (comma-separated, e.g. 1,4,16,64) at which the image so far and its stats are "
       "written too: <stem>.sppNNNNN.exr/.png/.json (convergence plots)");
+  cmd->add_option("--time-limit", opt->timeLimitS,
+                  "seconds: stop accumulating once the render (set-up included) has taken this long, after "
+                  "at least one sample; --spp is then the most samples (equal-time comparisons)");
   cmd->callback([=] {
     if (!helpModule->empty()) {
       std::printf("%s", describeMethod(*helpModule, opt->scene).c_str());
@@ -127,6 +130,9 @@ void addRenderCommand(CLI::App& app) {
     if (result.result.interrupted)
       std::fprintf(stderr, "interrupted: wrote %d of %d samples per pixel\n", result.result.sppCompleted,
                    opt->spp);
+    if (result.result.timeLimited)
+      std::fprintf(stderr, "--time-limit %g s reached after %d of %d samples per pixel\n", opt->timeLimitS,
+                   result.result.sppCompleted, opt->spp);
     std::fprintf(stderr, "%s %s %dx%d %d spp: %.1f ms (%s)\n", opt->method.c_str(), opt->scene.c_str(),
                  opt->width, opt->height, result.result.sppCompleted, result.stats["wall_ms"].get<double>(),
                  result.stats["gl_renderer"].get<std::string>().c_str());

@@ -33,11 +33,12 @@ void addSweepCommand(CLI::App& app) {
     if (ec || self.empty()) self = "vgi";
     if (*print) {
       // The renders' folders are made here, so each command runs as it is (nothing renders).
-      for (auto& r : e.references)
-        if (r.file.empty()) {
-          std::filesystem::create_directories(r.dir);
-          std::printf("%s\n", sweepCommand(r, self).c_str());
-        }
+      for (const auto* list : {&e.references, &e.curves})
+        for (auto& r : *list)
+          if (!r.args.empty()) {
+            std::filesystem::create_directories(r.dir);
+            std::printf("%s\n", sweepCommand(r, self).c_str());
+          }
       for (auto& p : e.points) {
         std::filesystem::create_directories(p.render.dir);
         std::printf("%s\n", sweepCommand(p.render, self).c_str());

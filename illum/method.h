@@ -44,6 +44,10 @@ struct RenderRequest {
   // (convergence plots); the last sample count is the result itself.
   std::vector<int> checkpoints;
   std::function<void(const struct RenderResult& sofar, Profiler& profiler)> onCheckpoint;
+  // > 0: stop after the sample that brings the frame's wall time (set-up
+  // included, GL work finished) to this many seconds (equal-time
+  // comparisons); `spp` is then the most samples. At least one sample runs.
+  double timeLimitS = 0;
   bool wants(const std::string& aov) const {
     for (auto& a : aovs)
       if (a == aov) return true;
@@ -53,8 +57,9 @@ struct RenderRequest {
 
 struct RenderResult {
   Image image;
-  int sppCompleted = 0;  // < requested when interrupted (Ctrl-C)
+  int sppCompleted = 0;  // < requested when interrupted (Ctrl-C) or time-limited
   bool interrupted = false;
+  bool timeLimited = false;                         // stopped by RenderRequest::timeLimitS
   nlohmann::json extra = nlohmann::json::object();  // method-specific stats
   std::map<std::string, Image> aovs;                // the extra outputs asked for
   std::vector<std::string> built;                   // the resources this render built (SceneResources::built)

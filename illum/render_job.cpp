@@ -150,6 +150,10 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
 
   if (!opt.checkpoints.empty() && opt.frames > 1)
     fail("--checkpoints applies to a still; --frames ", opt.frames, " renders an animation");
+  if (!(opt.timeLimitS >= 0) || !std::isfinite(opt.timeLimitS))
+    fail("--time-limit ", opt.timeLimitS, ": must be a finite number of seconds >= 0 (0 = no limit)");
+  if (opt.timeLimitS > 0 && opt.frames > 1)
+    fail("--time-limit applies to a still; --frames ", opt.frames, " renders an animation");
   for (int c : opt.checkpoints)
     if (c < 1 || c > opt.spp)
       fail("--checkpoints: ", c, " is not a sample count in [1, --spp ", opt.spp, "]");
@@ -167,6 +171,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
   req.method = info.name;
   req.accumulation = opt.accumulation;
   req.checkpoints = opt.checkpoints;
+  req.timeLimitS = opt.timeLimitS;
   req.width = opt.width;
   req.height = opt.height;
   req.spp = opt.spp;
@@ -234,6 +239,8 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
     s = run;
     s.update(renderStats(out.result, profiler));
     s["interrupted"] = out.result.interrupted;
+    s["time_limit_s"] = opt.timeLimitS;
+    s["time_limited"] = out.result.timeLimited;
     s["gl_errors"] = gl ? gl->errorCount() : 0;
     out.stats["wall_ms"] =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -32,6 +32,7 @@ struct RenderOptions {
   std::vector<std::string> aovs;                          // --aov: extra output channels
   Accumulation accumulation = Accumulation::Compensated;  // --accumulate
   std::vector<int> checkpoints;  // --checkpoints: sample counts to write the image at (a still)
+  double timeLimitS = 0;         // --time-limit: a still stops accumulating after this wall time
 };
 
 struct RenderOutput {

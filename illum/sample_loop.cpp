@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
+#include <chrono>
 #include <set>
 
 #include "core/error.h"
@@ -190,6 +191,7 @@ std::map<std::string, long> callCounts(const Profiler& p) {
 RenderResult renderFrame(Method& method, const RenderRequest& req, SceneResources& res,
                          SampleTargets& targets, ShaderLibrary* shaders, Profiler& prof) {
   VGI_CHECK(req.scene);
+  const auto start = std::chrono::steady_clock::now();
   const bool gl = shaders != nullptr;
   const SceneNeeds& needs = res.needs();
   res.update(req.time, prof);
@@ -251,12 +253,20 @@ RenderResult renderFrame(Method& method, const RenderRequest& req, SceneResource
       readImages(sofar, done + 1);
       req.onCheckpoint(sofar, prof);
     }
+    if (req.timeLimitS > 0 && done + 1 < req.spp) {
+      if (gl) glFinish();  // the wall time of work queued, not of work submitted
+      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= req.timeLimitS) {
+        result.timeLimited = true;
+        ++done;
+        break;
+      }
+    }
   }
   bar.finish();
   describe(result);
   readImages(result, done);
   result.sppCompleted = done;
-  result.interrupted = done < req.spp;
+  result.interrupted = done < req.spp && !result.timeLimited;
   method.finishFrame(frame);
   if (needs.binaryGrid) result.extra["grid"] = res.gridStats();
   if (needs.lightMaps) result.extra["light_maps"] = res.lightMapStats();

@@ -74,18 +74,24 @@ double positive(const nlohmann::json& v, const std::string& key) {
 
 std::string stemOfRender(const SweepRender& r) { return fs::path(r.stem).replace_extension("").string(); }
 
-// Render arguments shared by points and references.
+// Render arguments shared by points, references and counterpart curves.
 std::vector<std::string> renderArgs(const Experiment& e, const std::string& scene, const std::string& method,
                                     const std::vector<std::string>& set, int spp,
-                                    const std::vector<std::string>& aovs, bool checkpoints) {
+                                    const std::vector<std::string>& aovs, const std::vector<int>& checkpoints,
+                                    uint32_t seed, double timeLimitS) {
   std::vector<std::string> a = {"render", "--scene", scene, "--method", method};
   for (auto& s : set) a.insert(a.end(), {"--set", s});
   a.insert(a.end(), {"--size", std::to_string(e.width) + "x" + std::to_string(e.height), "--spp",
-                     std::to_string(spp), "--seed", std::to_string(e.seed), "--quiet"});
-  if (checkpoints && !e.checkpoints.empty()) {
+                     std::to_string(spp), "--seed", std::to_string(seed), "--quiet"});
+  if (!checkpoints.empty()) {
     std::string c;
-    for (int k : e.checkpoints) c += (c.empty() ? "" : ",") + std::to_string(k);
+    for (int k : checkpoints) c += (c.empty() ? "" : ",") + std::to_string(k);
     a.insert(a.end(), {"--checkpoints", c});
+  }
+  if (timeLimitS > 0) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.9g", timeLimitS);
+    a.insert(a.end(), {"--time-limit", t});
   }
   if (!aovs.empty()) {
     std::string c;
@@ -100,7 +106,7 @@ SweepRender makeRender(const std::string& dir, const std::string& kind, const st
   SweepRender r;
   r.id = name + "-" + hashId(args);
   r.dir = dir + "/" + kind + "/" + r.id;
-  r.stem = r.dir + (kind == "points" ? "/render.exr" : "/ref.exr");
+  r.stem = r.dir + (kind == "references" ? "/ref.exr" : "/render.exr");
   args.insert(args.end(), {"-o", r.stem});
   r.args = std::move(args);
   return r;
@@ -144,7 +150,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
   }
   checkKeys(j, "the experiment",
             {"name", "scenes", "size", "spp", "checkpoints", "seed", "aovs", "epsilon", "relative_epsilon",
-             "reference", "methods"});
+             "time_budget_s", "reference", "methods"});
   Experiment e;
   e.path = path;
   e.dir = dir;
@@ -179,6 +185,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
   }
   if (j.contains("epsilon")) e.diff.epsilon = positive(j["epsilon"], "epsilon");
   if (j.contains("relative_epsilon")) e.relativeEpsilon = positive(j["relative_epsilon"], "relative_epsilon");
+  if (j.contains("time_budget_s")) e.timeBudgetS = positive(j["time_budget_s"], "time_budget_s");
 
   // The output folder must be writable before anything renders.
   std::error_code ec;
@@ -188,10 +195,18 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
   fs::remove(probe, ec);
 
   const nlohmann::json ref = j.value("reference", nlohmann::json::object());
-  checkKeys(ref, "'reference'", {"spp", "method", "set", "file"});
-  if (ref.contains("file") && (ref.contains("method") || ref.contains("spp")))
-    fail("experiment: 'reference' has a 'file' and a method or spp: give one of them");
+  checkKeys(ref, "'reference'", {"spp", "method", "set", "file", "convergence"});
+  if (ref.contains("file") && (ref.contains("method") || ref.contains("spp") || ref.contains("convergence")))
+    fail("experiment: 'reference' has a 'file' and a method, spp or convergence: give one of them");
   const int refSpp = ref.contains("spp") ? intIn(ref["spp"], "reference.spp", 1, 1 << 20) : 256;
+  if (ref.contains("convergence")) {
+    if (!ref["convergence"].is_array() || ref["convergence"].empty())
+      fail("experiment: 'reference.convergence' = ", ref["convergence"].dump(),
+           " must be a non-empty list of sample counts");
+    std::set<int> c;
+    for (auto& v : ref["convergence"]) c.insert(intIn(v, "reference.convergence", 1, refSpp));
+    e.curveCounts.assign(c.begin(), c.end());
+  }
   if (ref.contains("file")) {
     if (e.scenes.size() != 1)
       fail("experiment: a reference 'file' stands for one scene, but 'scenes' lists ", e.scenes.size());
@@ -205,6 +220,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
     r.id = "file";
     r.stem = r.file;
     e.references.push_back(r);
+    e.curves.emplace_back();
   }
 
   if (!j["methods"].is_array() || j["methods"].empty())
@@ -272,7 +288,9 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
         std::vector<std::string> aovs;
         for (auto& a : e.aovs)
           if (std::find(outputs.begin(), outputs.end(), a) != outputs.end()) aovs.push_back(a);
-        pt.render = makeRender(dir, "points", method, renderArgs(e, scene, method, set, e.spp, aovs, true));
+        pt.render =
+            makeRender(dir, "points", method,
+                       renderArgs(e, scene, method, set, e.spp, aovs, e.checkpoints, e.seed, e.timeBudgetS));
         // The reference.
         SweepRender r;
         if (ref.contains("file")) {
@@ -299,7 +317,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
               if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
           }
           r = makeRender(dir, "references", rmethod,
-                         renderArgs(e, scene, rmethod, rset, refSpp, raovs, false));
+                         renderArgs(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
           auto same = std::find_if(e.references.begin(), e.references.end(),
                                    [&](const SweepRender& x) { return x.id == r.id; });
           if (same == e.references.end()) {
@@ -315,6 +333,15 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
             }
             e.references.push_back(r);
             pt.reference = e.references.size() - 1;
+            // Its own convergence: the same integral with the next seed, against the reference.
+            SweepRender curve;
+            if (!e.curveCounts.empty()) {
+              const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
+              curve = makeRender(
+                  dir, "curves", rmethod,
+                  renderArgs(e, scene, rmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
+            }
+            e.curves.push_back(curve);
           } else {
             pt.reference = size_t(same - e.references.begin());
           }
@@ -334,17 +361,19 @@ std::string sweepCommand(const SweepRender& r, const std::string& vgi) {
 bool sweepRenderDone(const SweepRender& r, int spp) {
   if (!r.file.empty()) return true;
   const nlohmann::json s = readJson(stemOfRender(r) + ".json");
-  return s.is_object() && s.value("spp_completed", 0) >= spp;
+  return s.is_object() && (s.value("spp_completed", 0) >= spp || s.value("time_limited", false));
+}
+
+int sweepRenderSpp(const SweepRender& r) {
+  const auto it = std::find(r.args.begin(), r.args.end(), "--spp");
+  return it != r.args.end() && it + 1 != r.args.end() ? std::atoi((it + 1)->c_str()) : 1;
 }
 
 int runSweep(const Experiment& e, const std::string& vgi) {
   std::vector<std::pair<const SweepRender*, int>> todo;
-  for (auto& r : e.references) {
-    // A reference's spp is in its arguments.
-    const auto it = std::find(r.args.begin(), r.args.end(), "--spp");
-    const int spp = it != r.args.end() ? std::atoi((it + 1)->c_str()) : 1;
-    if (!sweepRenderDone(r, spp)) todo.emplace_back(&r, spp);
-  }
+  for (const auto* list : {&e.references, &e.curves})
+    for (auto& r : *list)
+      if (!r.args.empty() && !sweepRenderDone(r, sweepRenderSpp(r))) todo.emplace_back(&r, sweepRenderSpp(r));
   for (auto& p : e.points)
     if (!sweepRenderDone(p.render, e.spp)) todo.emplace_back(&p.render, e.spp);
   int n = 0;
@@ -369,59 +398,142 @@ int runSweep(const Experiment& e, const std::string& vgi) {
   return n;
 }
 
+namespace {
+
+// <stem>.sppNNNNN of a checkpoint below the render's last sample count.
+std::string checkpointStem(const SweepRender& r, int spp) {
+  char number[24];
+  std::snprintf(number, sizeof number, ".spp%05d", spp);
+  return stemOfRender(r) + number;
+}
+
+// The rows of one render (a point or a counterpart curve): one per checkpoint
+// it reached and one for its last image, each against the reference.
+void addRows(const Experiment& e, const SweepRender& render, const std::vector<int>& checkpoints,
+             const SweepRender& ref, const nlohmann::json& base, const std::string& machine,
+             nlohmann::json& rows) {
+  const nlohmann::json last = readJson(stemOfRender(render) + ".json");
+  const int completed = last.is_object() ? last.value("spp_completed", 0) : 0;
+  std::vector<std::pair<int, std::string>> images;
+  for (int k : checkpoints)
+    if (completed == 0 || k < completed) images.emplace_back(k, checkpointStem(render, k));
+  if (completed > 0) images.emplace_back(completed, stemOfRender(render));
+  DiffOptions relative;
+  relative.relativeEpsilon = e.relativeEpsilon;
+  const std::string refStem = stemOfRender(ref);
+  for (auto& [spp, stem] : images) {
+    const nlohmann::json stats = readJson(stem + ".json");
+    if (!stats.is_object() || !fs::exists(stem + ".exr")) continue;
+    nlohmann::json row = base;
+    row["resolved_params"] = stats.value("params", nlohmann::json::object());
+    row["reference"] = ref.id;
+    row["spp"] = spp;
+    double sampleMs = 0, total = stats.value("total_ms", 0.0);
+    const nlohmann::json timings = stats.value("timings_ms", nlohmann::json::object());
+    const nlohmann::json passes = stats.value("sample_passes", nlohmann::json::array());
+    for (auto& pass : passes) sampleMs += timings.value(pass.get<std::string>(), 0.0);
+    if (!stats.contains("sample_passes")) sampleMs = total;  // CPU methods: all per sample
+    row["time_ms"] = total;
+    row["sample_ms"] = sampleMs;
+    row["setup_ms"] = std::max(0.0, total - sampleMs);
+    row["time_limited"] = stats.value("time_limited", false);
+    row["gl_renderer"] = stats.value("gl_renderer", "");
+    row["git_revision"] = stats.value("git_revision", "");
+    row["machine"] = machine;
+    std::vector<std::string> channels = {"image"};
+    channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+    for (auto& ch : channels) {
+      const std::string a = ch == "image" ? stem + ".exr" : stem + "." + ch + ".exr";
+      const std::string b = ch == "image" ? refStem + ".exr" : refStem + "." + ch + ".exr";
+      if (!fs::exists(a) || !fs::exists(b)) continue;
+      const Image ia = readImage(a), ib = readImage(b);
+      const ImageDiff d = compareImages(ia, ib, a, b, e.diff), dr = compareImages(ia, ib, a, b, relative);
+      row[ch] = {{"relmse", d.relMse},
+                 {"relmse_relative", dr.relMse},
+                 {"rel_mae", d.relMae},
+                 {"ssim", d.ssim},
+                 {"energy", (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0}};
+    }
+    rows.push_back(row);
+  }
+}
+
+}  // namespace
+
+EqualError equalErrorTime(const std::vector<CurvePoint>& curve, double error) {
+  EqualError r;
+  std::vector<CurvePoint> c;
+  for (auto& p : curve)
+    if (p.error > 0 && std::isfinite(p.error) && p.timeMs > 0) c.push_back(p);
+  if (c.empty() || !(error > 0) || !std::isfinite(error)) return r;
+  std::sort(c.begin(), c.end(), [](const CurvePoint& a, const CurvePoint& b) { return a.timeMs < b.timeMs; });
+  // Inside the curve: log-log interpolation between the two measurements around `error`.
+  for (size_t i = 0; i + 1 < c.size(); ++i) {
+    const CurvePoint &a = c[i], &b = c[i + 1];
+    if ((a.error - error) * (b.error - error) <= 0 && a.error != b.error) {
+      const double t = std::log(error / a.error) / std::log(b.error / a.error);
+      r.timeMs = a.timeMs * std::pow(b.timeMs / a.timeMs, t);
+      r.valid = true;
+      return r;
+    }
+  }
+  // Outside: Monte Carlo's rate (relMSE ∝ 1 / samples) on the per-sample time from the nearest end.
+  const CurvePoint& end = error < c.back().error ? c.back() : c.front();
+  const double setup = std::max(0.0, end.timeMs - end.sampleMs);
+  r.timeMs = setup + std::max(end.sampleMs, 1e-9) * end.error / error;
+  r.valid = true;
+  r.extrapolated = true;
+  return r;
+}
+
 nlohmann::json collectSweep(const Experiment& e) {
   nlohmann::json rows = nlohmann::json::array();
   const std::string machine = machineName();
-  DiffOptions relative;
-  relative.relativeEpsilon = e.relativeEpsilon;
-  std::vector<int> counts = e.checkpoints;
-  counts.push_back(e.spp);
+  std::vector<std::string> channels = {"image"};
+  channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+  // The counterparts' own curves first: each point's equal-error time is read off them.
+  std::vector<nlohmann::json> curveRows(e.references.size(), nlohmann::json::array());
+  for (size_t i = 0; i < e.references.size(); ++i) {
+    const SweepRender& ref = e.references[i];
+    if (e.curves[i].args.empty() || !readJson(stemOfRender(ref) + ".json").is_object()) continue;
+    std::string scene;
+    for (auto& p : e.points)
+      if (p.reference == i) scene = p.scene;
+    const std::string method = ref.args.size() > 4 ? ref.args[4] : ref.id;
+    std::string label = method;  // with its parameters: two counterparts of one scene differ in them
+    for (size_t a = 0; a + 1 < ref.args.size(); ++a)
+      if (ref.args[a] == "--set") label += " " + ref.args[a + 1];
+    const nlohmann::json base = {{"scene", scene},
+                                 {"method", method},
+                                 {"label", label + " (exact, seed " + std::to_string(e.seed + 1) + ")"},
+                                 {"role", "counterpart"},
+                                 {"params", nlohmann::json::object()},
+                                 {"point", e.curves[i].id}};
+    const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
+    addRows(e, e.curves[i], below, ref, base, machine, curveRows[i]);
+    for (auto& r : curveRows[i]) rows.push_back(r);
+  }
   for (const SweepPoint& p : e.points) {
     const SweepRender& ref = e.references[p.reference];
-    const std::string refStem = stemOfRender(ref);
-    if (ref.file.empty() && !readJson(refStem + ".json").is_object()) continue;  // not rendered yet
-    for (int spp : counts) {
-      std::string stem = stemOfRender(p.render);
-      if (spp < e.spp) {
-        char number[24];
-        std::snprintf(number, sizeof number, ".spp%05d", spp);
-        stem += number;
-      }
-      const nlohmann::json stats = readJson(stem + ".json");
-      if (!stats.is_object() || !fs::exists(stem + ".exr")) continue;
-      nlohmann::json row;
-      row["scene"] = p.scene;
-      row["method"] = p.method;
-      row["label"] = p.label;
-      row["params"] = p.params;
-      row["resolved_params"] = stats.value("params", nlohmann::json::object());
-      row["point"] = p.render.id;
-      row["reference"] = ref.id;
-      row["spp"] = spp;
-      double sampleMs = 0, total = stats.value("total_ms", 0.0);
-      const nlohmann::json timings = stats.value("timings_ms", nlohmann::json::object());
-      const nlohmann::json passes = stats.value("sample_passes", nlohmann::json::array());
-      for (auto& pass : passes) sampleMs += timings.value(pass.get<std::string>(), 0.0);
-      if (!stats.contains("sample_passes")) sampleMs = total;  // CPU methods: all per sample
-      row["time_ms"] = total;
-      row["sample_ms"] = sampleMs;
-      row["setup_ms"] = std::max(0.0, total - sampleMs);
-      row["gl_renderer"] = stats.value("gl_renderer", "");
-      row["git_revision"] = stats.value("git_revision", "");
-      row["machine"] = machine;
-      std::vector<std::string> channels = {"image"};
-      channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+    if (ref.file.empty() && !readJson(stemOfRender(ref) + ".json").is_object()) continue;  // not rendered yet
+    const nlohmann::json base = {{"scene", p.scene}, {"method", p.method}, {"label", p.label},
+                                 {"role", "point"},  {"params", p.params}, {"point", p.render.id}};
+    nlohmann::json mine = nlohmann::json::array();
+    addRows(e, p.render, e.checkpoints, ref, base, machine, mine);
+    for (auto& row : mine) {
+      // The time the exact counterpart takes to reach this row's error (relMSE, relative ε).
       for (auto& ch : channels) {
-        const std::string a = ch == "image" ? stem + ".exr" : stem + "." + ch + ".exr";
-        const std::string b = ch == "image" ? refStem + ".exr" : refStem + "." + ch + ".exr";
-        if (!fs::exists(a) || !fs::exists(b)) continue;
-        const Image ia = readImage(a), ib = readImage(b);
-        const ImageDiff d = compareImages(ia, ib, a, b, e.diff), dr = compareImages(ia, ib, a, b, relative);
-        row[ch] = {{"relmse", d.relMse},
-                   {"relmse_relative", dr.relMse},
-                   {"rel_mae", d.relMae},
-                   {"ssim", d.ssim},
-                   {"energy", (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0}};
+        if (!row.contains(ch) || curveRows[p.reference].empty()) continue;
+        std::vector<CurvePoint> curve;
+        for (auto& c : curveRows[p.reference])
+          if (c.contains(ch))
+            curve.push_back({c["time_ms"].get<double>(), c["sample_ms"].get<double>(),
+                             c[ch]["relmse_relative"].get<double>()});
+        const EqualError eq = equalErrorTime(curve, row[ch]["relmse_relative"].get<double>());
+        if (!eq.valid) continue;
+        row[ch]["equal_error_time_ms"] = eq.timeMs;
+        row[ch]["equal_error_time_ratio"] = eq.timeMs / std::max(row["time_ms"].get<double>(), 1e-9);
+        row[ch]["equal_error_extrapolated"] = eq.extrapolated;
       }
       rows.push_back(row);
     }
@@ -445,6 +557,8 @@ nlohmann::json writeSweepResults(const Experiment& e) {
                         {"checkpoints", e.checkpoints},
                         {"epsilon", e.diff.epsilon},
                         {"relative_epsilon", e.relativeEpsilon},
+                        {"time_budget_s", e.timeBudgetS},
+                        {"convergence", e.curveCounts},
                         {"points", e.points.size()},
                         {"rows", rows}};
   std::ofstream(e.dir + "/results.json") << out.dump(2) << "\n";
@@ -454,11 +568,12 @@ nlohmann::json writeSweepResults(const Experiment& e) {
     for (auto& [k, v] : p.params.items()) keys.insert(k);
   std::vector<std::string> channels = {"image"};
   channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
-  const std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy"};
+  std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy"};
+  if (!e.curveCounts.empty()) metrics.push_back("equal_error_time_ratio");
   std::ofstream csv(e.dir + "/results.csv");
-  csv << "scene,method,label,point";
+  csv << "scene,method,label,role,point";
   for (auto& k : keys) csv << "," << k;
-  csv << ",spp,time_ms,sample_ms,setup_ms";
+  csv << ",spp,time_ms,sample_ms,setup_ms,time_limited";
   for (auto& ch : channels)
     for (auto& m : metrics) csv << "," << ch << "_" << m;
   csv << ",gl_renderer,machine,git_revision\n";
@@ -470,14 +585,15 @@ nlohmann::json writeSweepResults(const Experiment& e) {
   };
   for (auto& r : rows) {
     csv << field(r["scene"]) << "," << field(r["method"]) << "," << field(r["label"]) << ","
-        << field(r["point"]);
+        << field(r["role"]) << "," << field(r["point"]);
     for (auto& k : keys) csv << "," << field(r["params"].value(k, ""));
     csv << "," << r["spp"].get<int>() << "," << r["time_ms"].get<double>() << ","
-        << r["sample_ms"].get<double>() << "," << r["setup_ms"].get<double>();
+        << r["sample_ms"].get<double>() << "," << r["setup_ms"].get<double>() << ","
+        << (r["time_limited"].get<bool>() ? "true" : "false");
     for (auto& ch : channels)
       for (auto& m : metrics) {
         csv << ",";
-        if (r.contains(ch)) csv << r[ch][m].get<double>();
+        if (r.contains(ch) && r[ch].contains(m)) csv << r[ch][m].get<double>();
       }
     csv << "," << field(r["gl_renderer"]) << "," << field(r["machine"]) << "," << field(r["git_revision"])
         << "\n";

@@ -13,14 +13,19 @@
 //     "seed": 1,                              // optional (1)
 //     "aovs": ["indirect"],                   // channels compared besides the image (optional)
 //     "epsilon": 0.01, "relative_epsilon": 0.1,   // relMSE's ε and the relative one (optional)
-//     "reference": {"spp": 256}               // each method's registry counterpart (default),
+//     "time_budget_s": 10,                    // optional: every point stops after this wall time
+//                                             // (`vgi render --time-limit`; spp is then the most)
+//     "reference": {"spp": 256,               // each method's registry counterpart (default),
+//                   "convergence": [1, 4, 16]}   // optional: the counterpart's own curve (next seed)
+//                                             // at these counts → each row's equal-error time ratio
 //                | {"method": "reference", "set": {"integrator": "ao"}, "spp": 256}
 //                | {"file": "ref.exr"}        // an existing image (one scene; its AOVs next to it)
 //     "methods": [ {"method": "nearfield", "label": "NF",
 //                   "set": {"shadow_res": 256},             // fixed parameters
 //                   "grid": {"voxels": [64, 128], "rays": [4, 16]}} ]   // every combination
 //   }
-// Layout of the output folder DIR: DIR/references/<id>/ref.*, DIR/points/<id>/render.*
+// Layout of the output folder DIR: DIR/references/<id>/ref.*, DIR/curves/<id>/render.* (the
+// counterparts' convergence renders), DIR/points/<id>/render.*
 // (plus render.sppNNNNN.* per checkpoint) and command.txt in each; a render is
 // done when its JSON says every sample completed (a killed one is run again).
 #pragma once
@@ -56,7 +61,10 @@ struct Experiment {
   std::vector<std::string> aovs;  // besides the image
   DiffOptions diff;               // relMSE's ε (absolute)
   double relativeEpsilon = 0.1;   // the second relMSE's relative ε
+  double timeBudgetS = 0;         // > 0: each point's wall-time limit
+  std::vector<int> curveCounts;   // the counterparts' convergence checkpoints (sorted; last = its spp)
   std::vector<SweepRender> references;
+  std::vector<SweepRender> curves;  // per reference: its convergence render (no args: none)
   std::vector<SweepPoint> points;
 };
 
@@ -68,16 +76,36 @@ Experiment loadExperiment(const std::string& path, const std::string& dir);
 
 // The shell command of a render (`vgi` = the binary's path), quoted.
 std::string sweepCommand(const SweepRender& r, const std::string& vgi);
-// Whether a render finished (its JSON has every sample).
+// Whether a render finished (its JSON has every sample, or its time limit was reached).
 bool sweepRenderDone(const SweepRender& r, int spp);
+// The --spp of a render's arguments.
+int sweepRenderSpp(const SweepRender& r);
 // Runs every reference and point not done yet, one process at a time; returns
 // how many ran. Prints progress lines to stderr.
 int runSweep(const Experiment& e, const std::string& vgi);
 
+// The equal-error time: how long a render whose error-vs-time curve is
+// `curve` takes to reach `error` — log-log interpolation between the two
+// measurements around it, or, outside the curve, the nearest end's set-up
+// plus its per-sample time scaled by Monte Carlo's rate (error ∝ 1/samples,
+// for relMSE) and `extrapolated` set.
+struct CurvePoint {
+  double timeMs, sampleMs, error;
+};
+struct EqualError {
+  bool valid = false, extrapolated = false;
+  double timeMs = 0;
+};
+EqualError equalErrorTime(const std::vector<CurvePoint>& curve, double error);
+
 // One row per point and checkpoint, for whatever finished: the point's scene,
 // method, label, parameters, spp, time (total, per-sample passes, set-up) and
 // per channel relMSE (ε and relative ε), rel. MAE, SSIM and energy against its
-// reference, plus GL_RENDERER, machine, git revision.
+// reference, plus GL_RENDERER, machine, git revision. With a convergence
+// curve, its rows come first (role "counterpart") and each point row's
+// channels carry equal_error_time_ms / _ratio (the counterpart's time to the
+// same relMSE with the relative ε, over the point's time; > 1: the method is
+// faster) and equal_error_extrapolated.
 nlohmann::json collectSweep(const Experiment& e);
 // Writes DIR/results.json and DIR/results.csv from collectSweep's rows;
 // returns the rows.

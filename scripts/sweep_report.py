@@ -4,11 +4,13 @@
 Usage: sweep_report.py DIR   (vgi sweep runs it after writing DIR/results.json)
 
 Writes into DIR:
-  convergence_<scene>.png/.pdf  log-log error (rel. MAE of the image, and of each
-                                AOV) against time, one line per point, a marker per checkpoint
+  convergence_<scene>.png/.pdf  log-log error (rel. MAE, and relMSE with the relative ε, of the
+                                image and of each AOV) against time, one line per point, a marker
+                                per checkpoint; the exact counterparts' own curves dashed
   passes_<scene>.png/.pdf       per-pass time of each point's final render (one frame)
   pareto.md, pareto.tex         per scene, the points on the error-vs-time Pareto front
-                                (Markdown and LaTeX booktabs)
+                                (Markdown and LaTeX booktabs), with each point's equal-error time
+                                ratio to its counterpart where the experiment has its curve
   report.html                   the tables, the plots and, per point, its image, the
                                 reference and the error map with an A/B slider and a crop
 Needs Debian's python3-matplotlib (scripts/setup.sh installs it).
@@ -28,6 +30,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def slug(s):
     return re.sub(r"[^A-Za-z0-9]+", "_", s).strip("_") or "scene"
+
+
+def is_curve(row):
+    return row.get("role") == "counterpart"
+
+
+def render_dir(row):
+    return ("curves/" if is_curve(row) else "points/") + row["point"]
 
 
 def point_name(row):
@@ -75,20 +85,29 @@ def main(out):
             points.setdefault(r["point"], []).append(r)
         for p in points.values():
             p.sort(key=lambda r: r["spp"])
-        # Convergence: error vs time, one line per point.
-        fig, axes = plt.subplots(1, len(chans), figsize=(5.5 * len(chans), 4.2), squeeze=False)
-        for ax, ch in zip(axes[0], chans):
-            for pid, p in sorted(points.items(), key=lambda kv: point_name(kv[1][0])):
-                xs = [r["time_ms"] for r in p if ch in r]
-                ys = [max(r[ch]["rel_mae"], 1e-6) for r in p if ch in r]
-                if xs:
-                    ax.plot(xs, ys, marker="o", ms=3, label=point_name(p[0]))
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            ax.set_xlabel("time (ms, set-up + samples)")
-            ax.set_ylabel(f"rel. MAE ({ch})")
-            ax.set_title(f"{scene}: {ch}")
-            ax.grid(True, which="both", alpha=0.3)
+        # Convergence: error vs time, one line per point (the counterparts' own curves dashed).
+        metrics = [("rel_mae", "rel. MAE"), ("relmse_relative", f"relMSE (ε {res['relative_epsilon']} × mean)")]
+        fig, axes = plt.subplots(len(metrics), len(chans), figsize=(5.5 * len(chans), 4.0 * len(metrics)),
+                                 squeeze=False)
+        for mi, (metric, mname) in enumerate(metrics):
+            for ax, ch in zip(axes[mi], chans):
+                dashes = iter([("--", "x"), (":", "+"), ("-.", "1"), ((0, (5, 1, 1, 1)), "2")] * 8)
+                for pid, p in sorted(points.items(), key=lambda kv: (is_curve(kv[1][0]), point_name(kv[1][0]))):
+                    xs = [r["time_ms"] for r in p if ch in r]
+                    ys = [max(r[ch][metric], 1e-9) for r in p if ch in r]
+                    if xs:
+                        if is_curve(p[0]):
+                            ls, mk = next(dashes)
+                            style = dict(color="black", ls=ls, marker=mk)
+                        else:
+                            style = dict(marker="o")
+                        ax.plot(xs, ys, ms=3, label=point_name(p[0]), **style)
+                ax.set_xscale("log")
+                ax.set_yscale("log")
+                ax.set_xlabel("time (ms, set-up + samples)")
+                ax.set_ylabel(f"{mname} ({ch})")
+                ax.set_title(f"{scene}: {ch}")
+                ax.grid(True, which="both", alpha=0.3)
         axes[0][0].legend(fontsize=6, loc="best")
         fig.tight_layout()
         conv = f"convergence_{slug(scene)}"
@@ -97,11 +116,12 @@ def main(out):
         plt.close(fig)
         # Per-pass time of each point's final render.
         finals = [max(p, key=lambda r: r["spp"]) for p in points.values()]
+        images = [r for r in finals if not is_curve(r)]
         passes = []
         timings = []
         for r in finals:
             t = {}
-            path = os.path.join(out, "points", r["point"], "render.json")
+            path = os.path.join(out, render_dir(r), "render.json")
             if os.path.exists(path):
                 with open(path) as f:
                     t = json.load(f).get("timings_ms", {})
@@ -127,30 +147,47 @@ def main(out):
             fig.savefig(os.path.join(out, f"{bars}.{ext}"), dpi=110)
         plt.close(fig)
         # Pareto tables: per reference (the points that estimate the same integral).
-        front = []
+        # Each point's final render and every row on its reference's Pareto front (marked).
+        listed = []
         for ref in sorted({r["reference"] for r in srows}):
-            front += pareto([r for r in srows if r["reference"] == ref], "image")
-        md.append(f"\n## {scene}: Pareto front (image rel. MAE against time, per reference)\n")
-        head = "| point | spp | time ms | " + " | ".join(f"{c} rel. MAE | {c} relMSE" for c in chans) + " |"
-        md.append(head)
-        md.append("|" + "---|" * (3 + 2 * len(chans)))
-        tex.append("\\begin{tabular}{l r r " + "r r " * len(chans) + "}\n\\toprule")
-        tex.append("point & spp & time (ms) & " + " & ".join(f"{c} rel.\\ MAE & {c} relMSE" for c in chans)
+            group = [r for r in srows if r["reference"] == ref]
+            front = {id(r) for r in pareto(group, "image")}
+            finals_here = {id(r) for r in finals if r["reference"] == ref}
+            listed += sorted(((r, id(r) in front) for r in group if id(r) in front or id(r) in finals_here),
+                             key=lambda x: x[0]["time_ms"])
+        ratio = any("equal_error_time_ratio" in r.get(c, {}) for r in srows for c in chans)
+        md.append(f"\n## {scene}: each point's final render and the Pareto front (*: no row is both faster and more accurate in image rel. MAE; per reference)\n")
+        if ratio:
+            md.append("Equal-error time ratio: the exact counterpart's time to the same relMSE (relative ε) "
+                      "over the point's time (> 1: the method is faster; ~ extrapolated at 1/samples).\n")
+        cols = []
+        for c in chans:
+            cols += [f"{c} rel. MAE", f"{c} relMSE"] + ([f"{c} equal-error time ratio"] if ratio else [])
+        cols = ["Pareto"] + cols
+        md.append("| point | spp | time ms | " + " | ".join(cols) + " |")
+        md.append("|" + "---|" * (3 + len(cols)))
+        tex.append("\\begin{tabular}{l r r c " + "r " * (len(cols) - 1) + "}\n\\toprule")
+        tex.append("point & spp & time (ms) & " + " & ".join(x.replace(". ", ".\\ ") for x in cols)
                    + " \\\\\n\\midrule")
-        for r in front:
-            cells = []
-            tcells = []
+        table = []
+        for r, on_front in listed:
+            cells = ["*" if on_front else ""]
             for c in chans:
                 if c in r:
                     cells += [f"{r[c]['rel_mae']:.4f}", f"{r[c]['relmse']:.5f}"]
+                    if ratio:
+                        q = r[c].get("equal_error_time_ratio")
+                        cells.append("" if q is None else
+                                     ("~" if r[c].get("equal_error_extrapolated") else "") + f"{q:.3g}")
                 else:
-                    cells += ["", ""]
-            tcells = [x for x in cells]
+                    cells += ["", ""] + ([""] if ratio else [])
+            tcells = [x.replace("~", "$\\sim$").replace("*", "$\\bullet$") for x in cells]
             md.append(f"| {point_name(r)} | {r['spp']} | {r['time_ms']:.0f} | " + " | ".join(cells) + " |")
             name = point_name(r).replace("_", "\\_").replace("&", "\\&").replace("%", "\\%")
             tex.append(f"{name} & {r['spp']} & {r['time_ms']:.0f} & " + " & ".join(tcells) + " \\\\")
+            table.append((point_name(r), r["spp"], r["time_ms"], cells))
         tex.append("\\bottomrule\n\\end{tabular}\n")
-        sections.append((scene, conv, bars, front, chans, finals))
+        sections.append((scene, conv, bars, (cols, table), images))
     with open(os.path.join(out, "pareto.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     with open(os.path.join(out, "pareto.tex"), "w") as f:
@@ -200,16 +237,17 @@ def write_html(out, res, sections):
          "<a href='results.json'>results.json</a>; tables: <a href='pareto.md'>pareto.md</a>, "
          "<a href='pareto.tex'>pareto.tex</a>.</p>"]
     n = 0
-    for scene, conv, bars, front, chans, finals in sections:
+    for scene, conv, bars, pareto_table, finals in sections:
         h.append(f"<h2>{html.escape(scene)}</h2>")
         h.append(f"<img class='plot' src='{conv}.png' alt='convergence'><br>")
         h.append(f"<img class='plot' src='{bars}.png' alt='per-pass time'>")
-        h.append("<h3>Pareto front (image rel. MAE against time, per reference)</h3><table><tr><th>point</th><th>spp</th>"
-                 "<th>time ms</th>" + "".join(f"<th>{c} rel. MAE</th><th>{c} relMSE</th>" for c in chans) + "</tr>")
-        for r in front:
-            h.append(f"<tr><td>{html.escape(point_name(r))}</td><td>{r['spp']}</td><td>{r['time_ms']:.0f}</td>"
-                     + "".join(f"<td>{r[c]['rel_mae']:.4f}</td><td>{r[c]['relmse']:.5f}</td>" if c in r
-                               else "<td></td><td></td>" for c in chans) + "</tr>")
+        cols, table = pareto_table
+        h.append("<h3>Each point's final render and the Pareto front (*), image rel. MAE against time, per reference</h3>"
+                 "<table><tr><th>point</th>"
+                 "<th>spp</th><th>time ms</th>" + "".join(f"<th>{html.escape(c)}</th>" for c in cols) + "</tr>")
+        for name, spp, ms, cells in table:
+            h.append(f"<tr><td>{html.escape(name)}</td><td>{spp}</td><td>{ms:.0f}</td>"
+                     + "".join(f"<td>{html.escape(x)}</td>" for x in cells) + "</tr>")
         h.append("</table><h3>Images</h3><p>Drag the slider: left of it the first image, right of it the "
                  "second; choose either from the method, the reference and the error map (red = too bright, "
                  "blue = too dark). Right: a 4× crop of the centre.</p>")

@@ -3,6 +3,9 @@
 // row per point and checkpoint, errors fall with the checkpoints, a second run
 // renders nothing, a point whose render was killed is rendered again; bad
 // experiment files are refused before anything renders.
+#include "illum/sweep.h"
+
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -38,27 +41,48 @@ size_t countOf(const std::string& s, const std::string& what) {
 TEST(Sweep, SmokeExperimentRunsCollectsAndResumes) {
   const std::string dir = tmp("sweep_smoke");
   std::filesystem::remove_all(dir);
-  // The command list: one reference per counterpart (nearfield's, voxel_ao's), one render per point.
+  // The command list: one reference per counterpart (nearfield's, voxel_ao's) and its convergence
+  // render (the next seed), one render per point.
   CliRun list = vgi("sweep " + kSmoke + " -o " + dir + " --print-commands");
   ASSERT_EQ(list.code, 0) << list.output;
-  EXPECT_EQ(lines(list.output).size(), 6u) << list.output;
-  EXPECT_EQ(countOf(list.output, "integrator=nearfield"), 1u) << list.output;
-  EXPECT_EQ(countOf(list.output, "integrator=ao"), 1u) << list.output;
+  EXPECT_EQ(lines(list.output).size(), 8u) << list.output;
+  EXPECT_EQ(countOf(list.output, "integrator=nearfield"), 2u) << list.output;
+  EXPECT_EQ(countOf(list.output, "integrator=ao"), 2u) << list.output;
+  EXPECT_EQ(countOf(list.output, "'--seed' '2'"), 2u) << list.output;
   for (auto& f : std::filesystem::recursive_directory_iterator(dir))
     EXPECT_TRUE(f.is_directory()) << "--print-commands wrote " << f.path();
 
   CliRun run = vgi("sweep " + kSmoke + " -o " + dir);
   ASSERT_EQ(run.code, 0) << run.output;
-  EXPECT_NE(run.output.find("[6/6]"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("[8/8]"), std::string::npos) << run.output;
   const std::vector<std::string> csv = lines(std::string(
       std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(dir + "/results.csv")), {}));
-  ASSERT_EQ(csv.size(), 1u + 4u * 4u) << "header + 4 points x (checkpoints 1, 2, 4 and 8 spp)";
-  EXPECT_EQ(csv[0].rfind("scene,method,label,point,rays,voxels,spp,time_ms", 0), 0u) << csv[0];
+  ASSERT_EQ(csv.size(), 1u + 2u * 3u + 4u * 4u)
+      << "header + 2 counterpart curves x (1, 4, 16 spp) + 4 points x (checkpoints 1, 2, 4 and 8 spp)";
+  EXPECT_EQ(csv[0].rfind("scene,method,label,role,point,rays,voxels,spp,time_ms", 0), 0u) << csv[0];
   EXPECT_NE(csv[0].find("image_relmse,image_relmse_relative,image_rel_mae,image_ssim"), std::string::npos);
   EXPECT_NE(csv[0].find("indirect_rel_mae"), std::string::npos) << csv[0];
+  EXPECT_NE(csv[0].find("image_equal_error_time_ratio"), std::string::npos) << csv[0];
   const nlohmann::json results = nlohmann::json::parse(std::ifstream(dir + "/results.json"));
-  const nlohmann::json& rows = results["rows"];
+  nlohmann::json rows = nlohmann::json::array(), curves = nlohmann::json::array();
+  for (auto& r : results["rows"]) (r["role"] == "counterpart" ? curves : rows).push_back(r);
   ASSERT_EQ(rows.size(), 16u);
+  ASSERT_EQ(curves.size(), 6u);
+  // The counterparts' own curves converge to their references (the same integral, another seed), and
+  // every point row has its equal-error time: the counterpart's time to the point's relMSE.
+  std::map<std::string, std::map<int, nlohmann::json>> byCurve;
+  for (auto& r : curves) byCurve[r["point"]][r["spp"].get<int>()] = r;
+  ASSERT_EQ(byCurve.size(), 2u);
+  for (auto& [curve, bySpp] : byCurve)
+    EXPECT_LT(bySpp[16]["image"]["relmse_relative"].get<double>(),
+              bySpp[1]["image"]["relmse_relative"].get<double>() / 4)
+        << curve;
+  for (auto& r : rows) {
+    ASSERT_TRUE(r["image"].contains("equal_error_time_ratio")) << r.dump();
+    EXPECT_GT(r["image"]["equal_error_time_ms"].get<double>(), 0.0);
+    EXPECT_NEAR(r["image"]["equal_error_time_ratio"].get<double>(),
+                r["image"]["equal_error_time_ms"].get<double>() / r["time_ms"].get<double>(), 1e-9);
+  }
   // Each point's error falls from 1 to 8 samples (both methods are consistent estimators of their limit,
   // whose noise dominates at 32² and few samples); time grows with the samples.
   std::map<std::string, std::map<int, nlohmann::json>> byPoint;
@@ -116,18 +140,71 @@ TEST(Sweep, SmokeExperimentRunsCollectsAndResumes) {
   EXPECT_EQ(std::filesystem::last_write_time(point + "/render.json"), stamp);
   CliRun collect = vgi("sweep " + kSmoke + " -o " + dir + " --collect");
   ASSERT_EQ(collect.code, 0) << collect.output;
-  EXPECT_NE(collect.output.find("16 rows"), std::string::npos) << collect.output;
+  EXPECT_NE(collect.output.find("22 rows"), std::string::npos) << collect.output;
 
   // A killed point (its final JSON never written) is rendered again, alone; meanwhile only the
   // checkpoints it finished are collected.
   std::filesystem::remove(point + "/render.json");
   CliRun partial = vgi("sweep " + kSmoke + " -o " + dir + " --collect");
   ASSERT_EQ(partial.code, 0) << partial.output;
-  EXPECT_NE(partial.output.find("15 rows"), std::string::npos) << "its checkpoints stay: " << partial.output;
+  EXPECT_NE(partial.output.find("21 rows"), std::string::npos) << "its checkpoints stay: " << partial.output;
   CliRun resume = vgi("sweep " + kSmoke + " -o " + dir);
   ASSERT_EQ(resume.code, 0) << resume.output;
   EXPECT_NE(resume.output.find("[1/1]"), std::string::npos) << resume.output;
-  EXPECT_NE(resume.output.find("16 rows"), std::string::npos) << resume.output;
+  EXPECT_NE(resume.output.find("22 rows"), std::string::npos) << resume.output;
+}
+
+// The equal-error time against hand-computed curves: log-log interpolation inside, Monte Carlo's
+// 1/samples rate on the per-sample time outside.
+TEST(Sweep, EqualErrorTimeInterpolatesAndExtrapolates) {
+  // relMSE = 1 / samples, 10 ms set-up, 2 ms per sample.
+  std::vector<CurvePoint> curve;
+  for (int n : {1, 4, 16, 64}) curve.push_back({10.0 + 2.0 * n, 2.0 * n, 1.0 / n});
+  EqualError inside = equalErrorTime(curve, 1.0 / 4);
+  ASSERT_TRUE(inside.valid);
+  EXPECT_FALSE(inside.extrapolated);
+  EXPECT_NEAR(inside.timeMs, 18.0, 1e-9);  // a measured point
+  EqualError between = equalErrorTime(curve, 0.5);
+  EXPECT_NEAR(between.timeMs, std::sqrt(12.0 * 18.0), 1e-9);  // halfway in log error: geometric mean
+  EqualError below = equalErrorTime(curve, 1.0 / 256);        // better than the curve's end
+  ASSERT_TRUE(below.valid);
+  EXPECT_TRUE(below.extrapolated);
+  EXPECT_NEAR(below.timeMs, 10.0 + 2.0 * 256, 1e-9);
+  EqualError above = equalErrorTime(curve, 2.0);  // worse than one sample: half a sample's time
+  EXPECT_TRUE(above.extrapolated);
+  EXPECT_NEAR(above.timeMs, 10.0 + 1.0, 1e-9);
+  EXPECT_FALSE(equalErrorTime({}, 0.1).valid);
+  EXPECT_FALSE(equalErrorTime(curve, 0.0).valid);
+  EXPECT_FALSE(equalErrorTime(curve, std::nan("")).valid);
+}
+
+// A time budget: every point stops after its wall time (`vgi render --time-limit`), with fewer samples
+// than the most it may take, is done (not re-rendered) and is collected at the samples it reached.
+TEST(Sweep, TimeBudgetStopsEachPoint) {
+  const std::string dir = tmp("sweep_budget"), file = tmp("sweep_budget.json");
+  std::filesystem::remove_all(dir);
+  std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 1000000,
+    "time_budget_s": 0.5, "reference": {"method": "reference", "set": {"integrator": "direct"}, "spp": 4},
+    "methods": [{"method": "reference", "set": {"integrator": "direct"}}]})";
+  CliRun run = vgi("sweep " + file + " -o " + dir);
+  ASSERT_EQ(run.code, 0) << run.output;
+  const nlohmann::json rows = nlohmann::json::parse(std::ifstream(dir + "/results.json"))["rows"];
+  ASSERT_EQ(rows.size(), 1u) << rows.dump();
+  EXPECT_TRUE(rows[0]["time_limited"].get<bool>());
+  EXPECT_GE(rows[0]["spp"].get<int>(), 1);
+  EXPECT_LT(rows[0]["spp"].get<int>(), 1000000);
+  EXPECT_GE(rows[0]["time_ms"].get<double>(), 100.0);
+  CliRun again = vgi("sweep " + file + " -o " + dir);
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_EQ(again.output.find("[1/"), std::string::npos) << "a time-limited render is done: " << again.output;
+
+  // The render option itself: bad values are refused naming it.
+  for (const char* bad : {"-1", "nan", "inf"}) {
+    CliRun r = vgi(std::string("render --method direct --size 8x8 --quiet --time-limit ") + bad + " -o " +
+                   tmp("tl.exr"));
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--time-limit"), std::string::npos) << r.output;
+  }
 }
 
 TEST(Sweep, BadExperimentFilesAreRefusedBeforeAnythingRenders) {
@@ -159,6 +236,14 @@ TEST(Sweep, BadExperimentFilesAreRefusedBeforeAnythingRenders) {
   refused("bad_spp",
           R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 0, "methods": [{"method": "direct"}]})",
           {"spp", "0"});
+  refused("bad_budget", head + R"("time_budget_s": -1, "methods": [{"method": "direct"}]})",
+          {"time_budget_s", "-1"});
+  refused("empty_convergence",
+          head + R"("reference": {"convergence": []}, "methods": [{"method": "nearfield"}]})",
+          {"reference.convergence", "[]"});
+  refused("convergence_beyond_spp",
+          head + R"("reference": {"spp": 8, "convergence": [4, 9]}, "methods": [{"method": "nearfield"}]})",
+          {"reference.convergence", "9"});
   // A reference image of another size.
   const std::string ref = tmp("sweep_ref_8x8.exr");
   ASSERT_EQ(vgi("render --method direct --size 8x8 --spp 1 --quiet -o " + ref).code, 0);
