@@ -28,6 +28,9 @@ void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args) {
          "sample accumulation: compensated (Kahan sums on the GPU: no drift over 10^5 samples) or plain "
          "(one float add per sample)")
       ->capture_default_str();
+  cmd->add_option("--camera", args.camera,
+                  "replace the scene's camera: px,py,pz,tx,ty,tz,ux,uy,uz[,fov_y_deg] (a render's stats JSON "
+                  "has it as camera.option)");
   cmd->add_flag("--quiet", args.quiet, "no progress bars");
 }
 
@@ -35,6 +38,7 @@ void applyRenderArgs(const RenderArgs& args, RenderOptions& opt) {
   parseSize(args.size, opt.width, opt.height);
   opt.gl = parseGlBackend(args.gl);
   opt.progress = !args.quiet;
+  if (!args.camera.empty()) opt.camera = parseCamera(args.camera);
   if (args.accumulate == "compensated")
     opt.accumulation = Accumulation::Compensated;
   else if (args.accumulate == "plain")

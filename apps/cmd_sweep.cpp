@@ -52,6 +52,11 @@ void addSweepCommand(CLI::App& app) {
     // The plots, Pareto tables and HTML report (Debian's python3 with python3-matplotlib).
     const std::string script =
         (std::filesystem::path(defaultShaderDir()).parent_path() / "scripts" / "sweep_report.py").string();
+    if (!std::filesystem::is_regular_file(script))
+      fail("sweep: the report script '", script,
+           "' is missing (it lives in scripts/ beside the shader folder; VGI_SHADER_DIR moves both); the "
+           "results are written: run scripts/sweep_report.py ",
+           e.dir, " by hand");
     const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
     const std::string report = python + " '" + script + "' '" + e.dir + "' 2>&1";
     if (std::system(report.c_str()) != 0)

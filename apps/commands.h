@@ -15,6 +15,10 @@ struct ImageDiff;
 namespace vgi::app {
 // Thrown after a Ctrl-C'd command has written what it completed: vgi exits 130.
 struct Interrupted {};
+// Thrown by a command that finished but failed (the viewer after a failed screenshot or GL errors).
+struct ExitCode {
+  int code;
+};
 
 // "a,b,,c" → {a, b, c}.
 inline std::vector<std::string> splitList(const std::string& s) {
@@ -29,7 +33,7 @@ inline std::vector<std::string> splitList(const std::string& s) {
 // spp, seed, threads, time, gl, quiet), read into `opt` and the raw texts of
 // `args`; applyRenderArgs() parses the texts (size, GL backend) into `opt`.
 struct RenderArgs {
-  std::string size, gl = "auto", accumulate = "compensated";
+  std::string size, gl = "auto", accumulate = "compensated", camera;
   bool quiet = false;
 };
 void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args);
@@ -49,4 +53,5 @@ void addVoxelizeCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addCompareCommand(CLI::App& app);
 void addSweepCommand(CLI::App& app);
+void addViewCommand(CLI::App& app);
 }  // namespace vgi::app

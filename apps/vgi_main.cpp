@@ -93,6 +93,7 @@ int main(int argc, char** argv) {
   vgi::app::addDiffCommand(app);
   vgi::app::addCompareCommand(app);
   vgi::app::addSweepCommand(app);
+  vgi::app::addViewCommand(app);
   vgi::app::addVoxelizeCommand(app);
   vgi::app::addBenchCommand(app);
   try {
@@ -103,6 +104,8 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const vgi::app::Interrupted&) {
     return 130;
+  } catch (const vgi::app::ExitCode& e) {
+    return e.code;
   } catch (const vgi::Error& e) {
     std::fprintf(stderr, "vgi: error: %s\n", e.what());
     return 2;

@@ -21,10 +21,11 @@ void ParamSet::setFromString(const std::string& kv, const std::string& origin) {
 }
 
 const ParamSet::Value* ParamSet::lookup(const std::string& key, const std::string& type,
-                                        const std::string& def, const std::string& doc) {
+                                        const std::string& def, const std::string& doc, double lo, double hi,
+                                        const std::vector<std::string>& allowed) {
   bool known = false;
   for (auto& d : docs_) known |= d.key == key;
-  if (!known) docs_.push_back({key, type, def, doc});
+  if (!known) docs_.push_back({key, type, def, doc, lo, hi, allowed});
   auto it = values_.find(key);
   if (it == values_.end()) return nullptr;
   it->second.used = true;
@@ -49,14 +50,14 @@ T parseNumber(const std::string& key, const std::string& origin, const std::stri
 }  // namespace
 
 int ParamSet::getInt(const std::string& key, int def, const std::string& doc, int lo, int hi) {
-  const Value* p = lookup(key, "int", std::to_string(def), doc);
+  const Value* p = lookup(key, "int", std::to_string(def), doc, lo, hi);
   int v = p ? parseNumber(key, p->origin, p->text, lo, hi) : def;
   resolved_[key] = v;
   return v;
 }
 
 float ParamSet::getFloat(const std::string& key, float def, const std::string& doc, float lo, float hi) {
-  const Value* p = lookup(key, "float", std::to_string(def), doc);
+  const Value* p = lookup(key, "float", std::to_string(def), doc, lo, hi);
   float v = p ? parseNumber(key, p->origin, p->text, lo, hi) : def;
   resolved_[key] = v;
   return v;
@@ -85,7 +86,7 @@ std::string ParamSet::getString(const std::string& key, const std::string& def, 
     type.clear();
     for (auto& a : allowed) type += (type.empty() ? "" : "|") + a;
   }
-  if (auto* p = lookup(key, type, def, doc)) {
+  if (auto* p = lookup(key, type, def, doc, 0, 0, allowed)) {
     v = p->text;
     if (!allowed.empty()) {
       bool ok = false;

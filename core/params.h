@@ -11,6 +11,8 @@ namespace vgi {
 
 struct ParamDoc {
   std::string key, type, defaultValue, doc;
+  double lo = 0, hi = 0;             // int and float: the accepted range
+  std::vector<std::string> allowed;  // a string of these values only (empty: any)
 };
 
 class ParamSet {
@@ -45,7 +47,8 @@ class ParamSet {
     bool used = false;
   };
   const Value* lookup(const std::string& key, const std::string& type, const std::string& def,
-                      const std::string& doc);
+                      const std::string& doc, double lo = 0, double hi = 0,
+                      const std::vector<std::string>& allowed = {});
   std::map<std::string, Value> values_;
   std::vector<ParamDoc> docs_;
   nlohmann::json resolved_ = nlohmann::json::object();

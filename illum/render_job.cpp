@@ -73,6 +73,8 @@ std::unique_ptr<Method> createMethod(const RenderOptions& opt, const MethodInfo&
   return method;
 }
 
+}  // namespace
+
 // What one render() reports: samples, per-pass timings, the method's stats.
 nlohmann::json renderStats(const RenderResult& r, const Profiler& profiler) {
   const nlohmann::json timings = profiler.timingsMs();
@@ -85,6 +87,8 @@ nlohmann::json renderStats(const RenderResult& r, const Profiler& profiler) {
           {"built", r.built},
           {"sample_passes", r.samplePasses}};
 }
+
+namespace {
 
 // A method that returns a non-finite pixel must never have it written as if
 // it were an image (a NaN turns black in the PNG and poisons every metric).
@@ -125,8 +129,59 @@ nlohmann::json resolveParameters(const RenderOptions& opt, std::vector<std::stri
   return params.resolved();
 }
 
-RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
-                       const CheckpointSink& onCheckpoint) {
+namespace {
+bool sameNeeds(const SceneNeeds& a, const SceneNeeds& b) {
+  auto lm = [](const std::optional<LightMapNeed>& x, const std::optional<LightMapNeed>& y) {
+    return bool(x) == bool(y) && (!x || (x->resolution == y->resolution && x->reflective == y->reflective));
+  };
+  auto bg = [](const std::optional<BinaryGridNeed>& x, const std::optional<BinaryGridNeed>& y) {
+    return bool(x) == bool(y) && (!x || (x->resolution == y->resolution && x->voxelizer == y->voxelizer &&
+                                         x->cubicCells == y->cubicCells));
+  };
+  auto vg = [](const std::optional<ValueGridNeed>& x, const std::optional<ValueGridNeed>& y) {
+    return bool(x) == bool(y) && (!x || (x->channels == y->channels && x->mips == y->mips));
+  };
+  return a.gbuffer == b.gbuffer && lm(a.lightMaps, b.lightMaps) && bg(a.binaryGrid, b.binaryGrid) &&
+         vg(a.valueGrids, b.valueGrids) && a.orMipPyramid == b.orMipPyramid && a.bvh == b.bvh;
+}
+}  // namespace
+
+std::string cameraText(const Camera& c) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.position.x,
+                c.position.y, c.position.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y, c.up.z,
+                c.fovYDeg);
+  return buf;
+}
+
+Camera parseCamera(const std::string& text) {
+  std::vector<float> v;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) {
+    char* end = nullptr;
+    const float x = std::strtof(item.c_str(), &end);
+    if (item.empty() || *end || !std::isfinite(x))
+      fail("--camera '", text, "': '", item, "' is not a finite number");
+    v.push_back(x);
+  }
+  if (v.size() != 9 && v.size() != 10)
+    fail("--camera '", text, "': expected px,py,pz,tx,ty,tz,ux,uy,uz[,fov_y_deg] (", v.size(),
+         " numbers given)");
+  Camera c;
+  c.position = {v[0], v[1], v[2]};
+  c.target = {v[3], v[4], v[5]};
+  c.up = {v[6], v[7], v[8]};
+  if (v.size() == 10) c.fovYDeg = v[9];
+  if (glm::length(c.target - c.position) < 1e-12f)
+    fail("--camera '", text, "': the position and the target coincide");
+  if (glm::length(glm::cross(c.target - c.position, c.up)) < 1e-12f * glm::length(c.target - c.position))
+    fail("--camera '", text, "': the up vector is parallel to the view direction (or zero)");
+  if (!(c.fovYDeg > 0.0f && c.fovYDeg < 180.0f))
+    fail("--camera '", text, "': the vertical field of view ", c.fovYDeg, " must be in (0, 180) degrees");
+  return c;
+}
+
+void checkRenderOptions(const RenderOptions& opt) {
   if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
   if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
     fail("--size ", opt.width, "x", opt.height, ": each side must be in [1, 16384]");
@@ -134,85 +189,160 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
   if (opt.frames < 1 || opt.frames > 100000) fail("--frames ", opt.frames, ": must be in [1, 100000]");
   if (!std::isfinite(opt.time) || !std::isfinite(opt.timeStep))
     fail("--time ", opt.time, " / --time-step ", opt.timeStep, ": must be finite numbers");
-  findMethod(opt.method);  // a misspelt --method is named before the scene is loaded
-  Scene scene = loadScene(opt.scene);
-  const MethodInfo& info = findMethod(methodFor(opt, scene));
-  ParamSet params;
-  std::unique_ptr<Method> method = createMethod(opt, info, scene, params);
-  const std::vector<std::string> outputs = method->outputs();
-  for (auto& a : opt.aovs)
-    if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) {
-      std::string known;
-      for (auto& o : outputs) known += (known.empty() ? "" : ", ") + o;
-      fail("--aov '", a, "': method '", info.name, "' has no such output (",
-           known.empty() ? "it has none besides the image" : "known: " + known, ")");
-    }
-
-  if (!opt.checkpoints.empty() && opt.frames > 1)
-    fail("--checkpoints applies to a still; --frames ", opt.frames, " renders an animation");
   if (!(opt.timeLimitS >= 0) || !std::isfinite(opt.timeLimitS))
     fail("--time-limit ", opt.timeLimitS, ": must be a finite number of seconds >= 0 (0 = no limit)");
   if (opt.timeLimitS > 0 && opt.frames > 1)
     fail("--time-limit applies to a still; --frames ", opt.frames, " renders an animation");
+  if (!opt.checkpoints.empty() && opt.frames > 1)
+    fail("--checkpoints applies to a still; --frames ", opt.frames, " renders an animation");
   for (int c : opt.checkpoints)
     if (c < 1 || c > opt.spp)
       fail("--checkpoints: ", c, " is not a sample count in [1, --spp ", opt.spp, "]");
+}
 
-  std::unique_ptr<GlContext> gl;
-  std::unique_ptr<ShaderLibrary> shaders;
-  if (info.needsGl) {
-    gl = GlContext::create(opt.gl);
-    shaders = std::make_unique<ShaderLibrary>();
+RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options) {
+  checkRenderOptions(opt_);
+  findMethod(opt_.method);  // a misspelt --method is named before the scene is loaded
+  scene_ = loadScene(opt_.scene);
+  if (opt_.camera) scene_.camera = *opt_.camera;
+  gl_ = gl;
+  setMethod(methodFor(opt_, scene_), opt_.set, opt_.aovs);
+}
+
+RenderJob::~RenderJob() = default;
+
+void RenderJob::setMethod(const std::string& name, const std::vector<std::string>& set,
+                          const std::vector<std::string>& aovs) {
+  RenderOptions o = opt_;
+  o.method = name;
+  o.set = set;
+  o.aovs = aovs;
+  const MethodInfo& info = findMethod(o.method);
+  auto params = std::make_unique<ParamSet>();
+  std::unique_ptr<Method> method = createMethod(o, info, scene_, *params);
+  const std::vector<std::string> outputs = method->outputs();
+  for (auto& a : o.aovs)
+    if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) {
+      std::string known;
+      for (auto& out : outputs) known += (known.empty() ? "" : ", ") + out;
+      fail("--aov '", a, "': method '", info.name, "' has no such output (",
+           known.empty() ? "it has none besides the image" : "known: " + known, ")");
+    }
+  if (info.needsGl && !gl_) {
+    ownGl_ = GlContext::create(o.gl);
+    gl_ = ownGl_.get();
   }
+  if (info.needsGl && !shaders_) shaders_ = std::make_unique<ShaderLibrary>();
   const SceneNeeds needs = method->needs();
   needs.check(info.name, info.needsGl);
-  RenderRequest req;
-  req.scene = &scene;
-  req.method = info.name;
-  req.accumulation = opt.accumulation;
-  req.checkpoints = opt.checkpoints;
-  req.timeLimitS = opt.timeLimitS;
-  req.width = opt.width;
-  req.height = opt.height;
-  req.spp = opt.spp;
-  req.seed = opt.seed;
-  req.threads = opt.threads;
-  req.progress = opt.progress && opt.frames == 1;
-  req.aovs = opt.aovs;
-  for (int f = 0; f < opt.frames; ++f) req.frameTimes.push_back(opt.time + float(f) * opt.timeStep);
-  // The framework's, kept across the frames of an animation.
-  SceneResources resources(scene, needs, gl.get(), shaders.get(), req.frameTimes, opt.threads);
-  SampleTargets targets;
+  // Everything checked: the new method replaces the old one. The resources are kept when the new
+  // method needs the same (a parameter that does not change them, e.g. the ray count).
+  ShaderLibrary* shaders = info.needsGl ? shaders_.get() : nullptr;
+  if (!resources_ || !sameNeeds(resources_->needs(), needs) || (info_ && info_->needsGl != info.needsGl)) {
+    resources_.reset();
+    resources_ = std::make_unique<SceneResources>(scene_, needs, info.needsGl ? gl_ : nullptr, shaders,
+                                                  frameTimes(), opt_.threads);
+  }
+  method_ = std::move(method);
+  params_ = std::move(params);
+  info_ = &info;
+  opt_.method = name;
+  opt_.set = set;
+  opt_.aovs = aovs;
+}
 
-  // What describes the run (the same for every frame).
+void RenderJob::rebuildResources() {
+  const SceneNeeds needs = resources_->needs();
+  resources_.reset();
+  resources_ = std::make_unique<SceneResources>(scene_, needs, info_->needsGl ? gl_ : nullptr, shaders(),
+                                                frameTimes(), opt_.threads);
+}
+
+std::vector<float> RenderJob::frameTimes() const {
+  std::vector<float> t;
+  for (int f = 0; f < opt_.frames; ++f) t.push_back(opt_.time + float(f) * opt_.timeStep);
+  return t;
+}
+
+RenderRequest RenderJob::request() const {
+  RenderRequest req;
+  req.scene = &scene_;
+  req.method = info_->name;
+  req.accumulation = opt_.accumulation;
+  req.checkpoints = opt_.checkpoints;
+  req.timeLimitS = opt_.timeLimitS;
+  req.width = opt_.width;
+  req.height = opt_.height;
+  req.spp = opt_.spp;
+  req.seed = opt_.seed;
+  req.threads = opt_.threads;
+  req.progress = opt_.progress && opt_.frames == 1;
+  req.aovs = opt_.aovs;
+  req.frameTimes = frameTimes();
+  req.time = opt_.time;
+  return req;
+}
+
+ShaderLibrary* RenderJob::shaders() const { return info_->needsGl ? shaders_.get() : nullptr; }
+GlContext* RenderJob::gl() const { return info_->needsGl ? gl_ : nullptr; }
+
+nlohmann::json RenderJob::describe() const {
+  const SceneNeeds needs = method_->needs();
+  GlContext* gl = this->gl();
   nlohmann::json run;
-  run["method"] = info.name;
-  run["scene"] = opt.scene;
-  run["width"] = opt.width;
-  run["height"] = opt.height;
-  run["spp"] = opt.spp;
-  run["seed"] = opt.seed;
-  run["time"] = opt.time;
+  run["method"] = info_->name;
+  run["scene"] = opt_.scene;
+  run["width"] = opt_.width;
+  run["height"] = opt_.height;
+  run["spp"] = opt_.spp;
+  run["seed"] = opt_.seed;
+  run["time"] = opt_.time;
+  const Camera& c = scene_.camera;
+  run["camera"] = {{"position", {c.position.x, c.position.y, c.position.z}},
+                   {"target", {c.target.x, c.target.y, c.target.z}},
+                   {"up", {c.up.x, c.up.y, c.up.z}},
+                   {"fov_y_deg", c.fovYDeg},
+                   {"option", cameraText(c)}};
   run["gl_renderer"] = gl ? gl->renderer() : "none (CPU method)";
   run["gl_version"] = gl ? gl->version() : "";
   run["gl_backend"] = gl ? gl->backendName() : "";
   run["cpu_threads_available"] = std::thread::hardware_concurrency();
-  run["params"] = params.resolved();
-  run["preset"] = opt.preset;
+  run["params"] = params_->resolved();
+  run["preset"] = opt_.preset;
   run["git_revision"] = gitRevision();
   run["vgi_version"] = version();
   run["shader_dir"] = defaultShaderDir();
-  run["triangles"] = scene.triangleCount();
-  run["degenerate_triangles_dropped"] = scene.report.degenerateTrianglesDropped;
-  run["warnings"] = scene.report.warnings;
+  run["triangles"] = scene_.triangleCount();
+  run["degenerate_triangles_dropped"] = scene_.report.degenerateTrianglesDropped;
+  run["warnings"] = scene_.report.warnings;
   run["needs"] = needs.names();
-  run["accumulation"] = opt.accumulation == Accumulation::Compensated ? "compensated" : "plain";
-  run["aovs"] = opt.aovs;
-  auto checkGl = [&] {
-    if (gl && gl->errorCount() > 0)
-      fail("method '", info.name, "' raised ", gl->errorCount(), " GL error(s) on ", gl->renderer(),
-           "; the image is not trustworthy and was not written");
-  };
+  run["accumulation"] = opt_.accumulation == Accumulation::Compensated ? "compensated" : "plain";
+  run["aovs"] = opt_.aovs;
+  return run;
+}
+
+void RenderJob::checkGl() const {
+  GlContext* gl = this->gl();
+  if (gl && gl->errorCount() > 0)
+    fail("method '", info_->name, "' raised ", gl->errorCount(), " GL error(s) on ", gl->renderer(),
+         "; the image is not trustworthy and was not written");
+}
+
+void RenderJob::checkFiniteResult(const RenderResult& r) const { checkFinite(r, info_->name); }
+
+RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
+                       const CheckpointSink& onCheckpoint) {
+  RenderJob job(opt);
+  const MethodInfo& info = job.info();
+  const Scene& scene = job.scene();
+  Method* method = &job.method();
+  SceneResources& resources = job.resources();
+  SampleTargets& targets = job.targets();
+  ShaderLibrary* shaders = job.shaders();
+  GlContext* gl = job.gl();
+  RenderRequest req = job.request();
+  nlohmann::json run = job.describe();
+  auto checkGl = [&] { job.checkGl(); };
 
   RenderOutput out;
   const auto t0 = std::chrono::steady_clock::now();
@@ -232,7 +362,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         onCheckpoint(sofar.sppCompleted, c);
       };
-    out.result = renderFrame(*method, req, resources, targets, shaders.get(), profiler);
+    out.result = renderFrame(*method, req, resources, targets, shaders, profiler);
     profiler.resolve(true);
     checkFinite(out.result, info.name);
     nlohmann::json& s = out.stats;
@@ -265,7 +395,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
     req.time = req.frameTimes[size_t(f)];
     const auto tf = std::chrono::steady_clock::now();
     Profiler profiler(gl != nullptr);
-    out.result = renderFrame(*method, req, resources, targets, shaders.get(), profiler);
+    out.result = renderFrame(*method, req, resources, targets, shaders, profiler);
     profiler.resolve(true);
     checkGl();
     checkFinite(out.result, info.name);

@@ -5,12 +5,14 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/gl_context.h"
 #include "core/output_files.h"
 #include "illum/method.h"
+#include "illum/sample_loop.h"
 
 namespace vgi {
 
@@ -33,6 +35,7 @@ struct RenderOptions {
   Accumulation accumulation = Accumulation::Compensated;  // --accumulate
   std::vector<int> checkpoints;  // --checkpoints: sample counts to write the image at (a still)
   double timeLimitS = 0;         // --time-limit: a still stops accumulating after this wall time
+  std::optional<Camera> camera;  // --camera: replaces the scene's
 };
 
 struct RenderOutput {
@@ -42,6 +45,66 @@ struct RenderOutput {
 
 // Parses "WxH" (each 1..16384); throws naming the option and value.
 void parseSize(const std::string& text, int& width, int& height);
+// --camera text: "px,py,pz,tx,ty,tz,ux,uy,uz[,fov_y_deg]" (the stats JSON's camera.option);
+// throws naming the value when it is not a camera.
+Camera parseCamera(const std::string& text);
+std::string cameraText(const Camera& camera);
+// Throws naming the option when a value of `options` is out of range.
+void checkRenderOptions(const RenderOptions& options);
+
+// What a render is made of, built from its options: the scene (its camera
+// replaced by --camera), the method with its parameters (preset, then --set),
+// a GL context if the method needs one (or the caller's: the viewer's
+// window), the scene resources and the sample targets. runRender drives it;
+// the viewer keeps one, moves the scene's camera, and swaps the method.
+class RenderJob {
+ public:
+  explicit RenderJob(const RenderOptions& options, GlContext* gl = nullptr);
+  ~RenderJob();
+  RenderJob(const RenderJob&) = delete;
+  RenderJob& operator=(const RenderJob&) = delete;
+
+  // Replaces the method (and its --set and outputs); everything is checked
+  // before anything changes, so on an error the job keeps the old method.
+  // The scene resources are kept when the new method needs the same ones.
+  void setMethod(const std::string& name, const std::vector<std::string>& set,
+                 const std::vector<std::string>& aovs);
+
+  // Builds the scene resources again on the next frame (after the scene's lights changed).
+  void rebuildResources();
+
+  const RenderOptions& options() const { return opt_; }
+  RenderOptions& options() { return opt_; }  // size, spp, seed, time: read by request()
+  Scene& scene() { return scene_; }
+  const Scene& scene() const { return scene_; }
+  const MethodInfo& info() const { return *info_; }
+  Method& method() { return *method_; }
+  const ParamSet& params() const { return *params_; }
+  SceneResources& resources() { return *resources_; }
+  SampleTargets& targets() { return targets_; }
+  ShaderLibrary* shaders() const;  // set for a GL method
+  GlContext* gl() const;           // set for a GL method
+  // The request of a still with these options (time = options().time).
+  RenderRequest request() const;
+  // The stats of the run (method, scene, size, camera, resolved parameters, GL renderer, revision, …).
+  nlohmann::json describe() const;
+  // Throws if the GL context counted errors; throws if the result has a non-finite pixel.
+  void checkGl() const;
+  void checkFiniteResult(const RenderResult& result) const;
+
+ private:
+  std::vector<float> frameTimes() const;
+  RenderOptions opt_;
+  Scene scene_;
+  std::unique_ptr<GlContext> ownGl_;
+  GlContext* gl_ = nullptr;
+  std::unique_ptr<ShaderLibrary> shaders_;
+  const MethodInfo* info_ = nullptr;
+  std::unique_ptr<ParamSet> params_;
+  std::unique_ptr<Method> method_;
+  std::unique_ptr<SceneResources> resources_;
+  SampleTargets targets_;
+};
 
 // Renders a still (options.frames == 1: the returned output holds the image)
 // or an animation: then `onFrame` receives each frame as it completes (its
@@ -54,6 +117,10 @@ using FrameSink = std::function<void(int frame, const RenderOutput& output)>;
 using CheckpointSink = std::function<void(int spp, const RenderOutput& output)>;
 RenderOutput runRender(const RenderOptions& options, const FrameSink& onFrame = {},
                        const CheckpointSink& onCheckpoint = {});
+
+// What one frame reports: samples, per-pass timings (GPU where measured),
+// calls, the method's stats, what was built, the per-sample passes.
+nlohmann::json renderStats(const RenderResult& result, const Profiler& profiler);
 
 // The method's parameters as a render with these options would resolve them
 // (scene-dependent defaults included), without rendering; `outputs`, when

@@ -188,88 +188,116 @@ std::map<std::string, long> callCounts(const Profiler& p) {
 }
 }  // namespace
 
+namespace {
+const RenderRequest& checkedRequest(const RenderRequest& req) {
+  VGI_CHECK(req.scene);
+  return req;
+}
+}  // namespace
+
+SampleSession::SampleSession(Method& method, const RenderRequest& req, SceneResources& res,
+                             SampleTargets& targets, ShaderLibrary* shaders, Profiler& prof)
+    : method_(method),
+      req_(req),
+      res_(res),
+      targets_(targets),
+      shaders_(shaders),
+      prof_(prof),
+      frame_(checkedRequest(req), res, targets, shaders, prof, extra_) {
+  res_.update(req_.time, prof_);
+  targets_.prepare(req_, shaders_ != nullptr, res_.needs().gbuffer, shaders_);
+  method_.prepareFrame(frame_);
+  // The passes timed from here on are the per-sample passes (the read-back
+  // of a checkpoint is not one).
+  before_ = callCounts(prof_);
+}
+
+bool SampleSession::addSample() {
+  const bool gl = shaders_ != nullptr;
+  const SceneNeeds& needs = res_.needs();
+  if (gl) {
+    frame_.camera = frameCamera(req_.scene->camera,
+                                needs.gbuffer ? res_.gpuScene().bounds() : req_.scene->bounds(req_.time),
+                                req_.width, req_.height, done_, req_.spp);
+    if (needs.gbuffer) {
+      auto s = prof_.scope("gbuffer");
+      targets_.gbuffer()->render(res_.gpuScene(), frame_.camera);
+    }
+  }
+  res_.beginSample(done_, req_.seed, prof_);
+  if (!method_.addSample(frame_, done_)) return false;  // stopped inside the sample: not counted
+  {
+    auto s = prof_.scope("accumulate");
+    if (gl)
+      targets_.glFilm()->accumulate(req_.accumulation);
+    else
+      targets_.cpuFilm()->accumulate(req_.threads);
+  }
+  if (gl) prof_.resolve(false);
+  ++done_;
+  return true;
+}
+
+Image SampleSession::read(const std::string& channel) const {
+  auto s = prof_.scope("readback");
+  return shaders_ ? targets_.glFilm()->read(channel, done_) : targets_.cpuFilm()->read(channel, done_);
+}
+
+// `built` is what the resources allocated; the per-sample passes are those timed since the constructor.
+void SampleSession::describe(RenderResult& r) const {
+  const std::map<std::string, long> after = callCounts(prof_);
+  for (auto& [name, n] : after) {
+    auto b = before_.find(name);
+    if (name != "readback" && n > (b == before_.end() ? 0 : b->second)) r.samplePasses.push_back(name);
+  }
+  if (targets_.gbuffer()) r.built.push_back("gbuffer");
+  for (auto& b : res_.built()) r.built.push_back(b);
+}
+
+RenderResult SampleSession::sofar() const {
+  RenderResult r;
+  r.sppCompleted = done_;
+  describe(r);
+  r.image = read("image");
+  for (auto& a : req_.aovs) r.aovs[a] = read(a);
+  return r;
+}
+
+RenderResult SampleSession::finish() {
+  RenderResult r = sofar();
+  r.interrupted = done_ < req_.spp;
+  method_.finishFrame(frame_);
+  r.extra = extra_;
+  if (res_.needs().binaryGrid) r.extra["grid"] = res_.gridStats();
+  if (res_.needs().lightMaps) r.extra["light_maps"] = res_.lightMapStats();
+  return r;
+}
+
 RenderResult renderFrame(Method& method, const RenderRequest& req, SceneResources& res,
                          SampleTargets& targets, ShaderLibrary* shaders, Profiler& prof) {
-  VGI_CHECK(req.scene);
   const auto start = std::chrono::steady_clock::now();
-  const bool gl = shaders != nullptr;
-  const SceneNeeds& needs = res.needs();
-  res.update(req.time, prof);
-  targets.prepare(req, gl, needs.gbuffer, shaders);
-
-  RenderResult result;
-  Frame frame(req, res, targets, shaders, prof, result.extra);
-  method.prepareFrame(frame);
-
-  auto readImages = [&](RenderResult& r, int samples) {
-    auto s = prof.scope("readback");
-    auto read = [&](const std::string& c) {
-      return gl ? targets.glFilm()->read(c, samples) : targets.cpuFilm()->read(c, samples);
-    };
-    r.image = read("image");
-    for (auto& a : req.aovs) r.aovs[a] = read(a);
-  };
-
-  const std::map<std::string, long> before = callCounts(prof);
-  // The passes timed inside the loop are the per-sample passes (the read-back
-  // of a checkpoint is not one); `built` is what the resources allocated.
-  auto describe = [&](RenderResult& r) {
-    const std::map<std::string, long> after = callCounts(prof);
-    for (auto& [name, n] : after) {
-      auto b = before.find(name);
-      if (name != "readback" && n > (b == before.end() ? 0 : b->second)) r.samplePasses.push_back(name);
-    }
-    if (targets.gbuffer()) r.built.push_back("gbuffer");
-    for (auto& b : res.built()) r.built.push_back(b);
-  };
+  SampleSession session(method, req, res, targets, shaders, prof);
   std::set<int> checkpoints(req.checkpoints.begin(), req.checkpoints.end());
   ProgressBar bar(req.method.empty() ? "render" : req.method, req.spp);
-  int done = 0;
-  for (; done < req.spp && !interruptRequested(); ++done) {
-    if (gl) {
-      frame.camera = frameCamera(req.scene->camera,
-                                 needs.gbuffer ? res.gpuScene().bounds() : req.scene->bounds(req.time),
-                                 req.width, req.height, done, req.spp);
-      if (needs.gbuffer) {
-        auto s = prof.scope("gbuffer");
-        targets.gbuffer()->render(res.gpuScene(), frame.camera);
-      }
-    }
-    res.beginSample(done, req.seed, prof);
-    if (!method.addSample(frame, done)) break;  // stopped inside the sample: not counted
-    {
-      auto s = prof.scope("accumulate");
-      if (gl)
-        targets.glFilm()->accumulate(req.accumulation);
-      else
-        targets.cpuFilm()->accumulate(req.threads);
-    }
-    if (gl) prof.resolve(false);
+  bool timeLimited = false;
+  while (session.samples() < req.spp && !interruptRequested()) {
+    if (!session.addSample()) break;
+    const int done = session.samples();
     if (req.progress) bar.advance();
-    if (req.onCheckpoint && checkpoints.count(done + 1) && done + 1 < req.spp) {
-      RenderResult sofar;
-      sofar.sppCompleted = done + 1;
-      describe(sofar);
-      readImages(sofar, done + 1);
-      req.onCheckpoint(sofar, prof);
-    }
-    if (req.timeLimitS > 0 && done + 1 < req.spp) {
-      if (gl) glFinish();  // the wall time of work queued, not of work submitted
+    if (req.onCheckpoint && checkpoints.count(done) && done < req.spp)
+      req.onCheckpoint(session.sofar(), prof);
+    if (req.timeLimitS > 0 && done < req.spp) {
+      if (shaders) glFinish();  // the wall time of work queued, not of work submitted
       if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= req.timeLimitS) {
-        result.timeLimited = true;
-        ++done;
+        timeLimited = true;
         break;
       }
     }
   }
   bar.finish();
-  describe(result);
-  readImages(result, done);
-  result.sppCompleted = done;
-  result.interrupted = done < req.spp && !result.timeLimited;
-  method.finishFrame(frame);
-  if (needs.binaryGrid) result.extra["grid"] = res.gridStats();
-  if (needs.lightMaps) result.extra["light_maps"] = res.lightMapStats();
+  RenderResult result = session.finish();
+  result.timeLimited = timeLimited;
+  result.interrupted = result.interrupted && !timeLimited;
   return result;
 }
 

@@ -137,6 +137,42 @@ class Frame {
 // gets the sample image (the pass must not write it: uWriteIndirect/uWriteDirect).
 void bindSampleAndSplitImages(const Frame& f);
 
+// The loop of one frame, a sample at a time, for a caller that decides when
+// to stop (renderFrame; the viewer, which shows the image after each sample
+// and starts a new session when the camera or a parameter changes). The
+// constructor makes the resources current, prepares the targets (the film
+// cleared) and the method; the request must outlive the session.
+class SampleSession {
+ public:
+  SampleSession(Method& method, const RenderRequest& request, SceneResources& resources,
+                SampleTargets& targets, ShaderLibrary* shaders, Profiler& profiler);
+  SampleSession(const SampleSession&) = delete;
+  SampleSession& operator=(const SampleSession&) = delete;
+  // Renders and accumulates sample samples() (the jittered camera of
+  // request.spp samples); false if the method stopped inside it (Ctrl-C: not counted).
+  bool addSample();
+  int samples() const { return done_; }
+  // The mean of the samples so far of "image" or an output asked for (rows top-down).
+  Image read(const std::string& channel) const;
+  // The result with the samples so far: images, stats, `built`, `samplePasses`.
+  RenderResult finish();
+  // The result so far without finishing the frame (a checkpoint).
+  RenderResult sofar() const;
+
+ private:
+  void describe(RenderResult& r) const;
+  Method& method_;
+  const RenderRequest& req_;
+  SceneResources& res_;
+  SampleTargets& targets_;
+  ShaderLibrary* shaders_;
+  Profiler& prof_;
+  nlohmann::json extra_ = nlohmann::json::object();
+  Frame frame_;
+  std::map<std::string, long> before_;
+  int done_ = 0;
+};
+
 // One frame of `method`: the loop described at the top. `shaders` is set for GL methods.
 RenderResult renderFrame(Method& method, const RenderRequest& request, SceneResources& resources,
                          SampleTargets& targets, ShaderLibrary* shaders, Profiler& profiler);

@@ -89,27 +89,41 @@ def main(out):
         metrics = [("rel_mae", "rel. MAE"), ("relmse_relative", f"relMSE (ε {res['relative_epsilon']} × mean)")]
         fig, axes = plt.subplots(len(metrics), len(chans), figsize=(5.5 * len(chans), 4.0 * len(metrics)),
                                  squeeze=False)
+        # One style per point in every panel (a point missing from a channel keeps its colour elsewhere).
+        order = sorted(points.items(), key=lambda kv: (is_curve(kv[1][0]), point_name(kv[1][0])))
+        cmap = plt.get_cmap("tab10" if sum(not is_curve(p[0]) for _, p in order) <= 10 else "tab20")
+        dashes = [("--", "x"), (":", "+"), ("-.", "1"), ((0, (5, 1, 1, 1)), "2"), ((0, (1, 3)), "3")]
+        styles, ncolor, ncurve = {}, 0, 0
+        for pid, p in order:
+            if is_curve(p[0]):
+                ls, mk = dashes[ncurve % len(dashes)]
+                shade = 0.45 * (ncurve // len(dashes)) / max(1, len(order) // len(dashes))
+                styles[pid] = dict(color=(shade, shade, shade), ls=ls, marker=mk)
+                ncurve += 1
+            else:
+                styles[pid] = dict(color=cmap(ncolor % cmap.N), marker="o")
+                ncolor += 1
+        handles = {}
         for mi, (metric, mname) in enumerate(metrics):
             for ax, ch in zip(axes[mi], chans):
-                dashes = iter([("--", "x"), (":", "+"), ("-.", "1"), ((0, (5, 1, 1, 1)), "2")] * 8)
-                for pid, p in sorted(points.items(), key=lambda kv: (is_curve(kv[1][0]), point_name(kv[1][0]))):
+                for pid, p in order:
                     xs = [r["time_ms"] for r in p if ch in r]
                     ys = [max(r[ch][metric], 1e-9) for r in p if ch in r]
                     if xs:
-                        if is_curve(p[0]):
-                            ls, mk = next(dashes)
-                            style = dict(color="black", ls=ls, marker=mk)
-                        else:
-                            style = dict(marker="o")
-                        ax.plot(xs, ys, ms=3, label=point_name(p[0]), **style)
+                        (line,) = ax.plot(xs, ys, ms=3, label=point_name(p[0]), **styles[pid])
+                        handles.setdefault(pid, line)
                 ax.set_xscale("log")
                 ax.set_yscale("log")
                 ax.set_xlabel("time (ms, set-up + samples)")
                 ax.set_ylabel(f"{mname} ({ch})")
                 ax.set_title(f"{scene}: {ch}")
                 ax.grid(True, which="both", alpha=0.3)
-        axes[0][0].legend(fontsize=6, loc="best")
-        fig.tight_layout()
+        legend = [(handles[pid], point_name(p[0])) for pid, p in order if pid in handles]
+        ncol = 2 if len(chans) > 1 else 1
+        rows_legend = (len(legend) + ncol - 1) // ncol
+        fig.legend([h for h, _ in legend], [n for _, n in legend], loc="lower center", ncol=ncol, fontsize=7,
+                   frameon=False)
+        fig.tight_layout(rect=(0, min(0.5, 0.017 * rows_legend + 0.005), 1, 1))
         conv = f"convergence_{slug(scene)}"
         for ext in ("png", "pdf"):
             fig.savefig(os.path.join(out, f"{conv}.{ext}"), dpi=110)
@@ -224,7 +238,7 @@ def write_html(out, res, sections):
     h = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
          f"<title>vgi sweep: {html.escape(res['experiment'])}</title>",
          "<style>body{font:14px sans-serif;margin:24px;max-width:1200px}"
-         "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 6px;font-size:12px}"
+         ".plot{max-width:100%}table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 6px;font-size:12px}"
          ".ab{position:relative;display:inline-block;image-rendering:pixelated}"
          ".ab img{display:block;width:384px}.ab .top{position:absolute;left:0;top:0}"
          ".crop{width:192px;height:192px;overflow:hidden;display:inline-block;margin-left:8px}"

@@ -1,0 +1,8 @@
+// vgi view (apps/viewer.cpp): one triangle that covers the window.
+#version 450 core
+out vec2 vUv;
+void main() {
+  const vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+  vUv = p;
+  gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}

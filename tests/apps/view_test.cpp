@@ -1,0 +1,160 @@
+// vgi view (apps/viewer.h) under Xvfb with Mesa, as a script or a recording
+// runs it: its screenshots equal `vgi render` of the same camera and
+// parameters, a replayed script (orbit, change `rays`, switch to voxel_ao)
+// gives what `vgi render` gives at each step, the panel lists the method's
+// parameters, bad input is reported and the viewer keeps running, GL errors
+// are 0.
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "apps/cli_util.h"
+#include "core/image.h"
+#include "core/image_metrics.h"
+
+namespace vgi {
+
+using test::CliRun;
+using test::tmp;
+using test::vgi;
+
+namespace {
+
+bool haveXvfb() { return std::filesystem::exists("/usr/bin/xvfb-run"); }
+
+// `vgi view …` in a fresh Xvfb server.
+CliRun underXvfb(const std::string& args) {
+  const std::string cmd = std::string("/usr/bin/xvfb-run -a -s '-screen 0 1280x1024x24' ") + VGI_BINARY +
+                          " view " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  for (size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+  const int status = pclose(p);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+ImageDiff difference(const std::string& a, const std::string& b) {
+  return compareImages(readImage(a), readImage(b), a, b, DiffOptions{});
+}
+
+nlohmann::json stats(const std::string& json) { return nlohmann::json::parse(std::ifstream(json)); }
+
+}  // namespace
+
+// --frames 16 --screenshot of the Cornell box with nearfield equals vgi render --spp 16 of the same view.
+TEST(View, FramesScreenshotEqualsRender) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string shot = tmp("view_frames.exr"), ref = tmp("view_frames_ref.exr");
+  CliRun v = underXvfb("--size 64x64 --frames 16 --screenshot " + shot);
+  ASSERT_EQ(v.code, 0) << v.output;
+  EXPECT_NE(v.output.find("0 GL errors"), std::string::npos) << v.output;
+  ASSERT_EQ(vgi("render --size 64x64 --spp 16 --quiet -o " + ref).code, 0);
+  const ImageDiff d = difference(shot, ref);
+  EXPECT_LT(d.relMse, 0.001);
+  EXPECT_EQ(d.relMae, 0.0) << "the same samples in the same order: bit-identical";
+  const nlohmann::json s = stats(tmp("view_frames.json"));
+  EXPECT_EQ(s["spp"], 16);
+  EXPECT_EQ(s["method"], "nearfield");
+  EXPECT_NE(s["gl_renderer"].get<std::string>().find("llvmpipe"), std::string::npos) << s["gl_renderer"];
+  EXPECT_EQ(s["viewer"]["gl_errors"], 0);
+}
+
+// A script: orbit, rays=8, 4 frames, screenshot; bad input (a value out of range, an unknown method, a
+// scene that does not load) is reported and the viewer keeps running; voxel_ao, 4 frames, screenshot.
+// Each screenshot's JSON carries the `vgi render` command that renders it again, and it does.
+TEST(View, ScriptReplaysLikeRenderAndSurvivesBadInput) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = tmp("view_script");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string script = dir + "/script.json";
+  std::ofstream(script) << R"([{"orbit": [25, 10]}, {"set": {"rays": 8}}, {"frames": 4},
+    {"screenshot": ")" << dir
+                        << R"(/nf.exr"},
+    {"set": {"rays": 0}}, {"method": "nearfeld"}, {"scene": "/nonexistent/scene.obj"}, {"frames": 1},
+    {"method": "voxel_ao"}, {"frames": 4}, {"screenshot": ")"
+                        << dir << R"(/ao.exr"}, {"window_screenshot": ")" << dir << R"(/window.png"}])";
+  CliRun v = underXvfb("--size 48x48 --script " + script);
+  ASSERT_EQ(v.code, 0) << v.output;
+  for (const char* needle :
+       {"rays", "out of range", "nearfeld", "/nonexistent/scene.obj", "3 errors reported", "0 GL errors"})
+    EXPECT_NE(v.output.find(needle), std::string::npos) << needle << " in " << v.output;
+
+  for (const char* name : {"nf", "ao"}) {
+    const nlohmann::json s = stats(dir + "/" + name + ".json");
+    // The command that renders it again (camera, parameters, samples), written to another file.
+    std::string cmd = s["command"].get<std::string>();
+    ASSERT_EQ(cmd.rfind("vgi render ", 0), 0u) << cmd;
+    const std::string again = dir + "/" + name + "_render.exr";
+    CliRun r = vgi(cmd.substr(4) + " --quiet -o " + again);
+    ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
+    const ImageDiff d = difference(dir + "/" + name + ".exr", again);
+    EXPECT_LT(d.relMse, 0.001) << name;
+    EXPECT_EQ(d.relMae, 0.0) << name << ": bit-identical";
+    EXPECT_EQ(s["spp"], 4);
+    EXPECT_EQ(s["viewer"]["gl_errors"], 0);
+  }
+  const nlohmann::json nf = stats(dir + "/nf.json"), ao = stats(dir + "/ao.json");
+  EXPECT_EQ(nf["method"], "nearfield");
+  EXPECT_EQ(nf["params"]["rays"], 8);
+  EXPECT_EQ(ao["method"], "voxel_ao");
+  ASSERT_EQ(vgi("render --method direct --size 4x4 --spp 1 --quiet -o " + dir + "/home.exr").code, 0);
+  EXPECT_NE(nf["camera"]["option"], stats(dir + "/home.json")["camera"]["option"])
+      << "the orbit moved the camera";
+  // The panel lists every parameter of the method shown.
+  for (const char* k : {"rays", "radius", "voxels", "voxelizer", "resolution", "blur"})
+    EXPECT_NE(std::find(nf["viewer"]["panel_parameters"].begin(), nf["viewer"]["panel_parameters"].end(), k),
+              nf["viewer"]["panel_parameters"].end())
+        << k << " in " << nf["viewer"]["panel_parameters"].dump();
+  EXPECT_EQ(ao["viewer"]["panel_parameters"].size(), ao["params"].size()) << ao["params"].dump();
+  EXPECT_GT(std::filesystem::file_size(dir + "/window.png"), 5000u) << "the window, panel included";
+  const Image window = readImage(dir + "/window.png");
+  EXPECT_EQ(window.width, 48 + 360);
+}
+
+// What a script or the command line gets wrong is refused before the window opens, naming it.
+TEST(View, BadInputIsRefusedWithItsName) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  CliRun unknown = underXvfb("--method nearfeld --frames 1 --screenshot " + tmp("v.exr"));
+  EXPECT_EQ(unknown.code, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("nearfeld"), std::string::npos) << unknown.output;
+  CliRun scene = underXvfb("--scene /nonexistent/s.obj --frames 1 --screenshot " + tmp("v.exr"));
+  EXPECT_EQ(scene.code, 2) << scene.output;
+  EXPECT_NE(scene.output.find("/nonexistent/s.obj"), std::string::npos) << scene.output;
+  const std::string bad = tmp("view_bad_script.json");
+  std::ofstream(bad) << R"([{"frames": 1}, {"orbitt": [1, 2]}])";
+  CliRun script = underXvfb("--script " + bad);
+  EXPECT_EQ(script.code, 2) << script.output;
+  EXPECT_NE(script.output.find("orbitt"), std::string::npos) << script.output;
+  EXPECT_NE(script.output.find("event 1"), std::string::npos) << script.output;
+  std::ofstream(bad) << R"([{"orbit": [1, "x"]}])";
+  script = underXvfb("--script " + bad);
+  EXPECT_EQ(script.code, 2) << script.output;
+  EXPECT_NE(script.output.find("orbit"), std::string::npos) << script.output;
+  CliRun shot = underXvfb("--frames 1 --screenshot " + tmp("v.txt"));
+  EXPECT_EQ(shot.code, 2) << shot.output;
+  EXPECT_NE(shot.output.find("v.txt"), std::string::npos) << shot.output;
+  // Without a display (no Xvfb): a clear message, not a crash.
+  CliRun nodisplay = vgi("view --frames 1 --screenshot " + tmp("v.exr") + " </dev/null");
+  if (std::getenv("DISPLAY") == nullptr) {
+    EXPECT_EQ(nodisplay.code, 2) << nodisplay.output;
+    EXPECT_NE(nodisplay.output.find("xvfb-run"), std::string::npos) << nodisplay.output;
+  }
+}
+
+// --record writes every shown frame.
+TEST(View, RecordWritesANumberedFrameSequence) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = tmp("view_record");
+  std::filesystem::remove_all(dir);
+  CliRun v = underXvfb("--size 32x32 --frames 3 --record " + dir + " --screenshot " + tmp("rec.exr"));
+  ASSERT_EQ(v.code, 0) << v.output;
+  for (const char* f : {"frame_00000.png", "frame_00001.png", "frame_00002.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + f)) << f;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/frame_00003.png"));
+}
+
+}  // namespace vgi
