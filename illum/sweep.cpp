@@ -228,11 +228,21 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
   for (size_t mi = 0; mi < j["methods"].size(); ++mi) {
     const nlohmann::json& m = j["methods"][mi];
     const std::string where = "methods[" + std::to_string(mi) + "]";
-    checkKeys(m, where, {"method", "label", "set", "grid"});
+    checkKeys(m, where, {"method", "label", "set", "grid", "spp", "reference"});
     if (!m.contains("method") || !m["method"].is_string())
       fail("experiment: ", where, " has no \"method\" name");
     const std::string method = m["method"].get<std::string>();
     const MethodInfo& info = findMethod(method, "experiment " + where + ".method");
+    const int spp = m.contains("spp") ? intIn(m["spp"], where + ".spp", 1, 1 << 20) : e.spp;
+    std::vector<int> checkpoints;
+    for (int k : e.checkpoints)
+      if (k < spp) checkpoints.push_back(k);
+    // Its own reference: another method's counterpart (shared with that method's points), or a method.
+    const nlohmann::json mref = m.value("reference", nlohmann::json::object());
+    checkKeys(mref, where + ".reference", {"counterpart_of", "method", "set"});
+    if (m.contains("reference") && mref.contains("counterpart_of") == mref.contains("method"))
+      fail("experiment: ", where, ".reference = ", mref.dump(),
+           " needs one of \"counterpart_of\" or \"method\"");
     std::vector<std::string> fixed;
     const nlohmann::json set = m.value("set", nlohmann::json::object()),
                          grid = m.value("grid", nlohmann::json::object());
@@ -275,7 +285,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
         o.set = set;
         o.width = e.width;
         o.height = e.height;
-        o.spp = e.spp;
+        o.spp = spp;
         nlohmann::json resolved;
         std::vector<std::string> outputs;
         try {
@@ -290,15 +300,39 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
           if (std::find(outputs.begin(), outputs.end(), a) != outputs.end()) aovs.push_back(a);
         pt.render =
             makeRender(dir, "points", method,
-                       renderArgs(e, scene, method, set, e.spp, aovs, e.checkpoints, e.seed, e.timeBudgetS));
+                       renderArgs(e, scene, method, set, spp, aovs, checkpoints, e.seed, e.timeBudgetS));
+        pt.spp = spp;
         // The reference.
         SweepRender r;
-        if (ref.contains("file")) {
+        if (ref.contains("file") && !m.contains("reference")) {
           pt.reference = 0;
         } else {
           std::string rmethod;
           std::vector<std::string> rset, raovs;
-          if (ref.contains("method")) {
+          if (mref.contains("method")) {
+            rmethod = mref["method"].get<std::string>();
+            findMethod(rmethod, "experiment " + where + ".reference.method");
+            const nlohmann::json refSet = mref.value("set", nlohmann::json::object());
+            if (!refSet.is_object())
+              fail("experiment: ", where, ".reference.set must be an object of parameters");
+            for (auto& [k, v] : refSet.items())
+              rset.push_back(k + "=" + paramText(v, where + ".reference.set." + k));
+            raovs = e.aovs;
+          } else if (mref.contains("counterpart_of")) {
+            const std::string other =
+                mref["counterpart_of"].is_string() ? mref["counterpart_of"].get<std::string>() : "";
+            const MethodInfo& oi = findMethod(other, "experiment " + where + ".reference.counterpart_of");
+            if (!oi.counterpart)
+              fail("experiment: ", where, ".reference.counterpart_of: '", other, "' has no counterpart");
+            RenderOptions oo = o;
+            oo.method = other;
+            oo.set.clear();
+            const Counterpart cp = oi.counterpart(resolveParameters(oo));
+            rmethod = cp.method;
+            rset = cp.set;
+            for (auto& a : e.aovs)
+              if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
+          } else if (ref.contains("method")) {
             rmethod = ref["method"].get<std::string>();
             findMethod(rmethod, "experiment reference.method");
             const nlohmann::json refSet = ref.value("set", nlohmann::json::object());
@@ -375,7 +409,7 @@ int runSweep(const Experiment& e, const std::string& vgi) {
     for (auto& r : *list)
       if (!r.args.empty() && !sweepRenderDone(r, sweepRenderSpp(r))) todo.emplace_back(&r, sweepRenderSpp(r));
   for (auto& p : e.points)
-    if (!sweepRenderDone(p.render, e.spp)) todo.emplace_back(&p.render, e.spp);
+    if (!sweepRenderDone(p.render, p.spp)) todo.emplace_back(&p.render, p.spp);
   int n = 0;
   std::vector<std::string> failed;
   for (auto& [r, spp] : todo) {
@@ -519,7 +553,10 @@ nlohmann::json collectSweep(const Experiment& e) {
     const nlohmann::json base = {{"scene", p.scene}, {"method", p.method}, {"label", p.label},
                                  {"role", "point"},  {"params", p.params}, {"point", p.render.id}};
     nlohmann::json mine = nlohmann::json::array();
-    addRows(e, p.render, e.checkpoints, ref, base, machine, mine);
+    std::vector<int> checkpoints;
+    for (int k : e.checkpoints)
+      if (k < p.spp) checkpoints.push_back(k);
+    addRows(e, p.render, checkpoints, ref, base, machine, mine);
     for (auto& row : mine) {
       // The time the exact counterpart takes to reach this row's error (relMSE, relative ε).
       for (auto& ch : channels) {
@@ -547,7 +584,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
   for (const SweepPoint& p : e.points) {
     const std::string a = stemOfRender(p.render) + ".exr",
                       b = stemOfRender(e.references[p.reference]) + ".exr";
-    if (sweepRenderDone(p.render, e.spp) && fs::exists(b))
+    if (sweepRenderDone(p.render, p.spp) && fs::exists(b))
       writeSignedError(signedDifference(readImage(a), readImage(b)), p.render.dir + "/error.png");
   }
   nlohmann::json out = {{"experiment", e.name},

@@ -22,7 +22,10 @@
 //                | {"file": "ref.exr"}        // an existing image (one scene; its AOVs next to it)
 //     "methods": [ {"method": "nearfield", "label": "NF",
 //                   "set": {"shadow_res": 256},             // fixed parameters
-//                   "grid": {"voxels": [64, 128], "rays": [4, 16]}} ]   // every combination
+//                   "grid": {"voxels": [64, 128], "rays": [4, 16]},   // every combination
+//                   "spp": 512,                           // optional: this method's samples
+//                   "reference": {"counterpart_of": "nearfield"}   // optional: its own reference,
+//                              | {"method": "reference", "set": {…}}} ]  // (spp: the experiment's)
 //   }
 // Layout of the output folder DIR: DIR/references/<id>/ref.*, DIR/curves/<id>/render.* (the
 // counterparts' convergence renders), DIR/points/<id>/render.*
@@ -50,6 +53,7 @@ struct SweepPoint {
   std::string scene, method, label;
   nlohmann::json params;  // the grid's values of this point, key → value (text)
   size_t reference = 0;   // index into Experiment::references
+  int spp = 0;            // the method's "spp", or the experiment's
 };
 
 struct Experiment {

@@ -154,6 +154,23 @@ TEST(Sweep, SmokeExperimentRunsCollectsAndResumes) {
   EXPECT_NE(resume.output.find("22 rows"), std::string::npos) << resume.output;
 }
 
+// A method's own reference: another method's counterpart is the same render (shared, rendered once),
+// and the method's own spp replaces the experiment's.
+TEST(Sweep, AMethodCanShareAnotherMethodsCounterpart) {
+  const std::string file = tmp("sweep_share.json"), dir = tmp("sweep_share");
+  std::filesystem::remove_all(dir);
+  std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 4,
+    "reference": {"spp": 8},
+    "methods": [{"method": "nearfield"},
+                {"method": "reference", "spp": 8, "set": {"integrator": "nearfield", "visibility": "voxels"},
+                 "reference": {"counterpart_of": "nearfield"}}]})";
+  CliRun list = vgi("sweep " + file + " -o " + dir + " --print-commands");
+  ASSERT_EQ(list.code, 0) << list.output;
+  EXPECT_EQ(lines(list.output).size(), 3u) << "one shared reference, two points: " << list.output;
+  EXPECT_EQ(countOf(list.output, "/references/"), 1u) << list.output;
+  EXPECT_EQ(countOf(list.output, "'--spp' '8'"), 2u) << "the reference and the second point: " << list.output;
+}
+
 // The equal-error time against hand-computed curves: log-log interpolation inside, Monte Carlo's
 // 1/samples rate on the per-sample time outside.
 TEST(Sweep, EqualErrorTimeInterpolatesAndExtrapolates) {
@@ -244,6 +261,14 @@ TEST(Sweep, BadExperimentFilesAreRefusedBeforeAnythingRenders) {
   refused("convergence_beyond_spp",
           head + R"("reference": {"spp": 8, "convergence": [4, 9]}, "methods": [{"method": "nearfield"}]})",
           {"reference.convergence", "9"});
+  refused(
+      "method_reference_both",
+      head +
+          R"("methods": [{"method": "nearfield", "reference": {"method": "reference", "counterpart_of": "direct"}}]})",
+      {"methods[0].reference"});
+  refused("method_reference_unknown",
+          head + R"("methods": [{"method": "reference", "reference": {"counterpart_of": "nearfeld"}}]})",
+          {"nearfeld", "counterpart_of"});
   // A reference image of another size.
   const std::string ref = tmp("sweep_ref_8x8.exr");
   ASSERT_EQ(vgi("render --method direct --size 8x8 --spp 1 --quiet -o " + ref).code, 0);
