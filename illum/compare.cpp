@@ -16,7 +16,8 @@ Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const Di
   const MethodInfo& info = findMethod(opt.method);
   if (!info.counterpart)
     fail("--method ", opt.method,
-         ": it computes its integral exactly; compare an approximate method with it");
+         ": it has no exact counterpart (it computes its integral exactly, or it is a debug view); compare "
+         "an approximate method");
   Comparison c;
   c.refSpp = refSpp;
   // The counterpart gets the method's resolved parameters (defaults that

@@ -11,6 +11,7 @@
 #include "illum/vct.h"
 #include "illum/vct_ao.h"
 #include "illum/voxel_ao.h"
+#include "illum/voxel_view.h"
 #include "illum/voxelpath.h"
 #include "illum/vpl.h"
 
@@ -88,6 +89,9 @@ const std::vector<MethodInfo>& methodRegistry() {
        [](const nlohmann::json& p) {
          return Counterpart{"reference", {"integrator=ao", "radius=" + exactText(p.at("radius"))}, {}};
        }},
+      {"voxels",
+       "GL debug view: the binary grid from the camera through the tracer (VGI 4), faces coloured by axis",
+       true, [](ParamSet& p, const Scene& s) { return createVoxelViewMethod(p, s); }},
       {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
        [](ParamSet& p, const Scene& s) { return createReferenceMethod(p, s); }},
   };

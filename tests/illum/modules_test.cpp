@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/gl_context.h"
+#include "core/image_metrics.h"
 #include "core/params.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
@@ -249,6 +250,33 @@ TEST(Modules, VctAoUnderAParallelPlaneAndOnAnOpenFloor) {
   EXPECT_GT(under, 0.2);
   EXPECT_LT(under, 0.625);
   EXPECT_NEAR(meanAo("floor", "cones=8"), 1.0, 1e-4);
+}
+
+}  // namespace vgi
+
+namespace vgi {
+// `voxels`, the grid seen from the camera: in the Cornell box every pixel inside the opening sees a
+// wall's voxels (no miss), the side walls show x faces (red), the floor and ceiling y faces (green), the back wall a z
+// face (blue), where they are in the image (rows top-down), and the hierarchical tracer and the DDA
+// see the same voxels.
+TEST(Modules, VoxelViewShowsTheGridsFacesWhereTheWallsAre) {
+  const RenderOutput h = test::render("builtin:cornell", "voxels", {"voxels=64x64x128"}, 48, 1);
+  const Image& img = h.result.image;
+  int misses = 0;  // inside the box's opening (the image's border sees past the box)
+  for (int y = 6; y < 42; ++y)
+    for (int x = 6; x < 42; ++x) misses += img.at(x, y).x + img.at(x, y).y + img.at(x, y).z <= 0.0f;
+  EXPECT_EQ(misses, 0);
+  auto dominant = [&](int x, int y) {
+    const glm::vec3 c = img.at(x, y);
+    return c.x > c.y && c.x > c.z ? 0 : (c.y > c.z ? 1 : 2);
+  };
+  EXPECT_EQ(dominant(6, 24), 0) << "left wall";
+  EXPECT_EQ(dominant(42, 24), 0) << "right wall";
+  EXPECT_EQ(dominant(24, 4), 1) << "ceiling";
+  EXPECT_EQ(dominant(12, 43), 1) << "floor";
+  EXPECT_EQ(dominant(24, 14), 2) << "back wall";
+  const RenderOutput d = test::render("builtin:cornell", "voxels", {"voxels=64x64x128", "tracer=dda"}, 48, 1);
+  EXPECT_EQ(compareImages(img, d.result.image).relMae, 0.0);
 }
 
 }  // namespace vgi
