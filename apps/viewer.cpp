@@ -23,6 +23,7 @@
 #include "core/gl_handles.h"
 #include "core/image.h"
 #include "core/output_files.h"
+#include "core/params.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
 #include "illum/sample_loop.h"
@@ -111,14 +112,11 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
   return events;
 }
 
-// A JSON scalar as --set text.
+// A JSON scalar as --set text (the script checked the values are scalars).
 std::string setText(const nlohmann::json& v) {
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.9g", v.get<double>());
-  return buf;
+  std::string text;
+  if (!paramTextOf(v, text)) fail("'", v.dump(), "' is not a number, string or bool");
+  return text;
 }
 
 class Viewer {

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <type_traits>
 
@@ -18,6 +19,23 @@ void ParamSet::setFromString(const std::string& kv, const std::string& origin) {
   auto eq = kv.find('=');
   if (eq == std::string::npos || eq == 0) fail(origin, " '", kv, "': expected key=value");
   set(kv.substr(0, eq), kv.substr(eq + 1), origin);
+}
+
+bool paramTextOf(const nlohmann::json& v, std::string& text) {
+  if (v.is_string()) {
+    text = v.get<std::string>();
+  } else if (v.is_boolean()) {
+    text = v.get<bool>() ? "true" : "false";
+  } else if (v.is_number_integer()) {
+    text = std::to_string(v.get<long long>());
+  } else if (v.is_number()) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", v.get<double>());
+    text = buf;
+  } else {
+    return false;
+  }
+  return true;
 }
 
 const ParamSet::Value* ParamSet::lookup(const std::string& key, const std::string& type,
@@ -102,7 +120,7 @@ void ParamSet::declare(const std::string& key, const std::string& type, const st
                        const std::string& doc) {
   for (auto& d : docs_)
     if (d.key == key) return;
-  docs_.push_back({key, type, def, doc});
+  docs_.push_back({key, type, def, doc, 0, 0, {}});
 }
 
 void ParamSet::checkAllUsed(const std::string& context) const {

@@ -15,6 +15,10 @@ struct ParamDoc {
   std::vector<std::string> allowed;  // a string of these values only (empty: any)
 };
 
+// A JSON scalar as `--set` text (64 → "64", 0.5 → "0.5", true → "true",
+// strings as they are); false for anything else (an array, an object, null).
+bool paramTextOf(const nlohmann::json& value, std::string& text);
+
 class ParamSet {
  public:
   // origin names where the value came from ("--set", "preset 'fast'") for errors.

@@ -17,6 +17,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/params.h"
 #include "illum/method.h"
 #include "illum/render_job.h"
 
@@ -26,17 +27,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A JSON scalar as `--set` text (64 → "64", 0.5 → "0.5", true → "true").
+// A JSON scalar as `--set` text; anything else is refused naming the key.
 std::string paramText(const nlohmann::json& v, const std::string& key) {
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
-  if (v.is_number_integer()) return std::to_string(v.get<long long>());
-  if (v.is_number()) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", v.get<double>());
-    return buf;
-  }
-  fail("experiment: '", key, "' = ", v.dump(), " is not a number, string or bool");
+  std::string text;
+  if (!paramTextOf(v, text)) fail("experiment: '", key, "' = ", v.dump(), " is not a number, string or bool");
+  return text;
 }
 
 std::string hashId(const std::vector<std::string>& parts) {
