@@ -120,6 +120,17 @@ std::string setText(const nlohmann::json& v) {
   return text;
 }
 
+// v turned by yaw about `up`, then by pitch about cross(v, up) — unless that
+// brings it within ~8° of the pole (then only the yaw).
+glm::vec3 turn(glm::vec3 v, glm::vec3 up, float yawDeg, float pitchDeg) {
+  up = glm::normalize(up);
+  v = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yawDeg), up) * glm::vec4(v, 0.0f));
+  const glm::vec3 right = glm::normalize(glm::cross(v, up));
+  const glm::vec3 p =
+      glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(pitchDeg), right) * glm::vec4(v, 0.0f));
+  return std::abs(glm::dot(glm::normalize(p), up)) < 0.99f ? p : v;
+}
+
 class Viewer {
  public:
   explicit Viewer(const ViewOptions& o) : opt_(o) {}
@@ -265,6 +276,7 @@ void Viewer::setParameter(const std::string& key, const std::string& value) {
       if (kv.substr(0, kv.find('=')) != key) set.push_back(kv);
     set.push_back(key + "=" + value);
     job_->setMethod(job_->info().name, set, job_->options().aovs);
+    session_.reset();  // it refers to the method and resources the job replaced
     dirty_ = true;
   });
 }
@@ -273,6 +285,7 @@ void Viewer::switchMethod(const std::string& name) {
   attempt("method " + name, [&] {
     findMethod(name, "method");
     job_->setMethod(name, {}, {});
+    session_.reset();  // it refers to the method and resources the job replaced
     channel_ = "image";
     dirty_ = true;
   });
@@ -283,6 +296,7 @@ void Viewer::show(const std::string& channel) {
     std::vector<std::string> aovs;
     if (channel != "image") aovs.push_back(channel);
     job_->setMethod(job_->info().name, job_->options().set, aovs);
+    session_.reset();  // it refers to the method and resources the job replaced
     channel_ = channel;
     dirty_ = true;
   });
@@ -303,14 +317,7 @@ void Viewer::loadScene(const std::string& spec) {
 
 void Viewer::orbit(float yawDeg, float pitchDeg) {
   Camera& c = job_->scene().camera;
-  const glm::vec3 up = glm::normalize(c.up);
-  glm::vec3 d = c.position - c.target;
-  d = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(yawDeg), up) * glm::vec4(d, 0.0f));
-  const glm::vec3 right = glm::normalize(glm::cross(-d, up));
-  const glm::vec3 e =
-      glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(pitchDeg), right) * glm::vec4(d, 0.0f));
-  if (std::abs(glm::dot(glm::normalize(e), up)) < 0.99f) d = e;  // never over the pole
-  c.position = c.target + d;
+  c.position = c.target + turn(c.position - c.target, c.up, yawDeg, -pitchDeg);
   dirty_ = true;
 }
 
@@ -414,14 +421,7 @@ void Viewer::handleInput(float dt) {
     if (io.MouseDown[0] && (d.x != 0 || d.y != 0)) orbit(-0.3f * d.x, -0.3f * d.y);
     if (io.MouseDown[1] && (d.x != 0 || d.y != 0)) {  // look around (fly)
       Camera& c = job_->scene().camera;
-      const glm::vec3 up = glm::normalize(c.up);
-      glm::vec3 f = c.target - c.position;
-      f = glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(-0.2f * d.x), up) * glm::vec4(f, 0.0f));
-      const glm::vec3 right = glm::normalize(glm::cross(f, up));
-      const glm::vec3 g =
-          glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(-0.2f * d.y), right) * glm::vec4(f, 0.0f));
-      if (std::abs(glm::dot(glm::normalize(g), up)) < 0.99f) f = g;
-      c.target = c.position + f;
+      c.target = c.position + turn(c.target - c.position, c.up, -0.2f * d.x, -0.2f * d.y);
       dirty_ = true;
     }
     if (io.MouseWheel != 0) {
@@ -570,6 +570,7 @@ void Viewer::panel() {
       attempt("light 0", [&] {
         l.position = p;
         job_->rebuildResources();  // the light maps (and what is lit by them) follow the light
+        session_.reset();
         dirty_ = true;
       });
   }

@@ -129,23 +129,6 @@ nlohmann::json resolveParameters(const RenderOptions& opt, std::vector<std::stri
   return params.resolved();
 }
 
-namespace {
-bool sameNeeds(const SceneNeeds& a, const SceneNeeds& b) {
-  auto lm = [](const std::optional<LightMapNeed>& x, const std::optional<LightMapNeed>& y) {
-    return bool(x) == bool(y) && (!x || (x->resolution == y->resolution && x->reflective == y->reflective));
-  };
-  auto bg = [](const std::optional<BinaryGridNeed>& x, const std::optional<BinaryGridNeed>& y) {
-    return bool(x) == bool(y) && (!x || (x->resolution == y->resolution && x->voxelizer == y->voxelizer &&
-                                         x->cubicCells == y->cubicCells));
-  };
-  auto vg = [](const std::optional<ValueGridNeed>& x, const std::optional<ValueGridNeed>& y) {
-    return bool(x) == bool(y) && (!x || (x->channels == y->channels && x->mips == y->mips));
-  };
-  return a.gbuffer == b.gbuffer && lm(a.lightMaps, b.lightMaps) && bg(a.binaryGrid, b.binaryGrid) &&
-         vg(a.valueGrids, b.valueGrids) && a.orMipPyramid == b.orMipPyramid && a.bvh == b.bvh;
-}
-}  // namespace
-
 std::string cameraText(const Camera& c) {
   char buf[256];
   std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.position.x,
@@ -237,25 +220,22 @@ void RenderJob::setMethod(const std::string& name, const std::vector<std::string
   needs.check(info.name, info.needsGl);
   // Everything checked: the new method replaces the old one. The resources are kept when the new
   // method needs the same (a parameter that does not change them, e.g. the ray count).
-  ShaderLibrary* shaders = info.needsGl ? shaders_.get() : nullptr;
-  if (!resources_ || !sameNeeds(resources_->needs(), needs) || (info_ && info_->needsGl != info.needsGl)) {
-    resources_.reset();
-    resources_ = std::make_unique<SceneResources>(scene_, needs, info.needsGl ? gl_ : nullptr, shaders,
-                                                  frameTimes(), opt_.threads);
-  }
+  const bool keep = resources_ && resources_->needs() == needs && info_->needsGl == info.needsGl;
   method_ = std::move(method);
   params_ = std::move(params);
   info_ = &info;
+  if (!keep) makeResources(needs);
   opt_.method = name;
   opt_.set = set;
   opt_.aovs = aovs;
 }
 
-void RenderJob::rebuildResources() {
-  const SceneNeeds needs = resources_->needs();
-  resources_.reset();
-  resources_ = std::make_unique<SceneResources>(scene_, needs, info_->needsGl ? gl_ : nullptr, shaders(),
-                                                frameTimes(), opt_.threads);
+void RenderJob::rebuildResources() { makeResources(resources_->needs()); }
+
+void RenderJob::makeResources(SceneNeeds needs) {
+  resources_.reset();  // the old GL objects go before the new ones are made
+  resources_ =
+      std::make_unique<SceneResources>(scene_, std::move(needs), gl(), shaders(), frameTimes(), opt_.threads);
 }
 
 std::vector<float> RenderJob::frameTimes() const {

@@ -94,6 +94,7 @@ class RenderJob {
 
  private:
   std::vector<float> frameTimes() const;
+  void makeResources(SceneNeeds needs);  // for the current method
   RenderOptions opt_;
   Scene scene_;
   std::unique_ptr<GlContext> ownGl_;

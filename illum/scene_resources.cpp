@@ -98,6 +98,21 @@ BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids, bool atlasOnly,
   return g;
 }
 
+bool SceneNeeds::operator==(const SceneNeeds& o) const {
+  auto lm = [](const std::optional<LightMapNeed>& x, const std::optional<LightMapNeed>& y) {
+    return bool(x) == bool(y) && (!x || (x->resolution == y->resolution && x->reflective == y->reflective));
+  };
+  auto bg = [](const std::optional<BinaryGridNeed>& x, const std::optional<BinaryGridNeed>& y) {
+    return bool(x) == bool(y) && (!x || (x->resolution == y->resolution && x->voxelizer == y->voxelizer &&
+                                         x->cubicCells == y->cubicCells));
+  };
+  auto vg = [](const std::optional<ValueGridNeed>& x, const std::optional<ValueGridNeed>& y) {
+    return bool(x) == bool(y) && (!x || (x->channels == y->channels && x->mips == y->mips));
+  };
+  return gbuffer == o.gbuffer && lm(lightMaps, o.lightMaps) && bg(binaryGrid, o.binaryGrid) &&
+         vg(valueGrids, o.valueGrids) && orMipPyramid == o.orMipPyramid && bvh == o.bvh;
+}
+
 SceneResources::SceneResources(const Scene& scene, SceneNeeds needs, GlContext* gl, ShaderLibrary* shaders,
                                std::vector<float> frameTimes, int threads)
     : scene_(scene),

@@ -76,6 +76,8 @@ struct SceneNeeds {
   // The resource names of the stats ("gbuffer", "light_maps" or "rsm",
   // "binary_grid", "value_grids", "value_mips", "or_mip_pyramid", "bvh"), in that order.
   std::vector<std::string> names() const;
+  // The same resources, built the same way (a render job keeps its resources when they are).
+  bool operator==(const SceneNeeds& o) const;
   // Throws if the combination cannot be built (a pyramid without a grid, …),
   // naming `method`.
   void check(const std::string& method, bool gl) const;
