@@ -309,7 +309,9 @@ TEST(SharedBrdf, SamplingWeightAveragesToTheDirectionalAlbedoForANarrowLobe) {
                 (alphaMax / na) * (2 * M_PI / np);
       }
     const double expected = 0.3 + 0.6 * lobe;
-    if (thetaDeg == 0.0f) EXPECT_NEAR(lobe, 1.0, 1e-3);
+    if (thetaDeg == 0.0f) {
+      EXPECT_NEAR(lobe, 1.0, 1e-3);
+    }
     uint32_t state = rngSeed(7u, uint32_t(thetaDeg), 3u);
     const int N = 200000;
     double sum = 0, sumSq = 0;
