@@ -113,9 +113,13 @@ void addTracerDefine(ShaderDefines& defines, const std::string& tracer) {
 
 std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& shaders,
                                      const std::string& tracer, const std::vector<TraceRay>& rays,
-                                     Profiler& profiler) {
+                                     Profiler& profiler, uint32_t level) {
+  if (level >= pyramid.levels())
+    fail("tracer '", tracer, "': level ", level, " is not a level of the pyramid (0 … ", pyramid.levels() - 1,
+         ")");
   ShaderDefines defines;
   addTracerDefine(defines, tracer);
+  if (level > 0) defines["TRACE_FROM_LEVEL"] = "1";  // (level 0, the benchmarks' case, copies nothing)
   unsigned prog = shaders.program({"traverse/trace_rays.comp.glsl"}, defines);
   std::vector<TraceResult> out(rays.size());
   if (rays.empty()) return out;
@@ -128,6 +132,7 @@ std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& sh
   glNamedBufferStorage(bufs[1], GLsizeiptr(std::min(batch, rays.size()) * 32), nullptr, 0);
   glUseProgram(prog);
   pyramid.bind(shaders, prog);
+  if (level > 0) shaders.setUniform(prog, "uLevel", level);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_RAYS, bufs[0]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_HITS, bufs[1]);
   std::vector<glm::uvec4> hits;

@@ -30,6 +30,7 @@ class GlPyramid {
   // declares on `program` (which must be in use).
   void bind(ShaderLibrary& shaders, unsigned program) const;
   const GridBox& box() const { return box_; }
+  uint32_t levels() const { return params_.levels; }
 
   // Level 0 := the grid's words (a GPU copy, or an upload), then every level
   // above by one dispatch of shaders/traverse/or_mip.comp.glsl — the index
@@ -59,9 +60,10 @@ std::string readTracerParam(ParamSet& params);
 void addTracerDefine(ShaderDefines& defines, const std::string& tracer);
 
 // Traces the rays on the GPU with a GLSL tracer ("hierarchical", "dda",
-// "march"). The pass is timed as "trace_<tracer>" in `profiler`.
+// "march"), from pyramid level `level` up (TracerInputs::level). The pass is
+// timed as "trace_<tracer>" in `profiler`.
 std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& shaders,
                                      const std::string& tracer, const std::vector<TraceRay>& rays,
-                                     Profiler& profiler);
+                                     Profiler& profiler, uint32_t level = 0);
 
 }  // namespace vgi

@@ -78,8 +78,11 @@ TraceResult fromShared(const shared::TraceHit& h) {
 
 class VoxelTracer : public RayTracer {
  public:
-  VoxelTracer(int kind, const OrMipPyramid& pyramid, float marchStep)
-      : kind_(kind), params_(pyramidParams(pyramid)), words_(pyramid.words().data()), marchStep_(marchStep) {}
+  VoxelTracer(int kind, const OrMipPyramid& pyramid, float marchStep, uint32_t level)
+      : kind_(kind),
+        params_(shared::pyramidFromLevel(pyramidParams(pyramid), level)),
+        words_(pyramid.words().data()),
+        marchStep_(marchStep) {}
   TraceResult trace(const TraceRay& ray) const override {
     switch (kind_) {
       case VGI_TRACER_HIERARCHICAL:
@@ -138,8 +141,11 @@ std::unique_ptr<RayTracer> createTracer(const std::string& name, const TracerInp
   }
   if (!in.pyramid) fail("tracer '", name, "' needs a voxel grid");
   if (info.name == "march" && in.marchStep < 0.0f) fail("march step ", in.marchStep, " must be > 0");
+  if (in.level >= uint32_t(in.pyramid->levels()))
+    fail("tracer '", name, "': level ", in.level, " is not a level of the pyramid (0 … ",
+         in.pyramid->levels() - 1, ")");
   float step = in.marchStep > 0.0f ? in.marchStep : defaultMarchStep(*in.pyramid);
-  return std::make_unique<VoxelTracer>(info.define, *in.pyramid, step);
+  return std::make_unique<VoxelTracer>(info.define, *in.pyramid, step, in.level);
 }
 
 }  // namespace vgi

@@ -53,6 +53,9 @@ struct TracerInputs {
   const OrMipPyramid* pyramid = nullptr;
   const EmbreeTracer* embree = nullptr;
   float marchStep = 0.0f;  // world units; 0: half the smallest voxel edge
+  // Voxel tracers: trace the pyramid from this level up, its columns as the
+  // voxels (shared pyramidFromLevel; results name level-`level` cells).
+  uint32_t level = 0;
 };
 
 class RayTracer {

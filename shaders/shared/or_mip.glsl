@@ -33,4 +33,24 @@ SHARED_FN uint mipWordIndex(uint x, uint y, uint w, uvec2 size, uint depth, uint
   return levelOffset + columnWordIndex(x, y, w, uvec4(size.x, size.y, depth, depth / 128u));
 }
 
+// The pyramid seen from its level `level` (< p.levels) up: that level is its
+// level 0, its grid that level's grid — columns 2^level level-0 cells wide in
+// x and y, the same depth cells. Any tracer then traces the level's columns
+// as voxels (the `voxels` debug view of a mip level, and its tests). The
+// cells-per-unit scale by a power of two, so the level's planes are exactly
+// the level-0 planes at multiples of 2^level; the level's box is
+// ⌈W/2^level⌉·2^level level-0 cells wide (its last column reaches past W).
+SHARED_FN PyramidParams pyramidFromLevel(SHARED_IN(PyramidParams) p, uint level) {
+  PyramidParams q = p;
+  const float scale = 1.0f / float(1u << level);
+  q.grid.axisX.w = p.grid.axisX.w * scale;
+  q.grid.axisY.w = p.grid.axisY.w * scale;
+  const uvec2 s = mipLevelSize(uvec2(p.grid.resolution.x, p.grid.resolution.y), level);
+  q.grid.resolution.x = s.x;
+  q.grid.resolution.y = s.y;
+  q.levels = p.levels - level;
+  for (uint i = 0u; i < kMaxPyramidLevels; ++i) q.levelOffsets[i] = i < q.levels ? p.levelOffsets[i + level] : 0u;
+  return q;
+}
+
 SHARED_END

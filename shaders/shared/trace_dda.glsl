@@ -1,4 +1,4 @@
-// 3D DDA over level 0 of the grid — Amanatides & Woo, "A Fast Voxel Traversal
+// 3D DDA over level 0 of the pyramid (the grid; pyramidFromLevel: a coarser level) — Amanatides & Woo, "A Fast Voxel Traversal
 // Algorithm for Ray Tracing", Eurographics 1987: step to the neighbour across
 // the nearest cell boundary, one voxel at a time. It is the correctness oracle
 // for the hierarchical tracer, so it follows ray_grid.glsl's definition
@@ -15,7 +15,7 @@
 SHARED_BEGIN
 
 SHARED_FN bool voxelSet(SHARED_IN(PyramidParams) p, int x, int y, int z PYRAMID_PARAM) {
-  uint i = columnWordIndex(uint(x), uint(y), depthWord(uint(z)), p.grid.resolution);
+  uint i = p.levelOffsets[0] + columnWordIndex(uint(x), uint(y), depthWord(uint(z)), p.grid.resolution);
   return (pyramidWords[i] & depthBit(uint(z))) != 0u;
 }
 

@@ -2,6 +2,7 @@
 // the ids in shared/tracer_ids.glsl, as traverse/ray_tracers.cpp's registry
 // sets it; any other value fails to compile):
 //   TraceHit traceRay(vec3 origin, vec3 dir, float tmax)
+//   TraceHit tracePyramid(PyramidParams p, …)  the same over p (pyramidFromLevel: a mip level)
 //   bool visibleBetween(vec3 a, vec3 b)
 //   ResumableRay: nextHit / passHit (rays that go on past voxels a module passes)
 // The pyramid and its parameters are bound by GlPyramid::bind (traverse/gl_ray_tracer.cpp).
@@ -29,8 +30,7 @@ PyramidParams pyramidFromUniforms() {
   return p;
 }
 
-TraceHit traceRay(vec3 origin, vec3 dir, float tmax) {
-  PyramidParams p = pyramidFromUniforms();
+TraceHit tracePyramid(PyramidParams p, vec3 origin, vec3 dir, float tmax) {
 #if VGI_TRACER == VGI_TRACER_HIERARCHICAL
   return traceHierarchical(p, origin, dir, tmax);
 #elif VGI_TRACER == VGI_TRACER_DDA
@@ -41,6 +41,8 @@ TraceHit traceRay(vec3 origin, vec3 dir, float tmax) {
 #error "unknown VGI_TRACER (ids: shaders/shared/tracer_ids.glsl)"
 #endif
 }
+
+TraceHit traceRay(vec3 origin, vec3 dir, float tmax) { return tracePyramid(pyramidFromUniforms(), origin, dir, tmax); }
 
 // No voxel set on the segment a–b (the tracers take a unit direction and a length).
 bool visibleBetween(vec3 a, vec3 b) {

@@ -279,4 +279,31 @@ TEST(Modules, VoxelViewShowsTheGridsFacesWhereTheWallsAre) {
   EXPECT_EQ(compareImages(img, d.result.image).relMae, 0.0);
 }
 
+// level = l shows OR-mip level l's columns as cells: conservative (every pixel that sees the grid sees
+// the level), coarser (not the same picture), the same for the hierarchical tracer and the DDA, and a
+// level the pyramid does not have is refused naming it.
+TEST(Modules, VoxelViewOfAMipLevelIsConservative) {
+  const RenderOutput fine = test::render("builtin:cornell", "voxels", {"voxels=64x64x128"}, 48, 1);
+  const RenderOutput coarse =
+      test::render("builtin:cornell", "voxels", {"voxels=64x64x128", "level=3"}, 48, 1);
+  const RenderOutput dda =
+      test::render("builtin:cornell", "voxels", {"voxels=64x64x128", "level=3", "tracer=dda"}, 48, 1);
+  int fineHits = 0, lost = 0;
+  for (size_t i = 0; i < fine.result.image.pixels.size(); ++i) {
+    const bool f = fine.result.image.pixels[i] != glm::vec3(0.0f),
+               c = coarse.result.image.pixels[i] != glm::vec3(0.0f);
+    fineHits += f;
+    lost += f && !c;
+  }
+  EXPECT_GT(fineHits, 48 * 48 / 2);
+  EXPECT_EQ(lost, 0);
+  EXPECT_GT(compareImages(fine.result.image, coarse.result.image).relMae, 0.05);
+  EXPECT_EQ(compareImages(coarse.result.image, dda.result.image).relMae, 0.0);
+  test::expectError(
+      [&] {
+        test::render("builtin:cornell", "voxels", {"voxels=64x64x128", "level=7"}, 8, 1);
+      },
+      {"level", "7", "64x64", "0 … 6"});
+}
+
 }  // namespace vgi

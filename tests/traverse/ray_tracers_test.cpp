@@ -436,6 +436,84 @@ TEST(RayTracers, StressTenMillionRaysFinish) {
   RecordProperty("step_bound", int(bound));
 }
 
+// A mip level as a grid (pyramidFromLevel, the `voxels` view's level
+// parameter): from level l up, the hierarchical tracer must still equal the
+// DDA over that level's columns, bit for bit; each hit column must hold a set
+// level-0 voxel at its depth cell; and the level is conservative: a ray that
+// hits the grid hits the level no later (its planes are the grid's planes at
+// multiples of 2^l, so the column holding the fine hit is entered no later).
+TEST(RayTracers, FromAMipLevelTheTracersSeeItsColumns) {
+  size_t checked = 0, coarseHits = 0, earlier = 0;
+  for (const TestGrid& tg : testGrids()) {
+    BinaryGrid g = fillGrid(tg, 23);
+    OrMipPyramid pyramid(g);
+    TracerInputs in;
+    in.pyramid = &pyramid;
+    std::vector<TraceRay> rays = adversarialRays(tg.box, 20000, 9);
+    std::vector<TraceResult> fine;
+    createTracer("dda", in)->traceBatch(rays, fine);
+    const float tol = 1e-4f * glm::length(tg.box.voxelSize());
+    for (uint32_t l = 1; l < uint32_t(pyramid.levels()); ++l) {
+      const shared::PyramidParams pl = shared::pyramidFromLevel(pyramidParams(pyramid), l);
+      ASSERT_EQ(pl.levels, uint32_t(pyramid.levels()) - l);
+      ASSERT_EQ(pl.levelOffsets[0], pyramidParams(pyramid).levelOffsets[l]);
+      in.level = l;
+      std::vector<TraceResult> h, d;
+      createTracer("hierarchical", in)->traceBatch(rays, h);
+      createTracer("dda", in)->traceBatch(rays, d);
+      Mismatch m;
+      compare(h, d, rays, tg.box, false, m);
+      ASSERT_EQ(m.count, 0u) << tg.name << " level " << l << ": first mismatch " << m.first;
+      const uint32_t side = 1u << l;
+      for (size_t i = 0; i < rays.size(); ++i) {
+        if (d[i].hit) {
+          ++coarseHits;
+          ASSERT_EQ(h[i].t, d[i].t) << tg.name << " level " << l << " ray " << i;
+          bool set = false;
+          const glm::uvec3 v = d[i].voxel, r = tg.box.resolution;
+          for (uint32_t y = v.y * side; y < std::min(r.y, (v.y + 1) * side) && !set; ++y)
+            for (uint32_t x = v.x * side; x < std::min(r.x, (v.x + 1) * side) && !set; ++x)
+              set = g.test(x, y, v.z);
+          ASSERT_TRUE(set) << tg.name << " level " << l << " ray " << i << ": column (" << v.x << "," << v.y
+                           << ") depth " << v.z << " holds no set voxel";
+        }
+        if (fine[i].hit) {
+          ASSERT_TRUE(d[i].hit) << tg.name << " level " << l << " ray " << i
+                                << ": the grid is hit, the level not";
+          // (rays from far outside are rebased to the level's larger box: a few ulps of t apart)
+          ASSERT_LE(d[i].t, fine[i].t + tol + 1e-6f * fine[i].t) << tg.name << " level " << l << " ray " << i;
+          earlier += d[i].t < fine[i].t - tol;
+          ++checked;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 100000u);
+  EXPECT_GT(earlier, checked / 100);  // the coarse levels do hit earlier: the test sees the difference
+  RecordProperty("coarse_hits", int(coarseHits));
+  // The GLSL tracers from a level (the `voxels` view's path) on llvmpipe: bit for bit the C++ ones.
+  auto gl = GlContext::create();
+  ShaderLibrary shaders;
+  Profiler profiler(true);
+  for (const TestGrid& tg : testGrids()) {
+    if (tg.box.resolution.x == 256) continue;  // keep the llvmpipe run short
+    OrMipPyramid pyramid(fillGrid(tg, 23));
+    GlPyramid gpu(pyramid);
+    TracerInputs in;
+    in.pyramid = &pyramid;
+    in.level = std::min(2u, uint32_t(pyramid.levels()) - 1);
+    std::vector<TraceRay> rays = adversarialRays(tg.box, 10000, 31);
+    for (const char* name : {"hierarchical", "dda"}) {
+      std::vector<TraceResult> cpu;
+      createTracer(name, in)->traceBatch(rays, cpu);
+      Mismatch m;
+      compare(traceRaysGl(gpu, shaders, name, rays, profiler, in.level), cpu, rays, tg.box, true, m);
+      EXPECT_EQ(m.count, 0u) << tg.name << " " << name << " level " << in.level << ": " << m.first;
+    }
+  }
+  EXPECT_EQ(gl->errorCount(), 0);
+}
+
 }  // namespace vgi
 
 namespace vgi {
