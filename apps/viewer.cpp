@@ -27,7 +27,9 @@
 #include "core/params.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
+#include "illum/light_maps.h"
 #include "illum/sample_loop.h"
+#include "illum/scene_resources.h"
 
 namespace vgi::app {
 
@@ -75,8 +77,8 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
   }
   if (!j.is_array()) fail("--script '", path, "': expected a JSON list of events");
   static const std::vector<std::string> kinds = {
-      "frames", "orbit", "move",       "reset_camera", "method",           "set",
-      "show",   "time",  "screenshot", "scene",        "window_screenshot"};
+      "frames", "orbit",      "move",  "reset_camera",      "method",    "set", "show",
+      "time",   "screenshot", "scene", "window_screenshot", "light_face"};
   std::vector<ScriptEvent> events;
   for (size_t i = 0; i < j.size(); ++i) {
     const std::string where = "--script '" + path + "' event " + std::to_string(i);
@@ -96,6 +98,8 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
     };
     if (kind == "frames" && (!v.is_number_integer() || v.get<long>() < 1 || v.get<long>() > 1000000))
       fail(where, ": 'frames' = ", v.dump(), " must be an integer in [1, 1000000]");
+    if (kind == "light_face" && (!v.is_number_integer() || v.get<long>() < 0 || v.get<long>() > 1000000))
+      fail(where, ": 'light_face' = ", v.dump(), " must be an integer in [0, 1000000]");
     if (kind == "orbit") numbers(2);
     if (kind == "move") numbers(3);
     if ((kind == "method" || kind == "show" || kind == "screenshot" || kind == "scene" ||
@@ -154,6 +158,15 @@ class Viewer {
   void setParameter(const std::string& key, const std::string& value);
   void switchMethod(const std::string& name);
   void show(const std::string& channel);
+  // The light maps' channels the resources hold, as "rsm.<channel>" (reflective
+  // shadow maps) or "shadow_map.distance"; empty without light maps.
+  std::vector<std::string> lightMapViews() const;
+  bool showingLightMap() const {
+    return channel_.rfind("rsm.", 0) == 0 || channel_.rfind("shadow_map.", 0) == 0;
+  }
+  int lightFaces() const;  // of the maps as built; −1 before they are
+  Image lightMapImage() const;
+  void setLightFace(long face);
   void loadScene(const std::string& spec);
   void screenshot(const std::string& path);
   void writeWindow(const std::string& path);
@@ -178,7 +191,7 @@ class Viewer {
   float time_ = 0, exposure_ = 1;
   std::string channel_ = "image", error_, sceneInput_, windowShot_;
   std::vector<std::string> panelKeys_;  // the parameters the panel lists (the screenshot's stats)
-  int shotCount_ = 0, recorded_ = 0, failures_ = 0;
+  int shotCount_ = 0, recorded_ = 0, failures_ = 0, lightFace_ = 0;
   double frameMs_ = 0;
   std::vector<std::pair<std::string, double>> lastSetup_;  // the last set-up passes timed
 };
@@ -293,6 +306,17 @@ void Viewer::switchMethod(const std::string& name) {
 
 void Viewer::show(const std::string& channel) {
   attempt("show " + channel, [&] {
+    if (channel.rfind("rsm.", 0) == 0 || channel.rfind("shadow_map.", 0) == 0) {
+      const std::vector<std::string> views = lightMapViews();
+      if (std::find(views.begin(), views.end(), channel) == views.end()) {
+        std::string list;
+        for (auto& v : views) list += (list.empty() ? "" : ", ") + v;
+        fail("'", job_->info().name, "' renders ",
+             views.empty() ? "no light maps" : "the light maps " + list);
+      }
+      channel_ = channel;  // the method's light maps as rendered for the last sample: no restart
+      return;
+    }
     std::vector<std::string> aovs;
     if (channel != "image") aovs.push_back(channel);
     job_->setMethod(job_->info().name, job_->options().set, aovs);
@@ -300,6 +324,67 @@ void Viewer::show(const std::string& channel) {
     channel_ = channel;
     dirty_ = true;
   });
+}
+
+std::vector<std::string> Viewer::lightMapViews() const {
+  std::vector<std::string> views;
+  const std::optional<LightMapNeed>& need = job_->resources().needs().lightMaps;
+  if (!need) return views;
+  for (auto& c : LightMaps::channelNames(need->reflective))
+    views.push_back((need->reflective ? "rsm." : "shadow_map.") + c);
+  return views;
+}
+
+int Viewer::lightFaces() const {
+  const std::vector<std::string> built = job_->resources().built();
+  const bool maps = std::find(built.begin(), built.end(), "rsm") != built.end() ||
+                    std::find(built.begin(), built.end(), "light_maps") != built.end();
+  return maps ? job_->resources().lightMaps().faceCount() : -1;
+}
+
+void Viewer::setLightFace(long face) {
+  attempt("light face " + std::to_string(face), [&] {
+    const int faces = lightFaces();
+    if (face < 0 || (faces >= 0 && face >= faces))
+      fail("face ", face, " out of range: the lights' maps have ", faces, " faces (0 … ", faces - 1, ")");
+    lightFace_ = int(face);  // (checked again when the maps are there)
+  });
+}
+
+// The shown light map, for the eye: radiance as stored; normals as n/2 + 1/2,
+// positions over the scene's bounds, distances over the scene diagonal; texels
+// no surface covers black. Reduced by a whole factor to fit the image area.
+Image Viewer::lightMapImage() const {
+  const LightMaps& maps = job_->resources().lightMaps();
+  const std::string ch = channel_.substr(channel_.find('.') + 1);
+  const int face = lightFace_;
+  const Image raw = maps.readFace(face, ch), dist = ch == "distance" ? raw : maps.readFace(face, "distance");
+  const Bounds b = job_->scene().bounds(time_);
+  const glm::vec3 lo = b.lo, extent = glm::max(b.hi - b.lo, glm::vec3(1e-30f));
+  const float diag = sceneSize();
+  const int k =
+      std::max(1, (raw.width + std::min(req_.width, req_.height) - 1) / std::min(req_.width, req_.height));
+  Image out(raw.width / k, raw.height / k);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      glm::vec3 sum(0.0f);
+      for (int j = 0; j < k; ++j)
+        for (int i = 0; i < k; ++i) {
+          const int sx = x * k + i, sy = y * k + j;
+          const glm::vec3 v = raw.at(sx, sy);
+          if (dist.at(sx, sy).x >= 1e29f) continue;  // nothing there
+          if (ch == "distance")
+            sum += glm::vec3(v.x / diag);
+          else if (ch == "normal")
+            sum += 0.5f * v + 0.5f;
+          else if (ch == "position")
+            sum += (v - lo) / extent;
+          else
+            sum += v;
+        }
+      out.at(x, y) = sum / float(k * k);
+    }
+  return out;
 }
 
 void Viewer::loadScene(const std::string& spec) {
@@ -344,11 +429,13 @@ void Viewer::screenshot(const std::string& path) {
     out.stats.update(renderStats(out.result, *prof_));
     out.stats["spp"] = session_->samples();
     out.stats["time"] = time_;
+    if (showingLightMap()) out.result.aovs[channel_] = lightMapImage();  // what is shown, beside the image
     out.stats["viewer"] = {{"shown", channel_},
                            {"exposure", exposure_},
                            {"panel_parameters", panelKeys_},
                            {"gl_errors", gl_->errorCount()},
                            {"errors_reported", failures_}};
+    if (showingLightMap()) out.stats["viewer"]["light_face"] = lightFace_;
     // The `vgi render` command that renders this image again.
     std::string cmd = "vgi render --scene '" + job_->options().scene + "' --method " + job_->info().name;
     for (auto& kv : job_->options().set) cmd += " --set '" + kv + "'";
@@ -387,6 +474,8 @@ void Viewer::apply(const ScriptEvent& e) {
     screenshot(v.get<std::string>());
   } else if (e.kind == "scene") {
     loadScene(v.get<std::string>());
+  } else if (e.kind == "light_face") {
+    setLightFace(v.get<long>());
   } else if (e.kind == "window_screenshot") {
     windowShot_ = v.get<std::string>();
     frame();  // the next frame is read back from the window, panel included
@@ -540,9 +629,14 @@ void Viewer::panel() {
   if (ImGui::BeginCombo("show", channel_.c_str())) {
     std::vector<std::string> outs = {"image"};
     for (auto& o : job_->method().outputs()) outs.push_back(o);
+    for (auto& o : lightMapViews()) outs.push_back(o);
     for (auto& o : outs)
       if (ImGui::Selectable(o.c_str(), o == channel_) && o != channel_) show(o);
     ImGui::EndCombo();
+  }
+  if (showingLightMap() && lightFaces() > 0) {
+    int face = lightFace_;
+    if (ImGui::SliderInt("light face", &face, 0, lightFaces() - 1)) setLightFace(face);
   }
   ImGui::SliderFloat("exposure", &exposure_, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
   if (job_->scene().hasDynamicMeshes()) {
@@ -668,10 +762,18 @@ void Viewer::frame() {
               prof_->resolve(false);
             },
             false))
-      stalled_ = true;  // until something changes
-  if (session_ && session_->samples() > 0)
+      stalled_ = true;                                                   // until something changes
+  if (showingLightMap() && lightMapViews().empty()) channel_ = "image";  // another scene or method
+  if (session_ && session_->samples() > 0) {
+    if (showingLightMap() && lightFace_ >= lightFaces())  // a face set before the maps were built
+      attempt("light face " + std::to_string(lightFace_), [&] {
+        const int n = lightFaces();
+        lightFace_ = 0;
+        fail("out of range: the lights' maps have ", n, " faces (0 … ", n - 1, "); showing face 0");
+      });
     attempt(
-        "read", [&] { shown = session_->read(channel_); }, false);
+        "read", [&] { shown = showingLightMap() ? lightMapImage() : session_->read(channel_); }, false);
+  }
   draw(shown);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -18,7 +18,11 @@
 //   {"reset_camera": true}         the scene's camera
 //   {"method": "voxel_ao"}         switch the method (its defaults)
 //   {"set": {"rays": 8}}           change parameters of the current method
-//   {"show": "indirect"}           show an output of the method ("image": the image)
+//   {"show": "indirect"}           show an output of the method ("image": the image),
+//                                  or its light maps: "rsm.radiance", "rsm.normal",
+//                                  "rsm.position", "rsm.distance" (reflective shadow
+//                                  maps) or "shadow_map.distance"
+//   {"light_face": 2}              the light-map face shown (a point light has 6)
 //   {"time": 0.5}                  the animation time
 //   {"screenshot": "shot.png"}     write the accumulation so far (+ the stats JSON)
 //   {"scene": "scenes/sibenik.json"}  load another scene (the method kept)

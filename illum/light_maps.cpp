@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
@@ -186,6 +187,35 @@ void LightMaps::bind() const {
   const unsigned units[4] = {TEXUNIT_LIGHT_DISTANCE, TEXUNIT_LIGHT_POSITION, TEXUNIT_LIGHT_NORMAL,
                              TEXUNIT_LIGHT_RADIANCE};
   for (int c = 0; c < (reflective_ ? 4 : 1); ++c) glBindTextureUnit(units[c], textures_[c]);
+}
+
+std::vector<std::string> LightMaps::channelNames(bool reflective) {
+  if (!reflective) return {"distance"};
+  return {"distance", "position", "normal", "radiance"};
+}
+
+Image LightMaps::readFace(int face, const std::string& channel) const {
+  const std::vector<std::string> names = channels();
+  const auto it = std::find(names.begin(), names.end(), channel);
+  if (it == names.end())
+    fail("light maps: no channel '", channel, "' (", reflective_ ? "reflective shadow maps" : "shadow maps",
+         " hold ", names.size() == 1 ? "distance" : "distance, position, normal, radiance", ")");
+  if (face < 0 || face >= faceCount())
+    fail("light maps: face ", face, " out of range (the lights have ", faceCount(), " faces: 0 … ",
+         faceCount() - 1, ")");
+  const int c = int(it - names.begin()), n = resolution_;
+  std::vector<float> texels(size_t(n) * size_t(n) * 3);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTextureSubImage(textures_[c], 0, 0, 0, face, n, n, 1, c == 0 ? GL_RED : GL_RGB, GL_FLOAT,
+                       GLsizei(texels.size() * sizeof(float)), texels.data());
+  Image img(n, n);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const size_t i = size_t(n - 1 - y) * size_t(n) + size_t(x);  // GL rows are bottom-up
+      img.at(x, y) =
+          c == 0 ? glm::vec3(texels[i]) : glm::vec3(texels[3 * i], texels[3 * i + 1], texels[3 * i + 2]);
+    }
+  return img;
 }
 
 nlohmann::json LightMaps::describe() const {

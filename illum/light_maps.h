@@ -7,6 +7,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <vector>
 
+#include "core/image.h"
 #include "core/scene.h"
 #include "shaders/shared/light_maps.glsl"
 
@@ -53,6 +54,17 @@ class LightMaps {
   uint64_t renders() const { return renders_; }
   bool reflective() const { return reflective_; }
   nlohmann::json describe() const;  // for the stats
+  int resolution() const { return resolution_; }
+
+  // The channels, in texture order: "distance", and with reflective maps
+  // "position", "normal", "radiance" (the viewer's light-map views).
+  std::vector<std::string> channels() const { return channelNames(reflective_); }
+  static std::vector<std::string> channelNames(bool reflective);
+  // Face `face` of channel `channel` (channels()) as last rendered, read back
+  // (rows top-down; distance in all three components; texels no surface
+  // covers: distance 1e30, the others 0). Throws naming a face or channel
+  // the maps do not have.
+  Image readFace(int face, const std::string& channel) const;
 
  private:
   void uploadLayout();

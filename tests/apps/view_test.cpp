@@ -13,6 +13,7 @@
 #include "apps/cli_util.h"
 #include "core/image.h"
 #include "core/image_metrics.h"
+#include "core/scene_loader.h"
 
 namespace vgi {
 
@@ -143,6 +144,64 @@ TEST(View, BadInputIsRefusedWithItsName) {
     EXPECT_EQ(nodisplay.code, 2) << nodisplay.output;
     EXPECT_NE(nodisplay.output.find("xvfb-run"), std::string::npos) << nodisplay.output;
   }
+}
+
+// The light-map views, read back: the Cornell box's downward 90° spot light has cube faces; its −y face
+// (3) sees the floor and the blocks' tops. With shadow_res = the image size, one texel per pixel: the
+// up-facing texels (a third or more) lie at the floor's or a block top's height, and every texel's
+// distance is its position's distance to the light, as the position and distance channels store them.
+// A face or channel the maps do not have is reported and the viewer goes on; `direct` shows its
+// (non-reflective) shadow maps, the same distances.
+TEST(View, ShowsTheMethodsLightMaps) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = tmp("view_rsm");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string script = dir + "/script.json";
+  std::ofstream(script) << R"([{"show": "rsm.normal"}, {"light_face": 3}, {"frames": 1},
+    {"screenshot": ")" << dir
+                        << R"(/normal.exr"}, {"show": "rsm.position"}, {"frames": 1},
+    {"screenshot": ")" << dir
+                        << R"(/position.exr"}, {"show": "rsm.distance"}, {"frames": 1},
+    {"screenshot": ")" << dir
+                        << R"(/distance.exr"}, {"light_face": 6}, {"show": "rsm.flux"},
+    {"method": "direct"}, {"set": {"shadow_res": 64}}, {"show": "shadow_map.distance"}, {"frames": 1},
+    {"screenshot": ")" << dir
+                        << R"(/shadow.exr"}])";
+  CliRun v = underXvfb("--size 64x64 --set shadow_res=64 --script " + script);
+  ASSERT_EQ(v.code, 0) << v.output;
+  for (const char* needle : {"face 6 out of range", "rsm.flux", "2 errors reported", "0 GL errors"})
+    EXPECT_NE(v.output.find(needle), std::string::npos) << needle << " in " << v.output;
+  const Scene scene = loadScene("builtin:cornell");
+  const Bounds b = scene.bounds();
+  const float diag = b.diagonal();
+  const glm::vec3 light = scene.lights.at(0).position;
+  const Image normal = readImage(dir + "/normal.rsm.normal.exr"),
+              pos = readImage(dir + "/position.rsm.position.exr"),
+              dist = readImage(dir + "/distance.rsm.distance.exr"),
+              shadow = readImage(dir + "/shadow.shadow_map.distance.exr");
+  ASSERT_EQ(normal.width, 64) << "shadow_res 64 in a 64x64 image: one texel per pixel";
+  int covered = 0, up = 0, badHeight = 0, badDistance = 0;
+  for (size_t i = 0; i < normal.pixels.size(); ++i) {
+    if (dist.pixels[i].x <= 0.0f) continue;  // no surface there
+    ++covered;
+    const glm::vec3 p = b.lo + pos.pixels[i] * (b.hi - b.lo);
+    badDistance += std::abs(glm::length(p - light) - dist.pixels[i].x * diag) > 2e-3f * diag;
+    EXPECT_EQ(shadow.pixels[i], dist.pixels[i]) << "texel " << i << ": the same distance in both maps";
+    if (glm::length(normal.pixels[i] - glm::vec3(0.5f, 1.0f, 0.5f)) > 2e-3f) continue;
+    ++up;
+    const float h = p.y;  // the floor, the short block's top, the tall block's (core/builtin_scenes.cpp)
+    badHeight += std::min({std::abs(h), std::abs(h - 0.165f), std::abs(h - 0.33f)}) > 1e-3f;
+  }
+  RecordProperty("covered", covered);
+  RecordProperty("up", up);
+  EXPECT_GT(covered, 64 * 64 / 2);
+  EXPECT_GT(up, covered / 3);
+  EXPECT_EQ(badHeight, 0);
+  EXPECT_EQ(badDistance, 0);
+  const nlohmann::json s = stats(dir + "/normal.json");
+  EXPECT_EQ(s["viewer"]["light_face"], 3);
+  EXPECT_EQ(s["viewer"]["shown"], "rsm.normal");
 }
 
 // --record writes every shown frame.
