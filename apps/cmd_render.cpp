@@ -31,6 +31,10 @@ void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args) {
   cmd->add_option("--camera", args.camera,
                   "replace the scene's camera: px,py,pz,tx,ty,tz,ux,uy,uz[,fov_y_deg] (a render's stats JSON "
                   "has it as camera.option)");
+  cmd->add_option(
+      "--light", args.lights,
+      "place the scene's point or spot light I at x,y,z: I=x,y,z (repeatable; a render's stats JSON "
+      "has each light's as lights[I].option)");
   cmd->add_flag("--quiet", args.quiet, "no progress bars");
 }
 
@@ -39,6 +43,7 @@ void applyRenderArgs(const RenderArgs& args, RenderOptions& opt) {
   opt.gl = parseGlBackend(args.gl);
   opt.progress = !args.quiet;
   if (!args.camera.empty()) opt.camera = parseCamera(args.camera);
+  for (auto& l : args.lights) opt.lightPositions.push_back(parseLightPosition(l));
   if (args.accumulate == "compensated")
     opt.accumulation = Accumulation::Compensated;
   else if (args.accumulate == "plain")

@@ -34,6 +34,7 @@ inline std::vector<std::string> splitList(const std::string& s) {
 // `args`; applyRenderArgs() parses the texts (size, GL backend) into `opt`.
 struct RenderArgs {
   std::string size, gl = "auto", accumulate = "compensated", camera;
+  std::vector<std::string> lights;
   bool quiet = false;
 };
 void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args);

@@ -18,6 +18,7 @@
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <set>
 
 #include "core/error.h"
 #include "core/gl_context.h"
@@ -77,8 +78,8 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
   }
   if (!j.is_array()) fail("--script '", path, "': expected a JSON list of events");
   static const std::vector<std::string> kinds = {
-      "frames", "orbit",      "move",  "reset_camera",      "method",    "set", "show",
-      "time",   "screenshot", "scene", "window_screenshot", "light_face"};
+      "frames", "orbit",      "move",  "reset_camera",      "method",     "set",  "show",
+      "time",   "screenshot", "scene", "window_screenshot", "light_face", "light"};
   std::vector<ScriptEvent> events;
   for (size_t i = 0; i < j.size(); ++i) {
     const std::string where = "--script '" + path + "' event " + std::to_string(i);
@@ -103,7 +104,7 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
     if (kind == "orbit") numbers(2);
     if (kind == "move") numbers(3);
     if ((kind == "method" || kind == "show" || kind == "screenshot" || kind == "scene" ||
-         kind == "window_screenshot") &&
+         kind == "window_screenshot" || kind == "light") &&
         !v.is_string())
       fail(where, ": '", kind, "' = ", v.dump(), " must be a string");
     if (kind == "set" && !v.is_object())
@@ -111,6 +112,13 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
     if (kind == "time" && (!v.is_number() || !std::isfinite(v.get<double>())))
       fail(where, ": 'time' = ", v.dump(), " must be a finite number");
     if (kind == "screenshot") checkOutputPath(v.get<std::string>());
+    if (kind == "light") {
+      try {
+        parseLightPosition(v.get<std::string>());
+      } catch (const Error& e) {
+        fail(where, ": ", e.what());
+      }
+    }
     if (kind == "window_screenshot") checkOutputFile(v.get<std::string>(), where + " window_screenshot");
     events.push_back({v, kind, i});
   }
@@ -171,6 +179,7 @@ class Viewer {
   void screenshot(const std::string& path);
   void writeWindow(const std::string& path);
   void orbit(float yawDeg, float pitchDeg);
+  void moveLight(int index, glm::vec3 position);
   void move(glm::vec3 rightUpForward);
   float sceneSize() const;
 
@@ -190,6 +199,7 @@ class Viewer {
   bool dirty_ = true, stalled_ = false, playing_ = false, f12Down_ = false;
   float time_ = 0, exposure_ = 1;
   std::string channel_ = "image", error_, sceneInput_, windowShot_;
+  std::set<int> movedLights_;  // lights placed by --light or moved here: the screenshot's command has them
   std::vector<std::string> panelKeys_;  // the parameters the panel lists (the screenshot's stats)
   int shotCount_ = 0, recorded_ = 0, failures_ = 0, lightFace_ = 0;
   double frameMs_ = 0;
@@ -392,10 +402,25 @@ void Viewer::loadScene(const std::string& spec) {
     RenderOptions o = job_->options();
     o.scene = spec;
     o.camera.reset();
+    o.lightPositions.clear();
     auto job = std::make_unique<RenderJob>(o, gl_.get());
     session_.reset();
     job_ = std::move(job);
     home_ = job_->scene().camera;
+    movedLights_.clear();
+    dirty_ = true;
+  });
+}
+
+void Viewer::moveLight(int index, glm::vec3 position) {
+  attempt("light " + lightPositionText(index, position), [&] {
+    std::vector<Light>& lights = job_->scene().lights;
+    if (index < 0 || index >= int(lights.size())) fail("the scene has ", lights.size(), " delta lights");
+    if (lights[size_t(index)].type == LightType::Directional)
+      fail("light ", index, " is directional (it has no position)");
+    lights[size_t(index)].position = position;
+    job_->lightsChanged();  // the light maps and the radiance follow; the grid stays
+    movedLights_.insert(index);
     dirty_ = true;
   });
 }
@@ -444,6 +469,8 @@ void Viewer::screenshot(const std::string& path) {
     char t[32];
     std::snprintf(t, sizeof t, "%.9g", time_);
     cmd += std::string(" --time ") + t + " --camera '" + cameraText(job_->scene().camera) + "'";
+    for (int i : movedLights_)
+      cmd += " --light '" + lightPositionText(i, job_->scene().lights[size_t(i)].position) + "'";
     out.stats["command"] = cmd;
     for (auto& f : writeRenderOutputs(out, path, exposure_)) std::fprintf(stderr, "wrote %s\n", f.c_str());
     ++shotCount_;
@@ -474,6 +501,9 @@ void Viewer::apply(const ScriptEvent& e) {
     screenshot(v.get<std::string>());
   } else if (e.kind == "scene") {
     loadScene(v.get<std::string>());
+  } else if (e.kind == "light") {
+    const auto [index, position] = parseLightPosition(v.get<std::string>());
+    moveLight(index, position);
   } else if (e.kind == "light_face") {
     setLightFace(v.get<long>());
   } else if (e.kind == "window_screenshot") {
@@ -656,17 +686,18 @@ void Viewer::panel() {
   }
   if (sceneInput_.empty()) sceneInput_ = job_->options().scene;
   if (ImGui::InputText("scene", &sceneInput_, ImGuiInputTextFlags_EnterReturnsTrue)) loadScene(sceneInput_);
-  if (!job_->scene().lights.empty() && ImGui::CollapsingHeader("Light 0")) {
-    Light& l = job_->scene().lights[0];
-    glm::vec3 p = l.position;
-    ImGui::DragFloat3("position", &p.x, 0.005f * sceneSize());
-    if (ImGui::IsItemDeactivatedAfterEdit())
-      attempt("light 0", [&] {
-        l.position = p;
-        job_->rebuildResources();  // the light maps (and what is lit by them) follow the light
-        session_.reset();
-        dirty_ = true;
-      });
+  if (!job_->scene().lights.empty() && ImGui::CollapsingHeader("Lights")) {
+    for (size_t i = 0; i < job_->scene().lights.size(); ++i) {
+      const Light& l = job_->scene().lights[i];
+      if (l.type == LightType::Directional) continue;
+      glm::vec3 p = l.position;
+      ImGui::PushID(int(i));
+      ImGui::DragFloat3(
+          (std::string(l.type == LightType::Point ? "point " : "spot ") + std::to_string(i)).c_str(), &p.x,
+          0.005f * sceneSize());
+      if (ImGui::IsItemDeactivatedAfterEdit()) moveLight(int(i), p);
+      ImGui::PopID();
+    }
   }
   timingsPanel();
   parameterPanel();
@@ -822,6 +853,7 @@ int Viewer::run() {
     error_ = keep;
   }
   home_ = job_->scene().camera;
+  for (auto& l : job_->options().lightPositions) movedLights_.insert(l.first);
   if (!script.empty()) {
     for (auto& e : script) apply(e);
   } else if (opt_.frames > 0) {

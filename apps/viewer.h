@@ -23,6 +23,8 @@
 //                                  "rsm.position", "rsm.distance" (reflective shadow
 //                                  maps) or "shadow_map.distance"
 //   {"light_face": 2}              the light-map face shown (a point light has 6)
+//   {"light": "0=0.3,0.5,0.2"}     place point/spot light 0 (as `vgi render --light`):
+//                                  the light maps and radiance follow, the grid stays
 //   {"time": 0.5}                  the animation time
 //   {"screenshot": "shot.png"}     write the accumulation so far (+ the stats JSON)
 //   {"scene": "scenes/sibenik.json"}  load another scene (the method kept)

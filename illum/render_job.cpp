@@ -164,6 +164,30 @@ Camera parseCamera(const std::string& text) {
   return c;
 }
 
+std::pair<int, glm::vec3> parseLightPosition(const std::string& text) {
+  const size_t eq = text.find('=');
+  char* end = nullptr;
+  const long index = eq == std::string::npos ? -1 : std::strtol(text.c_str(), &end, 10);
+  if (eq == std::string::npos || eq == 0 || end != text.c_str() + eq || index < 0 || index > 1000000)
+    fail("--light '", text, "': expected I=x,y,z (I: the light's index in the scene, from 0)");
+  std::vector<float> v;
+  std::stringstream ss(text.substr(eq + 1));
+  for (std::string item; std::getline(ss, item, ',');) {
+    const float x = std::strtof(item.c_str(), &end);
+    if (item.empty() || *end || !std::isfinite(x))
+      fail("--light '", text, "': '", item, "' is not a finite number");
+    v.push_back(x);
+  }
+  if (v.size() != 3) fail("--light '", text, "': expected I=x,y,z (", v.size(), " numbers given)");
+  return {int(index), glm::vec3(v[0], v[1], v[2])};
+}
+
+std::string lightPositionText(int index, glm::vec3 p) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%d=%.9g,%.9g,%.9g", index, p.x, p.y, p.z);
+  return buf;
+}
+
 void checkRenderOptions(const RenderOptions& opt) {
   if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
   if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
@@ -188,6 +212,16 @@ RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options
   findMethod(opt_.method);  // a misspelt --method is named before the scene is loaded
   scene_ = loadScene(opt_.scene);
   if (opt_.camera) scene_.camera = *opt_.camera;
+  for (auto& [index, position] : opt_.lightPositions) {
+    if (index >= int(scene_.lights.size()))
+      fail("--light ", lightPositionText(index, position), ": the scene '", opt_.scene, "' has ",
+           scene_.lights.size(), " delta lights",
+           scene_.lights.empty() ? "" : " (0 … " + std::to_string(scene_.lights.size() - 1) + ")");
+    if (scene_.lights[size_t(index)].type == LightType::Directional)
+      fail("--light ", lightPositionText(index, position), ": light ", index,
+           " is directional (it has no position)");
+    scene_.lights[size_t(index)].position = position;
+  }
   gl_ = gl;
   setMethod(methodFor(opt_, scene_), opt_.set, opt_.aovs);
 }
@@ -230,7 +264,7 @@ void RenderJob::setMethod(const std::string& name, const std::vector<std::string
   opt_.aovs = aovs;
 }
 
-void RenderJob::rebuildResources() { makeResources(resources_->needs()); }
+void RenderJob::lightsChanged() { resources_->lightsChanged(); }
 
 void RenderJob::makeResources(SceneNeeds needs) {
   resources_.reset();  // the old GL objects go before the new ones are made
@@ -283,6 +317,19 @@ nlohmann::json RenderJob::describe() const {
                    {"up", {c.up.x, c.up.y, c.up.z}},
                    {"fov_y_deg", c.fovYDeg},
                    {"option", cameraText(c)}};
+  nlohmann::json lights = nlohmann::json::array();
+  for (size_t i = 0; i < scene_.lights.size(); ++i) {
+    const Light& l = scene_.lights[i];
+    nlohmann::json j = {{"type", l.type == LightType::Point
+                                     ? "point"
+                                     : (l.type == LightType::Spot ? "spot" : "directional")}};
+    if (l.type != LightType::Directional) {
+      j["position"] = {l.position.x, l.position.y, l.position.z};
+      j["option"] = lightPositionText(int(i), l.position);  // vgi render --light
+    }
+    lights.push_back(j);
+  }
+  run["lights"] = lights;
   run["gl_renderer"] = gl ? gl->renderer() : "none (CPU method)";
   run["gl_version"] = gl ? gl->version() : "";
   run["gl_backend"] = gl ? gl->backendName() : "";

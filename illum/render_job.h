@@ -36,6 +36,8 @@ struct RenderOptions {
   std::vector<int> checkpoints;  // --checkpoints: sample counts to write the image at (a still)
   double timeLimitS = 0;         // --time-limit: a still stops accumulating after this wall time
   std::optional<Camera> camera;  // --camera: replaces the scene's
+  // --light I=x,y,z: light I (scene order) placed at x,y,z (point and spot lights)
+  std::vector<std::pair<int, glm::vec3>> lightPositions;
 };
 
 struct RenderOutput {
@@ -49,6 +51,9 @@ void parseSize(const std::string& text, int& width, int& height);
 // throws naming the value when it is not a camera.
 Camera parseCamera(const std::string& text);
 std::string cameraText(const Camera& camera);
+// --light text: "I=x,y,z" (index, position); throws naming the value.
+std::pair<int, glm::vec3> parseLightPosition(const std::string& text);
+std::string lightPositionText(int index, glm::vec3 position);
 // Throws naming the option when a value of `options` is out of range.
 void checkRenderOptions(const RenderOptions& options);
 
@@ -70,9 +75,6 @@ class RenderJob {
   void setMethod(const std::string& name, const std::vector<std::string>& set,
                  const std::vector<std::string>& aovs);
 
-  // Builds the scene resources again on the next frame (after the scene's lights changed).
-  void rebuildResources();
-
   const RenderOptions& options() const { return opt_; }
   RenderOptions& options() { return opt_; }  // size, spp, seed, time: read by request()
   Scene& scene() { return scene_; }
@@ -86,6 +88,9 @@ class RenderJob {
   GlContext* gl() const;           // set for a GL method
   // The request of a still with these options (time = options().time).
   RenderRequest request() const;
+  // The scene's lights changed (the viewer moved one): the resources re-derive what depends on
+  // them (light maps, radiance) at the next update, and keep the rest (the grid, the pyramid).
+  void lightsChanged();
   // The stats of the run (method, scene, size, camera, resolved parameters, GL renderer, revision, …).
   nlohmann::json describe() const;
   // Throws if the GL context counted errors; throws if the result has a non-finite pixel.

@@ -130,9 +130,14 @@ bool SceneResources::update(float time, Profiler& prof) {
   const bool dynamic = scene_.hasDynamicMeshes();
   rebuilt_ = first_ || (dynamic && time != time_);
   time_ = time;
-  if (!rebuilt_) return false;
+  if (!rebuilt_) {
+    if (lightsChanged_) relight(prof);
+    lightsChanged_ = false;
+    return false;
+  }
   const bool first = first_;
   first_ = false;
+  lightsChanged_ = false;
 
   if (needs_.bvh) {
     auto s = prof.scope("build_bvh");
@@ -145,13 +150,7 @@ bool SceneResources::update(float time, Profiler& prof) {
   }
   const bool gpuScene = needs_.gbuffer || needs_.lightMaps;
   sampleLights_ = gpuScene && !emitters_->empty();
-  lights_ = scene_.lights;
-  if (sampleLights_) {
-    // Placeholder points (sample 0, seed 0) give the light count and types;
-    // beginSample places them.
-    for (const Light& l : emitters_->spotLights(emitterSequence(0, 0))) lights_.push_back(l);
-    lightsKey_ = -1;
-  }
+  placeLights();
   if (gpuScene) {
     auto s = prof.scope("upload");
     if (!gpu_)
@@ -185,6 +184,31 @@ bool SceneResources::update(float time, Profiler& prof) {
     buildGrid(prof);
   }
   return true;
+}
+
+void SceneResources::placeLights() {
+  lights_ = scene_.lights;
+  if (sampleLights_) {
+    // Placeholder points (sample 0, seed 0) give the light count and types;
+    // beginSample places them.
+    for (const Light& l : emitters_->spotLights(emitterSequence(0, 0))) lights_.push_back(l);
+    lightsKey_ = -1;
+  }
+}
+
+void SceneResources::relight(Profiler& prof) {
+  if (!gpu_) return;  // no GL lights (a CPU method reads the scene's)
+  placeLights();
+  gpu_->setLights(lights_);
+  if (sampleLights_) return;  // beginSample uploads the sample's lights and renders what they light
+  if (lightMaps_) {
+    lightMaps_->setLights(lights_, *gpu_);
+    lightMaps_->render(*gpu_, *shaders_, prof);
+  }
+  if (atlas_ && atlas_->hasRadiance()) {
+    insertRadiance(prof);
+    valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
+  }
 }
 
 void SceneResources::beginSample(int k, uint32_t seed, Profiler& prof) {

@@ -101,6 +101,10 @@ class SceneResources {
   // Makes the resources current for animation time `time` (see above); returns
   // whether anything was (re)built.
   bool update(float time, Profiler& profiler);
+  // The scene's delta lights moved (same count and types): the next update
+  // uploads them and renders again what depends on them — the light maps and
+  // the atlas grid's radiance — keeping the grid and the pyramid.
+  void lightsChanged() { lightsChanged_ = true; }
 
   const SceneNeeds& needs() const { return needs_; }
 
@@ -137,13 +141,15 @@ class SceneResources {
  private:
   void buildGrid(Profiler& profiler);
   void insertRadiance(Profiler& profiler);  // the atlas voxelizer's radiance pass with these lights
+  void placeLights();                       // lights_: the scene's, plus the area lights' placeholders
+  void relight(Profiler& profiler);         // after lightsChanged()
   const Scene& scene_;
   SceneNeeds needs_;
   GlContext* gl_;
   ShaderLibrary* shaders_;
   std::vector<float> frameTimes_;
   int threads_;
-  bool first_ = true, rebuilt_ = false;
+  bool first_ = true, rebuilt_ = false, lightsChanged_ = false;
   float time_ = 0;
 
   std::unique_ptr<Emitters> emitters_;

@@ -204,6 +204,40 @@ TEST(View, ShowsTheMethodsLightMaps) {
   EXPECT_EQ(s["viewer"]["shown"], "rsm.normal");
 }
 
+// Moving a light (the panel's drag, a script's "light" event): the light maps and the grid's radiance
+// follow without voxelizing again, and the screenshot's command (with --light) renders the same image.
+TEST(View, MovingALightRelightsAndKeepsTheGrid) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = tmp("view_light");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string script = dir + "/script.json";
+  std::ofstream(script) << R"([{"frames": 2}, {"screenshot": ")" << dir << R"(/before.exr"},
+    {"light": "0=0.2,0.45,0.3"}, {"light": "3=0,0,0"}, {"frames": 2}, {"screenshot": ")"
+                        << dir << R"(/after.exr"}])";
+  CliRun v = underXvfb("--size 48x48 --script " + script);
+  ASSERT_EQ(v.code, 0) << v.output;
+  EXPECT_NE(v.output.find("1 errors reported"), std::string::npos) << "light 3 does not exist: " << v.output;
+  const nlohmann::json before = stats(dir + "/before.json"), after = stats(dir + "/after.json");
+  EXPECT_TRUE(before["timings_ms"].contains("pyramid")) << before["timings_ms"].dump();
+  EXPECT_FALSE(after["timings_ms"].contains("pyramid"))
+      << "the grid was kept: " << after["timings_ms"].dump();
+  EXPECT_TRUE(after["timings_ms"].contains("rsm")) << "the light maps were rendered again";
+  EXPECT_EQ(after["lights"][0]["option"], "0=0.200000003,0.449999988,0.300000012");
+  EXPECT_GT(difference(dir + "/before.exr", dir + "/after.exr").relMse, 0.01) << "the light moved";
+  const std::string cmd = after["command"].get<std::string>();
+  ASSERT_NE(cmd.find("--light '0="), std::string::npos) << cmd;
+  CliRun r = vgi(cmd.substr(4) + " --quiet -o " + dir + "/again.exr");
+  ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
+  EXPECT_EQ(difference(dir + "/after.exr", dir + "/again.exr").relMae, 0.0) << "bit-identical";
+  for (const char* bad : {"5=0,0,0", "0=1,2", "x=1,2,3", "0=1,nan,2"}) {
+    CliRun b =
+        vgi(std::string("render --size 4x4 --spp 1 --quiet --light ") + bad + " -o " + dir + "/bad.exr");
+    EXPECT_EQ(b.code, 2) << bad << ": " << b.output;
+    EXPECT_NE(b.output.find("--light"), std::string::npos) << b.output;
+  }
+}
+
 // --record writes every shown frame.
 TEST(View, RecordWritesANumberedFrameSequence) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
