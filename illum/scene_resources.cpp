@@ -199,8 +199,11 @@ void SceneResources::placeLights() {
 void SceneResources::relight(Profiler& prof) {
   if (!gpu_) return;  // no GL lights (a CPU method reads the scene's)
   placeLights();
+  if (!sampleLights_) uploadLights(prof);  // (else beginSample places and uploads the sample's lights)
+}
+
+void SceneResources::uploadLights(Profiler& prof) {
   gpu_->setLights(lights_);
-  if (sampleLights_) return;  // beginSample uploads the sample's lights and renders what they light
   if (lightMaps_) {
     lightMaps_->setLights(lights_, *gpu_);
     lightMaps_->render(*gpu_, *shaders_, prof);
@@ -218,15 +221,7 @@ void SceneResources::beginSample(int k, uint32_t seed, Profiler& prof) {
   lightsKey_ = key;
   lights_ = scene_.lights;
   for (const Light& l : emitters_->spotLights(emitterSequence(k, seed))) lights_.push_back(l);
-  gpu_->setLights(lights_);
-  if (lightMaps_) {
-    lightMaps_->setLights(lights_, *gpu_);
-    lightMaps_->render(*gpu_, *shaders_, prof);
-  }
-  if (atlas_ && atlas_->hasRadiance()) {
-    insertRadiance(prof);
-    valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
-  }
+  uploadLights(prof);
 }
 
 void SceneResources::insertRadiance(Profiler& prof) {

@@ -143,6 +143,7 @@ class SceneResources {
   void insertRadiance(Profiler& profiler);  // the atlas voxelizer's radiance pass with these lights
   void placeLights();                       // lights_: the scene's, plus the area lights' placeholders
   void relight(Profiler& profiler);         // after lightsChanged()
+  void uploadLights(Profiler& profiler);  // lights_ to the GPU scene; the light maps and radiance they light
   const Scene& scene_;
   SceneNeeds needs_;
   GlContext* gl_;
