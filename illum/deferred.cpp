@@ -24,7 +24,7 @@ float halton(int index, int base) {
   return r;
 }
 
-FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int frame, int frames) {
+FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int frame) {
   // Reversed-Z with an infinite far plane (GBuffer::render sets depth [0, 1]
   // and GL_GREATER): depth = near / distance, whose float precision is
   // relative at every distance. The usual [−1, 1] mapping with this near
@@ -40,7 +40,9 @@ FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int fr
   proj[3][2] = nearP;  // z_clip = near
 
   glm::mat4 view = glm::lookAt(cam.position, cam.target, cam.up);
-  glm::vec2 j = frames == 1 ? glm::vec2(0.0f) : glm::vec2(halton(frame + 1, 2), halton(frame + 1, 3)) - 0.5f;
+  // (Frame 0 was Halton point 1, (½, ⅓), unless it was the only frame: then a run's first sample
+  // depended on its length, and a 1-sample viewer screenshot was not `vgi render --spp 1`.)
+  glm::vec2 j = frame == 0 ? glm::vec2(0.0f) : glm::vec2(halton(frame + 1, 2), halton(frame + 1, 3)) - 0.5f;
   glm::vec2 jNdc = 2.0f * j / glm::vec2(W, H);
   glm::mat4 jitter = glm::translate(glm::mat4(1.0f), glm::vec3(jNdc.x, -jNdc.y, 0.0f));
   FrameCamera c;

@@ -21,10 +21,11 @@ struct FrameCamera {
   glm::mat4 viewProj, invViewProj;
   glm::vec3 position;
 };
-// Frame `frame` of `frames` jittered frames: frame 0 of 1 at pixel centres,
-// otherwise Halton (2,3) offsets in [−½, ½)² pixels.
-FrameCamera frameCamera(const Camera& camera, const Bounds& bounds, int width, int height, int frame,
-                        int frames);
+// Jittered frame `frame`: frame 0 at pixel centres, frame k > 0 at Halton
+// (2,3) point k + 1, an offset in [−½, ½)² pixels. A frame's jitter does not
+// depend on how many frames follow, so the first k samples of any run are the
+// same k samples (the viewer's screenshot after k frames is `vgi render --spp k`).
+FrameCamera frameCamera(const Camera& camera, const Bounds& bounds, int width, int height, int frame);
 
 // Position (w = 1 where a surface was seen), normal facing the viewer (w =
 // material index), albedo and the geometric normal, at the texture units of

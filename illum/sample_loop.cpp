@@ -218,7 +218,7 @@ bool SampleSession::addSample() {
   if (gl) {
     frame_.camera = frameCamera(req_.scene->camera,
                                 needs.gbuffer ? res_.gpuScene().bounds() : req_.scene->bounds(req_.time),
-                                req_.width, req_.height, done_, req_.spp);
+                                req_.width, req_.height, done_);
     if (needs.gbuffer) {
       auto s = prof_.scope("gbuffer");
       targets_.gbuffer()->render(res_.gpuScene(), frame_.camera);
