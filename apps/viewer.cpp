@@ -459,7 +459,8 @@ void Viewer::screenshot(const std::string& path) {
                            {"exposure", exposure_},
                            {"panel_parameters", panelKeys_},
                            {"gl_errors", gl_->errorCount()},
-                           {"errors_reported", failures_}};
+                           {"errors_reported", failures_},
+                           {"resources_kept", job_->resources().adopted()}};
     if (showingLightMap()) out.stats["viewer"]["light_face"] = lightFace_;
     // The `vgi render` command that renders this image again.
     std::string cmd = "vgi render --scene '" + job_->options().scene + "' --method " + job_->info().name;

@@ -267,9 +267,11 @@ void RenderJob::setMethod(const std::string& name, const std::vector<std::string
 void RenderJob::lightsChanged() { resources_->lightsChanged(); }
 
 void RenderJob::makeResources(SceneNeeds needs) {
-  resources_.reset();  // the old GL objects go before the new ones are made
-  resources_ =
+  auto fresh =
       std::make_unique<SceneResources>(scene_, std::move(needs), gl(), shaders(), frameTimes(), opt_.threads);
+  if (resources_) fresh->adopt(*resources_);  // what is built the same way is kept
+  resources_.reset();  // the rest of the old GL objects go before the new ones are made (at update)
+  resources_ = std::move(fresh);
 }
 
 std::vector<float> RenderJob::frameTimes() const {

@@ -139,11 +139,18 @@ bool SceneResources::update(float time, Profiler& prof) {
   first_ = false;
   lightsChanged_ = false;
 
+  // An adopted grid or BVH is current if it was built for this time (or nothing moves).
+  const bool keepGrid = gridTime_ && (!dynamic || *gridTime_ == time);
+  const bool keepBvh = bvhTime_ && (!dynamic || *bvhTime_ == time);
+  gridTime_.reset();
+  bvhTime_.reset();
   if (needs_.bvh) {
-    auto s = prof.scope("build_bvh");
-    bvh_.reset();
-    flat_ = std::make_unique<FlatScene>(flatten(scene_, time));
-    bvh_ = std::make_unique<EmbreeTracer>(*flat_);
+    if (!keepBvh) {
+      auto s = prof.scope("build_bvh");
+      bvh_.reset();
+      flat_ = std::make_unique<FlatScene>(flatten(scene_, time));
+      bvh_ = std::make_unique<EmbreeTracer>(*flat_);
+    }
     emitters_ = std::make_unique<Emitters>(scene_, *flat_);
   } else {
     emitters_ = std::make_unique<Emitters>(Emitters::ofScene(scene_, time));
@@ -167,8 +174,14 @@ bool SceneResources::update(float time, Profiler& prof) {
       lightMaps_->setLights(lights_, *gpu_);
     if (!sampleLights_) lightMaps_->render(*gpu_, *shaders_, prof);
   }
-  if (needs_.binaryGrid) {
-    if (first) {
+  if (needs_.binaryGrid && keepGrid) {
+    // The grid as it was; only its radiance (if any) depends on these light maps.
+    if (atlas_ && atlas_->hasRadiance() && !sampleLights_) {
+      insertRadiance(prof);
+      valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
+    }
+  } else if (needs_.binaryGrid) {
+    if (first && !hasBox_) {
       // One grid box for the whole animation: the union of the frames' bounds.
       Bounds b;
       for (float t : frameTimes_.empty() ? std::vector<float>{time} : frameTimes_) {
@@ -184,6 +197,49 @@ bool SceneResources::update(float time, Profiler& prof) {
     buildGrid(prof);
   }
   return true;
+}
+
+void SceneResources::adopt(SceneResources& old) {
+  VGI_CHECK(first_ && &old.scene_ == &scene_);
+  // Nothing to take when it built nothing, or built for another context (a GL method after a CPU
+  // one) or another animation (the grid box spans the frames').
+  if (old.first_ || old.gl_ != gl_ || old.frameTimes_ != frameTimes_) return;
+  auto take = [&](auto& mine, auto& theirs, const char* name) {
+    if (!theirs) return false;
+    mine = std::move(theirs);
+    adopted_.push_back(name);
+    return true;
+  };
+  if (needs_.gbuffer || needs_.lightMaps) take(gpu_, old.gpu_, "gpu_scene");
+  if (gpu_ && needs_.lightMaps && old.needs_.lightMaps &&
+      needs_.lightMaps->resolution == old.needs_.lightMaps->resolution &&
+      needs_.lightMaps->reflective == old.needs_.lightMaps->reflective)
+    take(lightMaps_, old.lightMaps_, needs_.lightMaps->reflective ? "rsm" : "light_maps");
+  SceneNeeds grid, oldGrid;  // the needs that decide the grid, nothing else
+  grid.binaryGrid = needs_.binaryGrid;
+  grid.valueGrids = needs_.valueGrids;
+  grid.orMipPyramid = needs_.orMipPyramid;
+  oldGrid.binaryGrid = old.needs_.binaryGrid;
+  oldGrid.valueGrids = old.needs_.valueGrids;
+  oldGrid.orMipPyramid = old.needs_.orMipPyramid;
+  if (needs_.binaryGrid && old.hasBox_ && grid == oldGrid && (old.glPyramid_ || old.cpuPyramid_)) {
+    box_ = old.box_;
+    hasBox_ = true;
+    atlas_ = std::move(old.atlas_);
+    take(glPyramid_, old.glPyramid_, "binary_grid");
+    take(cpuPyramid_, old.cpuPyramid_, "binary_grid");
+    take(valueTextures_, old.valueTextures_, "value_grids");
+    if (glPyramid_ || cpuPyramid_) adopted_.push_back("or_mip_pyramid");
+    voxelsSet_ = old.voxelsSet_;
+    voxelsCounted_ = old.voxelsCounted_;
+    voxelizerStats_ = std::move(old.voxelizerStats_);
+    gridTime_ = old.time_;
+  }
+  if (needs_.bvh && old.bvh_) {
+    flat_ = std::move(old.flat_);
+    take(bvh_, old.bvh_, "bvh");
+    bvhTime_ = old.time_;
+  }
 }
 
 void SceneResources::placeLights() {

@@ -105,6 +105,15 @@ class SceneResources {
   // uploads them and renders again what depends on them — the light maps and
   // the atlas grid's radiance — keeping the grid and the pyramid.
   void lightsChanged() { lightsChanged_ = true; }
+  // Takes over from `old` (the same scene, context and frame times; nothing
+  // built here yet) what these needs build the same way, so that a method
+  // switch or a parameter change rebuilds only what differs: the GPU scene,
+  // the light maps (same resolution and kind), the grid with its pyramid and
+  // value grids (the same grid, value-grid and pyramid needs; the atlas grid's
+  // radiance is inserted again for these light maps) and the BVH. What is
+  // taken is listed by adopted(); `old` keeps the rest, to be dropped.
+  void adopt(SceneResources& old);
+  const std::vector<std::string>& adopted() const { return adopted_; }
 
   const SceneNeeds& needs() const { return needs_; }
 
@@ -151,6 +160,8 @@ class SceneResources {
   std::vector<float> frameTimes_;
   int threads_;
   bool first_ = true, rebuilt_ = false, lightsChanged_ = false;
+  std::vector<std::string> adopted_;
+  std::optional<float> gridTime_, bvhTime_;  // when adopted: the time they were built for
   float time_ = 0;
 
   std::unique_ptr<Emitters> emitters_;

@@ -238,6 +238,47 @@ TEST(View, MovingALightRelightsAndKeepsTheGrid) {
   }
 }
 
+// A method switch or parameter change rebuilds only the resources that differ (RenderJob::makeResources,
+// SceneResources::adopt): nearfield -> voxels -> nearfield keeps the grid and pyramid; vct with another
+// shadow_res (radiance=atlas) keeps its grid and value grids but inserts their radiance again for the new
+// shadow maps.
+// Every screenshot still equals `vgi render` of its command, bit for bit.
+TEST(View, SwitchingKeepsTheResourcesThatStayTheSame) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = tmp("view_keep");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string script = dir + "/script.json";
+  std::ofstream(script) << R"([{"frames": 1}, {"method": "voxels"}, {"frames": 1},
+    {"screenshot": ")" << dir
+                        << R"(/voxels.exr"}, {"method": "nearfield"}, {"frames": 2},
+    {"screenshot": ")" << dir
+                        << R"(/nf.exr"}, {"method": "vct"}, {"set": {"radiance": "atlas"}}, {"frames": 1},
+    {"set": {"shadow_res": 256}},
+    {"frames": 1}, {"screenshot": ")"
+                        << dir << R"(/vct.exr"}])";
+  CliRun v = underXvfb("--size 40x40 --script " + script);
+  ASSERT_EQ(v.code, 0) << v.output;
+  auto has = [](const nlohmann::json& list, const char* name) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+  };
+  for (const char* name : {"voxels", "nf", "vct"}) {
+    const nlohmann::json s = stats(dir + "/" + name + ".json");
+    const nlohmann::json kept = s["viewer"]["resources_kept"];
+    EXPECT_TRUE(has(kept, "binary_grid") && has(kept, "or_mip_pyramid")) << name << ": " << kept.dump();
+    EXPECT_FALSE(s["timings_ms"].contains("pyramid")) << name << ": " << s["timings_ms"].dump();
+    const std::string cmd = s["command"].get<std::string>();
+    CliRun r = vgi(cmd.substr(4) + " --quiet -o " + dir + "/" + name + "_again.exr");
+    ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
+    EXPECT_EQ(difference(dir + "/" + name + ".exr", dir + "/" + name + "_again.exr").relMae, 0.0)
+        << name << ": bit-identical to " << cmd;
+  }
+  const nlohmann::json vct = stats(dir + "/vct.json");
+  EXPECT_TRUE(has(vct["viewer"]["resources_kept"], "value_grids")) << vct["viewer"]["resources_kept"].dump();
+  EXPECT_FALSE(has(vct["viewer"]["resources_kept"], "light_maps")) << "shadow_res changed: new maps";
+  EXPECT_TRUE(vct["timings_ms"].contains("shadow_maps"));
+}
+
 // --record writes every shown frame.
 TEST(View, RecordWritesANumberedFrameSequence) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
