@@ -25,16 +25,22 @@ namespace {
 
 bool haveXvfb() { return std::filesystem::exists("/usr/bin/xvfb-run"); }
 
-// `vgi view …` in a fresh Xvfb server.
+// `vgi view …` in a fresh Xvfb server. The exit code is vgi's, written out by the shell inside:
+// xvfb-run's own status is 5 when removing its temporary folder races with the server's exit,
+// which happens after a command that fails at once.
 CliRun underXvfb(const std::string& args) {
-  const std::string cmd = std::string("/usr/bin/xvfb-run -a -s '-screen 0 1280x1024x24' ") + VGI_BINARY +
-                          " view " + args + " 2>&1";
+  static int runs = 0;
+  const std::string script = tmp("xvfb_view_" + std::to_string(++runs) + ".sh");
+  std::ofstream(script) << VGI_BINARY << " view " << args << " 2>&1\necho \"vgi-exit=$?\"\n";
+  const std::string cmd = "/usr/bin/xvfb-run -a -s '-screen 0 1280x1024x24' /bin/sh " + script + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   std::string out;
   char buf[4096];
   for (size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
   const int status = pclose(p);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  const size_t at = out.rfind("vgi-exit=");
+  if (at != std::string::npos) return {std::atoi(out.c_str() + at + 9), out.substr(0, at)};
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};  // the server did not start
 }
 
 ImageDiff difference(const std::string& a, const std::string& b) {
