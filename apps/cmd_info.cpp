@@ -11,9 +11,6 @@
 namespace vgi::app {
 
 namespace {
-const char* lightTypeName(LightType t) {
-  return t == LightType::Point ? "point" : t == LightType::Spot ? "spot" : "directional";
-}
 nlohmann::json vec(glm::vec3 v) { return {v.x, v.y, v.z}; }
 std::string str(glm::vec3 v) {
   char buf[96];

@@ -38,6 +38,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A light-map view of the "show" list: "rsm.<channel>" or "shadow_map.distance".
+bool isLightMapView(const std::string& channel) {
+  return channel.rfind("rsm.", 0) == 0 || channel.rfind("shadow_map.", 0) == 0;
+}
+
 std::string glfwMessage;
 void onGlfwError(int code, const char* message) {
   glfwMessage = "GLFW error " + std::to_string(code) + ": " + (message ? message : "?");
@@ -169,9 +174,7 @@ class Viewer {
   // The light maps' channels the resources hold, as "rsm.<channel>" (reflective
   // shadow maps) or "shadow_map.distance"; empty without light maps.
   std::vector<std::string> lightMapViews() const;
-  bool showingLightMap() const {
-    return channel_.rfind("rsm.", 0) == 0 || channel_.rfind("shadow_map.", 0) == 0;
-  }
+  bool showingLightMap() const { return isLightMapView(channel_); }
   int lightFaces() const;  // of the maps as built; −1 before they are
   Image lightMapImage() const;
   void setLightFace(long face);
@@ -316,7 +319,7 @@ void Viewer::switchMethod(const std::string& name) {
 
 void Viewer::show(const std::string& channel) {
   attempt("show " + channel, [&] {
-    if (channel.rfind("rsm.", 0) == 0 || channel.rfind("shadow_map.", 0) == 0) {
+    if (isLightMapView(channel)) {
       const std::vector<std::string> views = lightMapViews();
       if (std::find(views.begin(), views.end(), channel) == views.end()) {
         std::string list;
@@ -346,10 +349,7 @@ std::vector<std::string> Viewer::lightMapViews() const {
 }
 
 int Viewer::lightFaces() const {
-  const std::vector<std::string> built = job_->resources().built();
-  const bool maps = std::find(built.begin(), built.end(), "rsm") != built.end() ||
-                    std::find(built.begin(), built.end(), "light_maps") != built.end();
-  return maps ? job_->resources().lightMaps().faceCount() : -1;
+  return job_->resources().hasLightMaps() ? job_->resources().lightMaps().faceCount() : -1;
 }
 
 void Viewer::setLightFace(long face) {
@@ -414,11 +414,7 @@ void Viewer::loadScene(const std::string& spec) {
 
 void Viewer::moveLight(int index, glm::vec3 position) {
   attempt("light " + lightPositionText(index, position), [&] {
-    std::vector<Light>& lights = job_->scene().lights;
-    if (index < 0 || index >= int(lights.size())) fail("the scene has ", lights.size(), " delta lights");
-    if (lights[size_t(index)].type == LightType::Directional)
-      fail("light ", index, " is directional (it has no position)");
-    lights[size_t(index)].position = position;
+    placeLight(job_->scene().lights, index, position);
     job_->lightsChanged();  // the light maps and the radiance follow; the grid stays
     movedLights_.insert(index);
     dirty_ = true;
@@ -693,9 +689,8 @@ void Viewer::panel() {
       if (l.type == LightType::Directional) continue;
       glm::vec3 p = l.position;
       ImGui::PushID(int(i));
-      ImGui::DragFloat3(
-          (std::string(l.type == LightType::Point ? "point " : "spot ") + std::to_string(i)).c_str(), &p.x,
-          0.005f * sceneSize());
+      ImGui::DragFloat3((std::string(lightTypeName(l.type)) + " " + std::to_string(i)).c_str(), &p.x,
+                        0.005f * sceneSize());
       if (ImGui::IsItemDeactivatedAfterEdit()) moveLight(int(i), p);
       ImGui::PopID();
     }

@@ -104,4 +104,8 @@ void flattenMesh(const Scene& scene, int mi, float time, FlatScene& f) {
   }
 }
 
+const char* lightTypeName(LightType t) {
+  return t == LightType::Point ? "point" : t == LightType::Spot ? "spot" : "directional";
+}
+
 }  // namespace vgi

@@ -52,6 +52,7 @@ struct Mesh {
 };
 
 enum class LightType { Point, Spot, Directional };
+const char* lightTypeName(LightType type);  // "point", "spot", "directional" (the scene files' names)
 
 // Delta lights. Point/spot: intensity in W/sr (per RGB channel); directional:
 // irradiance on a surface facing the light. Spot: I(θ) = I0 cos(θ)^falloff for

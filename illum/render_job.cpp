@@ -188,6 +188,15 @@ std::string lightPositionText(int index, glm::vec3 p) {
   return buf;
 }
 
+void placeLight(std::vector<Light>& lights, int index, glm::vec3 position) {
+  if (index < 0 || index >= int(lights.size()))
+    fail("light ", index, " does not exist: the scene has ", lights.size(), " delta lights",
+         lights.empty() ? "" : " (0 … " + std::to_string(lights.size() - 1) + ")");
+  if (lights[size_t(index)].type == LightType::Directional)
+    fail("light ", index, " is directional (it has no position)");
+  lights[size_t(index)].position = position;
+}
+
 void checkRenderOptions(const RenderOptions& opt) {
   if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
   if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
@@ -213,14 +222,11 @@ RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options
   scene_ = loadScene(opt_.scene);
   if (opt_.camera) scene_.camera = *opt_.camera;
   for (auto& [index, position] : opt_.lightPositions) {
-    if (index >= int(scene_.lights.size()))
-      fail("--light ", lightPositionText(index, position), ": the scene '", opt_.scene, "' has ",
-           scene_.lights.size(), " delta lights",
-           scene_.lights.empty() ? "" : " (0 … " + std::to_string(scene_.lights.size() - 1) + ")");
-    if (scene_.lights[size_t(index)].type == LightType::Directional)
-      fail("--light ", lightPositionText(index, position), ": light ", index,
-           " is directional (it has no position)");
-    scene_.lights[size_t(index)].position = position;
+    try {
+      placeLight(scene_.lights, index, position);
+    } catch (const Error& e) {
+      fail("--light ", lightPositionText(index, position), ": ", e.what(), " in '", opt_.scene, "'");
+    }
   }
   gl_ = gl;
   setMethod(methodFor(opt_, scene_), opt_.set, opt_.aovs);
@@ -322,9 +328,7 @@ nlohmann::json RenderJob::describe() const {
   nlohmann::json lights = nlohmann::json::array();
   for (size_t i = 0; i < scene_.lights.size(); ++i) {
     const Light& l = scene_.lights[i];
-    nlohmann::json j = {{"type", l.type == LightType::Point
-                                     ? "point"
-                                     : (l.type == LightType::Spot ? "spot" : "directional")}};
+    nlohmann::json j = {{"type", lightTypeName(l.type)}};
     if (l.type != LightType::Directional) {
       j["position"] = {l.position.x, l.position.y, l.position.z};
       j["option"] = lightPositionText(int(i), l.position);  // vgi render --light

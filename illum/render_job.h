@@ -54,6 +54,9 @@ std::string cameraText(const Camera& camera);
 // --light text: "I=x,y,z" (index, position); throws naming the value.
 std::pair<int, glm::vec3> parseLightPosition(const std::string& text);
 std::string lightPositionText(int index, glm::vec3 position);
+// Places point or spot light `index` at `position`; throws naming the index if there is no such light
+// or it is directional.
+void placeLight(std::vector<Light>& lights, int index, glm::vec3 position);
 // Throws naming the option when a value of `options` is out of range.
 void checkRenderOptions(const RenderOptions& options);
 

@@ -98,19 +98,27 @@ BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids, bool atlasOnly,
   return g;
 }
 
+namespace {
+
+bool sameLightMaps(const std::optional<LightMapNeed>& x, const std::optional<LightMapNeed>& y) {
+  return bool(x) == bool(y) && (!x || (x->resolution == y->resolution && x->reflective == y->reflective));
+}
+
+// The needs that decide the grid and what is built over it: the binary grid, the value grids, the pyramid.
+bool sameGrid(const SceneNeeds& a, const SceneNeeds& b) {
+  const auto &x = a.binaryGrid, &y = b.binaryGrid;
+  const auto &u = a.valueGrids, &v = b.valueGrids;
+  return bool(x) == bool(y) &&
+         (!x || (x->resolution == y->resolution && x->voxelizer == y->voxelizer &&
+                 x->cubicCells == y->cubicCells)) &&
+         bool(u) == bool(v) && (!u || (u->channels == v->channels && u->mips == v->mips)) &&
+         a.orMipPyramid == b.orMipPyramid;
+}
+
+}  // namespace
+
 bool SceneNeeds::operator==(const SceneNeeds& o) const {
-  auto lm = [](const std::optional<LightMapNeed>& x, const std::optional<LightMapNeed>& y) {
-    return bool(x) == bool(y) && (!x || (x->resolution == y->resolution && x->reflective == y->reflective));
-  };
-  auto bg = [](const std::optional<BinaryGridNeed>& x, const std::optional<BinaryGridNeed>& y) {
-    return bool(x) == bool(y) && (!x || (x->resolution == y->resolution && x->voxelizer == y->voxelizer &&
-                                         x->cubicCells == y->cubicCells));
-  };
-  auto vg = [](const std::optional<ValueGridNeed>& x, const std::optional<ValueGridNeed>& y) {
-    return bool(x) == bool(y) && (!x || (x->channels == y->channels && x->mips == y->mips));
-  };
-  return gbuffer == o.gbuffer && lm(lightMaps, o.lightMaps) && bg(binaryGrid, o.binaryGrid) &&
-         vg(valueGrids, o.valueGrids) && orMipPyramid == o.orMipPyramid && bvh == o.bvh;
+  return gbuffer == o.gbuffer && sameLightMaps(lightMaps, o.lightMaps) && sameGrid(*this, o) && bvh == o.bvh;
 }
 
 SceneResources::SceneResources(const Scene& scene, SceneNeeds needs, GlContext* gl, ShaderLibrary* shaders,
@@ -176,10 +184,7 @@ bool SceneResources::update(float time, Profiler& prof) {
   }
   if (needs_.binaryGrid && keepGrid) {
     // The grid as it was; only its radiance (if any) depends on these light maps.
-    if (atlas_ && atlas_->hasRadiance() && !sampleLights_) {
-      insertRadiance(prof);
-      valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
-    }
+    if (!sampleLights_) relightRadiance(prof);  // (with area lights, beginSample does)
   } else if (needs_.binaryGrid) {
     if (first && !hasBox_) {
       // One grid box for the whole animation: the union of the frames' bounds.
@@ -211,18 +216,10 @@ void SceneResources::adopt(SceneResources& old) {
     return true;
   };
   if (needs_.gbuffer || needs_.lightMaps) take(gpu_, old.gpu_, "gpu_scene");
-  if (gpu_ && needs_.lightMaps && old.needs_.lightMaps &&
-      needs_.lightMaps->resolution == old.needs_.lightMaps->resolution &&
-      needs_.lightMaps->reflective == old.needs_.lightMaps->reflective)
+  if (gpu_ && needs_.lightMaps && sameLightMaps(needs_.lightMaps, old.needs_.lightMaps))
     take(lightMaps_, old.lightMaps_, needs_.lightMaps->reflective ? "rsm" : "light_maps");
-  SceneNeeds grid, oldGrid;  // the needs that decide the grid, nothing else
-  grid.binaryGrid = needs_.binaryGrid;
-  grid.valueGrids = needs_.valueGrids;
-  grid.orMipPyramid = needs_.orMipPyramid;
-  oldGrid.binaryGrid = old.needs_.binaryGrid;
-  oldGrid.valueGrids = old.needs_.valueGrids;
-  oldGrid.orMipPyramid = old.needs_.orMipPyramid;
-  if (needs_.binaryGrid && old.hasBox_ && grid == oldGrid && (old.glPyramid_ || old.cpuPyramid_)) {
+  if (needs_.binaryGrid && old.hasBox_ && sameGrid(needs_, old.needs_) &&
+      (old.glPyramid_ || old.cpuPyramid_)) {
     box_ = old.box_;
     hasBox_ = true;
     atlas_ = std::move(old.atlas_);
@@ -264,10 +261,13 @@ void SceneResources::uploadLights(Profiler& prof) {
     lightMaps_->setLights(lights_, *gpu_);
     lightMaps_->render(*gpu_, *shaders_, prof);
   }
-  if (atlas_ && atlas_->hasRadiance()) {
-    insertRadiance(prof);
-    valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
-  }
+  relightRadiance(prof);
+}
+
+void SceneResources::relightRadiance(Profiler& prof) {
+  if (!atlas_ || !atlas_->hasRadiance()) return;
+  insertRadiance(prof);
+  valueTextures_->resolve(atlas_->valueBuffers(), *shaders_, prof);
 }
 
 void SceneResources::beginSample(int k, uint32_t seed, Profiler& prof) {

@@ -131,6 +131,7 @@ class SceneResources {
   // asked for, so `built` stays true).
   const GpuScene& gpuScene() const;
   const LightMaps& lightMaps() const;
+  bool hasLightMaps() const { return bool(lightMaps_); }  // built (at the first update)
   const GridBox& gridBox() const;  // the grid's box: the union of the animation's bounds
   float voxelDiagonal() const;
   const GlPyramid& glPyramid() const;
@@ -153,6 +154,7 @@ class SceneResources {
   void placeLights();                       // lights_: the scene's, plus the area lights' placeholders
   void relight(Profiler& profiler);         // after lightsChanged()
   void uploadLights(Profiler& profiler);  // lights_ to the GPU scene; the light maps and radiance they light
+  void relightRadiance(Profiler& profiler);  // the atlas grid's radiance (if any) for the light maps now
   const Scene& scene_;
   SceneNeeds needs_;
   GlContext* gl_;

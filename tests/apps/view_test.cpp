@@ -47,6 +47,14 @@ ImageDiff difference(const std::string& a, const std::string& b) {
   return compareImages(readImage(a), readImage(b), a, b, DiffOptions{});
 }
 
+// An empty folder under the tests' temp folder.
+std::string freshDir(const std::string& name) {
+  const std::string dir = tmp(name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 nlohmann::json stats(const std::string& json) { return nlohmann::json::parse(std::ifstream(json)); }
 
 }  // namespace
@@ -74,9 +82,7 @@ TEST(View, FramesScreenshotEqualsRender) {
 // Each screenshot's JSON carries the `vgi render` command that renders it again, and it does.
 TEST(View, ScriptReplaysLikeRenderAndSurvivesBadInput) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
-  const std::string dir = tmp("view_script");
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::string dir = freshDir("view_script");
   const std::string script = dir + "/script.json";
   std::ofstream(script) << R"([{"orbit": [25, 10]}, {"set": {"rays": 8}}, {"frames": 4},
     {"screenshot": ")" << dir
@@ -160,9 +166,7 @@ TEST(View, BadInputIsRefusedWithItsName) {
 // (non-reflective) shadow maps, the same distances.
 TEST(View, ShowsTheMethodsLightMaps) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
-  const std::string dir = tmp("view_rsm");
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::string dir = freshDir("view_rsm");
   const std::string script = dir + "/script.json";
   std::ofstream(script) << R"([{"show": "rsm.normal"}, {"light_face": 3}, {"frames": 1},
     {"screenshot": ")" << dir
@@ -214,9 +218,7 @@ TEST(View, ShowsTheMethodsLightMaps) {
 // follow without voxelizing again, and the screenshot's command (with --light) renders the same image.
 TEST(View, MovingALightRelightsAndKeepsTheGrid) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
-  const std::string dir = tmp("view_light");
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::string dir = freshDir("view_light");
   const std::string script = dir + "/script.json";
   std::ofstream(script) << R"([{"frames": 2}, {"screenshot": ")" << dir << R"(/before.exr"},
     {"light": "0=0.2,0.45,0.3"}, {"light": "3=0,0,0"}, {"frames": 2}, {"screenshot": ")"
@@ -251,9 +253,7 @@ TEST(View, MovingALightRelightsAndKeepsTheGrid) {
 // Every screenshot still equals `vgi render` of its command, bit for bit.
 TEST(View, SwitchingKeepsTheResourcesThatStayTheSame) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
-  const std::string dir = tmp("view_keep");
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::string dir = freshDir("view_keep");
   const std::string script = dir + "/script.json";
   std::ofstream(script) << R"([{"frames": 1}, {"method": "voxels"}, {"frames": 1},
     {"screenshot": ")" << dir
