@@ -27,10 +27,14 @@ bool haveXvfb() { return std::filesystem::exists("/usr/bin/xvfb-run"); }
 
 // `vgi view …` in a fresh Xvfb server. The exit code is vgi's, written out by the shell inside:
 // xvfb-run's own status is 5 when removing its temporary folder races with the server's exit,
-// which happens after a command that fails at once.
+// which happens after a command that fails at once. ctest runs each test in its own process, in
+// parallel, so the script's name carries the test's name: a counter alone starts at 1 in every process
+// and two tests overwrote each other's script.
 CliRun underXvfb(const std::string& args) {
   static int runs = 0;
-  const std::string script = tmp("xvfb_view_" + std::to_string(++runs) + ".sh");
+  const std::string script =
+      tmp(std::string("xvfb_") + testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+          std::to_string(++runs) + ".sh");
   std::ofstream(script) << VGI_BINARY << " view " << args << " 2>&1\necho \"vgi-exit=$?\"\n";
   const std::string cmd = "/usr/bin/xvfb-run -a -s '-screen 0 1280x1024x24' /bin/sh " + script + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
