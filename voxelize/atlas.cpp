@@ -1,5 +1,7 @@
 #include "voxelize/atlas.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -92,8 +94,10 @@ bool readCache(const fs::path& file, size_t triangles, MeshAtlas& a) {
 void writeCache(const fs::path& file, const MeshAtlas& a) {
   std::error_code ec;
   fs::create_directories(file.parent_path(), ec);
+  // A temporary of this process' own: two processes (parallel tests, two renders) building the same
+  // atlas must not write into one file, or one could rename the other's half-written file into place.
   fs::path tmp = file;
-  tmp += ".tmp";
+  tmp += "." + std::to_string(getpid()) + ".tmp";
   std::ofstream out(tmp, std::ios::binary);
   if (!out) return;  // an unwritable cache only costs time
   CacheHeader h{kCacheVersion,        a.resolution, a.charts,     a.lscmCharts, a.facesSplitOff,
