@@ -5,17 +5,16 @@
 // the normal deviation, so each chart is close to a height field and can be
 // flattened without folds.
 //
-// Non-manifold input (complex edges or vertices) makes OpenMesh refuse faces;
-// those are added with duplicated vertices, so they become separate
-// components and still get UVs — no triangle is dropped.
+// Non-manifold input gets faces of their own (voxelize/openmesh_build.h), so
+// they still get UVs — no triangle is dropped.
 #include "voxelize/chart_segmentation.h"
+
+#include "voxelize/openmesh_build.h"
 
 // GCC 12 reports a false -Wmaybe-uninitialized inside OpenMesh's property
 // containers (vector<VectorT>::push_back); it is not in this file's code.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-#include <OpenMesh/Core/System/omstream.hh>
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -23,40 +22,20 @@
 
 namespace vgi {
 
-namespace {
-using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
-}
-
 Segmentation segmentCharts(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& tris,
                            const SegmentationOptions& opt) {
   Segmentation seg;
   OMesh mesh;
-  omerr().disable();  // refused faces are expected here and handled below
-  std::vector<OMesh::VertexHandle> vh(positions.size());
-  for (size_t i = 0; i < positions.size(); ++i)
-    vh[i] = mesh.add_vertex(OMesh::Point(positions[i].x, positions[i].y, positions[i].z));
-  std::vector<OMesh::FaceHandle> faceOf(tris.size());
+  std::vector<OMesh::FaceHandle> faceOf;
+  seg.facesSplitOff = addTriangles(mesh, positions, tris, faceOf);
   std::vector<int> triOfFace;
   for (size_t t = 0; t < tris.size(); ++t) {
-    const glm::uvec3& f = tris[t];
-    OMesh::FaceHandle fh;
-    if (f[0] != f[1] && f[1] != f[2] && f[0] != f[2]) fh = mesh.add_face(vh[f[0]], vh[f[1]], vh[f[2]]);
-    if (!fh.is_valid()) {  // non-manifold or degenerate: its own vertices
-      // From `positions`, not mesh.point(): that is a reference into the
-      // vertex array, which add_vertex may reallocate before it copies.
-      auto point = [&](uint32_t i) { return OMesh::Point(positions[i].x, positions[i].y, positions[i].z); };
-      OMesh::VertexHandle a = mesh.add_vertex(point(f[0])), b = mesh.add_vertex(point(f[1])),
-                          c = mesh.add_vertex(point(f[2]));
-      fh = mesh.add_face(a, b, c);
-      ++seg.facesSplitOff;
-    }
-    faceOf[t] = fh;
+    const OMesh::FaceHandle fh = faceOf[t];
     if (fh.is_valid()) {
       if (triOfFace.size() <= size_t(fh.idx())) triOfFace.resize(size_t(fh.idx()) + 1, -1);
       triOfFace[size_t(fh.idx())] = int(t);
     }
   }
-  omerr().enable();
 
   std::vector<glm::vec3> normal(tris.size());
   std::vector<float> area(tris.size());
