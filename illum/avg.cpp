@@ -20,7 +20,9 @@
 //      Russian roulette on the mean reflectance, up to `bounces` VPLs;
 //   4. a shadow map per VPL (§III-C) in one atlas, all drawn by one instanced
 //      draw (shaders/illum/vpl/shadow.vert; cube maps by default, the paper's
-//      paraboloids with shadow_map=paraboloid);
+//      paraboloids with shadow_map=paraboloid) of the scene simplified to
+//      `vpl_shadow_triangles` (illum/occluders.h; the paper's Sibenik had 7000
+//      triangles for its maps, §IV; a scene within the budget is drawn as it is);
 //   5. the deferred, interleaved gather (k×k subsets of the chains, illum/
 //      vpl_kit.h), the shadow-map test per VPL, and the gather kit's
 //      geometry-aware blur over the k×k window (the paper's discontinuity-
@@ -46,6 +48,8 @@
 // | clamp           | float  | 0.005      | 1/d² → 1/max(d², (clamp · scene diagonal)²); 0 = off     |
 // | shadow_map      | string | cube       | per-VPL maps: cube (exact for large triangles) or paraboloid (the paper's, small triangles) |
 // | vpl_shadow_res  | int    | 32         | a VPL map's side (per cube face), texels                 |
+// | vpl_shadow_triangles | int | 8192     | the VPL maps draw the scene simplified to about this many triangles (SceneNeeds::occluders; 0: as it is) |
+// | vpl_shadow_tolerance | float | 0.002  | the simplified scene within this distance of the scene (× diagonal); the VPL shadow bias grows by it |
 // | vpl_shadow_bias | float  | 0.5        | the VPL maps' depth bias, texels, slope-scaled (gather.comp). Cornell box against exact visibility (from the lifted VPLs), indirect energy at 0.3 / 0.5 / 0.75: cube 0.980 / 0.997 / 0.999, paraboloid 0.94 / 0.96 / 0.98 (its large triangles warp); the closed sphere's paraboloids: 0.948 at 0.2, 0.9995 at 0.5 |
 // | shadow_lift     | float  | 1          | a VPL map's centre: the VPL moved this many AVG cell diagonals along its normal |
 // | march_step      | float  | 0.5        | ray-marching step, AVG cells                             |
@@ -68,6 +72,7 @@
 #include "illum/deferred.h"
 #include "illum/direct.h"
 #include "illum/light_maps.h"
+#include "illum/occluders.h"
 #include "illum/sample_loop.h"
 #include "illum/vpl_kit.h"
 #include "shaders/shared/avg.glsl"
@@ -126,6 +131,16 @@ class AvgMethod : public Method {
                              {"cube", "paraboloid"});
     vplShadowRes_ =
         p.getInt("vpl_shadow_res", 32, "a VPL shadow map's side (per cube face), texels", 2, 1024);
+    vplShadowTriangles_ = p.getInt(
+        "vpl_shadow_triangles", 8192,
+        "the VPL shadow maps draw the scene simplified to about this many triangles (quadric "
+        "edge collapses, outlines kept; the paper drew a 7000-triangle Sibenik); 0: the scene as it is",
+        0, 100000000);
+    vplShadowTolerance_ =
+        p.getFloat("vpl_shadow_tolerance", 0.002f,
+                   "the simplified scene stays within this distance of the scene's surfaces (x scene "
+                   "diagonal); the VPL shadow test's bias grows by it",
+                   1e-6f, 0.1f);
     vplShadowBias_ = p.getFloat("vpl_shadow_bias", 0.5f,
                                 "the VPL shadow maps' depth bias, texels, slope-scaled", 0.0f, 1000.0f);
     lift_ =
@@ -170,6 +185,8 @@ class AvgMethod : public Method {
     n.gbuffer = true;
     n.lightMaps = LightMapNeed{shadow_.resolution, false};
     n.bvh = s_.visibility == VplVisibility::Exact || tracing_ == "exact";
+    if (s_.visibility == VplVisibility::ShadowMaps && vplShadowTriangles_ > 0)
+      n.occluders = OccluderNeed{size_t(vplShadowTriangles_), vplShadowTolerance_ * diagonal_};
     return n;
   }
   void prepareFrame(Frame& f) override {
@@ -245,7 +262,12 @@ class AvgMethod : public Method {
                                  avg_->box().resolution.z};
     f.extra["avg_cells_occupied"] = occupied;
     f.extra["avg_cell_diagonal"] = cellDiagonal_;
-    if (s_.visibility == VplVisibility::ShadowMaps) f.extra["vpl_shadow_atlas"] = {atlasW_, atlasH_};
+    if (s_.visibility == VplVisibility::ShadowMaps) {
+      f.extra["vpl_shadow_atlas"] = {atlasW_, atlasH_};
+      f.extra["vpl_shadow_triangles"] =
+          vplShadowTriangles_ > 0 ? f.resources.occluders().stats()
+                                  : nlohmann::json{{"triangles", f.resources.gpuScene().triangleCount()}};
+    }
   }
 
  private:
@@ -276,6 +298,8 @@ class AvgMethod : public Method {
     const unsigned gather = kit_.gatherProgram();
     shadowUniforms(shaders, gather);
     shaders.setUniform(gather, "uVplShadowBias", vplShadowBias_);
+    shaders.setUniform(gather, "uVplShadowTolerance",
+                       vplShadowTriangles_ > 0 ? f.resources.occluders().tolerance() : 0.0f);
   }
 
   void renderShadowAtlas(Frame& f) const {
@@ -291,7 +315,10 @@ class AvgMethod : public Method {
     glClear(GL_DEPTH_BUFFER_BIT);
     glUseProgram(shadowProg_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, kit_.vplBuffer());
-    f.resources.gpuScene().drawInstanced(s_.chains * s_.bounces * faces);
+    if (vplShadowTriangles_ > 0)
+      f.resources.occluders().drawInstanced(s_.chains * s_.bounces * faces);
+    else
+      f.resources.gpuScene().drawInstanced(s_.chains * s_.bounces * faces);
     for (int i = 0; i < 5; ++i) glDisable(GL_CLIP_DISTANCE0 + i);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -364,9 +391,10 @@ class AvgMethod : public Method {
     kit_.write(out);
   }
 
-  int grid_ = 64, vplShadowRes_ = 32, perRow_ = 1;
+  int grid_ = 64, vplShadowRes_ = 32, vplShadowTriangles_ = 8192, perRow_ = 1;
   int64_t atlasW_ = 0, atlasH_ = 0;
-  float vplShadowBias_ = 0.5f, lift_ = 1.0f, marchStep_ = 0.5f, diagonal_ = 0, cellDiagonal_ = 0, radius_ = 0;
+  float vplShadowTolerance_ = 0.002f, vplShadowBias_ = 0.5f, lift_ = 1.0f, marchStep_ = 0.5f, diagonal_ = 0,
+        cellDiagonal_ = 0, radius_ = 0;
   glm::vec3 centre_{0.0f};
   std::string shadowMap_, tracing_;
   VplSettings s_;

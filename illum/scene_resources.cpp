@@ -11,6 +11,7 @@
 #include "core/profiler.h"
 #include "core/scene.h"
 #include "illum/light_maps.h"
+#include "illum/occluders.h"
 #include "shaders/shared/value_grid.glsl"
 #include "traverse/embree_tracer.h"
 #include "traverse/gl_ray_tracer.h"
@@ -33,6 +34,7 @@ std::vector<std::string> SceneNeeds::names() const {
   }
   if (orMipPyramid) n.push_back("or_mip_pyramid");
   if (bvh) n.push_back("bvh");
+  if (occluders) n.push_back("occluders");
   return n;
 }
 
@@ -42,8 +44,8 @@ void SceneNeeds::check(const std::string& method, bool gl) const {
   if (gl && binaryGrid && !orMipPyramid)
     fail("method '", method,
          "' asks for a GL binary grid without its pyramid (GLSL reads the grid as its level 0)");
-  if (!gl && (gbuffer || lightMaps))
-    fail("method '", method, "' runs on the CPU but asks for GL resources (G-buffer, light maps)");
+  if (!gl && (gbuffer || lightMaps || occluders))
+    fail("method '", method, "' runs on the CPU but asks for GL resources (G-buffer, light maps, occluders)");
   if (valueGrids) {
     if (!gl) fail("method '", method, "' runs on the CPU but asks for value-grid 3D textures");
     if (!binaryGrid || binaryGrid->voxelizer != "atlas")
@@ -118,7 +120,8 @@ bool sameGrid(const SceneNeeds& a, const SceneNeeds& b) {
 }  // namespace
 
 bool SceneNeeds::operator==(const SceneNeeds& o) const {
-  return gbuffer == o.gbuffer && sameLightMaps(lightMaps, o.lightMaps) && sameGrid(*this, o) && bvh == o.bvh;
+  return gbuffer == o.gbuffer && sameLightMaps(lightMaps, o.lightMaps) && sameGrid(*this, o) &&
+         bvh == o.bvh && occluders == o.occluders;
 }
 
 SceneResources::SceneResources(const Scene& scene, SceneNeeds needs, GlContext* gl, ShaderLibrary* shaders,
@@ -173,6 +176,14 @@ bool SceneResources::update(float time, Profiler& prof) {
     else
       gpu_->setTime(scene_, time);
     gpu_->setLights(lights_);
+  }
+  if (needs_.occluders) {
+    auto s = prof.scope("occluders");
+    if (!occluders_)
+      occluders_ =
+          std::make_unique<Occluders>(scene_, needs_.occluders->triangles, needs_.occluders->tolerance, time);
+    else
+      occluders_->setTime(scene_, time);
   }
   if (needs_.lightMaps) {
     if (!lightMaps_)
@@ -232,6 +243,8 @@ void SceneResources::adopt(SceneResources& old) {
     voxelizerStats_ = std::move(old.voxelizerStats_);
     gridTime_ = old.time_;
   }
+  if (needs_.occluders && old.needs_.occluders == needs_.occluders)
+    take(occluders_, old.occluders_, "occluders");
   if (needs_.bvh && old.bvh_) {
     flat_ = std::move(old.flat_);
     take(bvh_, old.bvh_, "bvh");
@@ -354,6 +367,7 @@ const ValueTextures& SceneResources::valueTextures() const {
 }
 const OrMipPyramid& SceneResources::cpuPyramid() const { return need(cpuPyramid_, "CPU pyramid"); }
 const EmbreeTracer& SceneResources::bvh() const { return need(bvh_, "BVH"); }
+const Occluders& SceneResources::occluders() const { return need(occluders_, "occluders"); }
 const FlatScene& SceneResources::flatScene() const { return need(flat_, "flattened scene"); }
 
 std::vector<std::string> SceneResources::built() const {
@@ -366,6 +380,7 @@ std::vector<std::string> SceneResources::built() const {
   }
   if (glPyramid_ || cpuPyramid_) n.push_back("or_mip_pyramid");
   if (bvh_) n.push_back("bvh");
+  if (occluders_) n.push_back("occluders");
   return n;
 }
 

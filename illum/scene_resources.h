@@ -34,6 +34,7 @@ class GlContext;
 class GlPyramid;
 class GpuScene;
 class LightMaps;
+class Occluders;
 class OrMipPyramid;
 class ParamSet;
 class Profiler;
@@ -63,6 +64,17 @@ struct ValueGridNeed {
   ValueMips mips = ValueMips::None;
 };
 
+// The scene simplified for passes that draw it many times for its occlusion
+// only (illum/occluders.h): about `triangles` triangles, no point of the scene
+// farther than `tolerance` (world units) from them; within the budget, the scene as it is.
+struct OccluderNeed {
+  size_t triangles = 8192;
+  float tolerance = 0.0f;
+  bool operator==(const OccluderNeed& o) const {
+    return triangles == o.triangles && tolerance == o.tolerance;
+  }
+};
+
 // The resources one render of a method uses. GL methods get GL resources (the
 // grid voxelized into GPU memory, a GPU pyramid); CPU methods get host ones.
 struct SceneNeeds {
@@ -72,9 +84,10 @@ struct SceneNeeds {
   std::optional<ValueGridNeed> valueGrids;  // GL: the channels' 3D textures (+ mips)
   bool orMipPyramid = false;                // over binaryGrid (required with it on GL: GLSL reads level 0)
   bool bvh = false;                         // CPU: the flattened scene in an Embree BVH
+  std::optional<OccluderNeed> occluders;    // GL: the simplified scene (illum/occluders.h)
 
   // The resource names of the stats ("gbuffer", "light_maps" or "rsm",
-  // "binary_grid", "value_grids", "value_mips", "or_mip_pyramid", "bvh"), in that order.
+  // "binary_grid", "value_grids", "value_mips", "or_mip_pyramid", "bvh", "occluders"), in that order.
   std::vector<std::string> names() const;
   // The same resources, built the same way (a render job keeps its resources when they are).
   bool operator==(const SceneNeeds& o) const;
@@ -110,7 +123,8 @@ class SceneResources {
   // switch or a parameter change rebuilds only what differs: the GPU scene,
   // the light maps (same resolution and kind), the grid with its pyramid and
   // value grids (the same grid, value-grid and pyramid needs; the atlas grid's
-  // radiance is inserted again for these light maps) and the BVH. What is
+  // radiance is inserted again for these light maps), the BVH and the
+  // occluders (the same budget). What is
   // taken is listed by adopted(); `old` keeps the rest, to be dropped.
   void adopt(SceneResources& old);
   const std::vector<std::string>& adopted() const { return adopted_; }
@@ -138,6 +152,7 @@ class SceneResources {
   const ValueTextures& valueTextures() const;
   const OrMipPyramid& cpuPyramid() const;
   const EmbreeTracer& bvh() const;
+  const Occluders& occluders() const;
   const FlatScene& flatScene() const;  // the triangles the BVH holds
 
   // What was allocated, as SceneNeeds::names() spells it (the G-buffer, a
@@ -180,6 +195,7 @@ class SceneResources {
   std::unique_ptr<OrMipPyramid> cpuPyramid_;
   std::unique_ptr<FlatScene> flat_;
   std::unique_ptr<EmbreeTracer> bvh_;
+  std::unique_ptr<Occluders> occluders_;
   uint64_t voxelsSet_ = 0;
   bool voxelsCounted_ = false;
   std::unique_ptr<nlohmann::json> voxelizerStats_;

@@ -5,6 +5,7 @@
 // closed sphere's bounces (analytic_sphere_test.cpp).
 #include "illum/avg.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -125,6 +126,22 @@ TEST(Avg, ShadowMapVisibilityAgreesWithExactVisibility) {
   EXPECT_GT(none, 1.05 * exact) << "the blocks occlude some VPLs";
 }
 
+// The VPL maps draw the occluders (illum/occluders.h); the Cornell box is
+// within their budget, so they are its own triangles and the image is the one
+// the full scene gives (vpl_shadow_triangles=0), bit for bit.
+TEST(Avg, OccludersWithinTheBudgetAreTheScene) {
+  const RenderOutput occ = test::render("builtin:cornell", "avg", {}, 32, 2, {"indirect"});
+  const RenderOutput full =
+      test::render("builtin:cornell", "avg", {"vpl_shadow_triangles=0"}, 32, 2, {"indirect"});
+  EXPECT_EQ(occ.result.image.pixels, full.result.image.pixels);
+  EXPECT_EQ(occ.stats["extra"]["vpl_shadow_triangles"]["triangles"], 30);
+  EXPECT_EQ(occ.stats["extra"]["vpl_shadow_triangles"]["tolerance"], 0.0);
+  EXPECT_NE(std::find(occ.stats["built"].begin(), occ.stats["built"].end(), "occluders"),
+            occ.stats["built"].end());
+  EXPECT_EQ(std::find(full.stats["built"].begin(), full.stats["built"].end(), "occluders"),
+            full.stats["built"].end());
+}
+
 // Bad parameters are refused naming the key.
 TEST(Avg, BadParametersAreErrors) {
   test::expectError([] { test::render("builtin:cornell", "avg", {"grid=1"}, 8, 1); }, {"grid", "1"});
@@ -138,6 +155,10 @@ TEST(Avg, BadParametersAreErrors) {
   test::expectError([] { test::render("builtin:cornell", "avg", {"grid=1024"}, 8, 1); }, {"grid", "GiB"});
   test::expectError([] { test::render("builtin:cornell", "avg", {"march_step=nan"}, 8, 1); },
                     {"march_step", "nan"});
+  test::expectError([] { test::render("builtin:cornell", "avg", {"vpl_shadow_triangles=-1"}, 8, 1); },
+                    {"vpl_shadow_triangles", "-1"});
+  test::expectError([] { test::render("builtin:cornell", "avg", {"vpl_shadow_tolerance=0"}, 8, 1); },
+                    {"vpl_shadow_tolerance", "0"});
 }
 
 }  // namespace vgi

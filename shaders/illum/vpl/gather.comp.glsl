@@ -28,12 +28,15 @@ uniform float uMinDistance2; // the clamp: d² ≥ this in the geometry term
 uniform int uVisibility;    // 0 none, 1 voxels, 2 shadow maps
 layout(binding = TEXUNIT_VPL_SHADOW) uniform sampler2D uVplShadow;
 uniform float uVplShadowBias;  // shadow maps: texels (at the receiver's distance, slope-scaled)
+uniform float uVplShadowTolerance;  // shadow maps: world units, how far the drawn occluders may be from the scene
 
 // The receiver p (normal n) against the VPL's map: lit unless the map saw a
 // surface nearer than p by more than the bias — uVplShadowBias texels of the
 // map's angular texel there (cube: 2/r; paraboloid: 2(1 + cos θ)/r, twice as
 // coarse at its centre as at its rim) times the distance, over the cosine
-// at the receiver (≥ 0.2: a plane seen at a grazing angle spans more depth per texel).
+// at the receiver (≥ 0.2: a plane seen at a grazing angle spans more depth per texel),
+// plus the occluders' tolerance over the same cosine (illum/occluders.h: a simplified
+// scene's surface may lie that much in front of the receiver's own, along its normal).
 bool shadowMapSees(Vpl v, uint slot, vec3 p, vec3 n) {
   vec3 w = p - vplShadowCentre(v);
   float dist = length(w);
@@ -46,7 +49,7 @@ bool shadowMapSees(Vpl v, uint slot, vec3 p, vec3 n) {
   float stored = texelFetch(uVplShadow, t, 0).x * uShadowFar;
   float texel = (uShadowCube != 0 ? 2.0f : 2.0f * (1.0f + c.z)) / float(uShadowRes);
   float slope = max(abs(dot(n, w)) / max(dist, 1e-30f), 0.2f);
-  return dist - uVplShadowBias * texel * dist / slope <= stored;
+  return dist - (uVplShadowBias * texel * dist + uVplShadowTolerance) / slope <= stored;
 }
 uniform float uOffset;      // the two-point test's offset along each normal, world units
 
