@@ -289,6 +289,37 @@ TEST(View, SwitchingKeepsTheResourcesThatStayTheSame) {
   EXPECT_TRUE(vct["timings_ms"].contains("shadow_maps"));
 }
 
+// avg's occluders (SceneNeeds::occluders) are kept when the resources change elsewhere (shadow_res: new
+// light maps) and rebuilt when their own parameter changes (vpl_shadow_tolerance, the light maps kept);
+// the screenshots equal `vgi render`.
+TEST(View, AvgKeepsItsOccludersUntilTheirParametersChange) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = freshDir("view_occluders");
+  const std::string script = dir + "/script.json";
+  std::ofstream(script) << R"([{"method": "avg"}, {"frames": 1}, {"set": {"shadow_res": 256}}, {"frames": 1},
+    {"screenshot": ")" << dir
+                        << R"(/shadow_res.exr"}, {"set": {"vpl_shadow_tolerance": 0.004}}, {"frames": 1},
+    {"screenshot": ")" << dir
+                        << R"(/tolerance.exr"}])";
+  CliRun v = underXvfb("--size 32x32 --script " + script);
+  ASSERT_EQ(v.code, 0) << v.output;
+  auto kept = [&](const char* name, const char* resource) {
+    const nlohmann::json list = stats(dir + "/" + name + ".json")["viewer"]["resources_kept"];
+    return std::find(list.begin(), list.end(), resource) != list.end();
+  };
+  EXPECT_TRUE(kept("shadow_res", "occluders"));
+  EXPECT_FALSE(kept("shadow_res", "light_maps"));
+  EXPECT_FALSE(kept("tolerance", "occluders"));
+  EXPECT_TRUE(kept("tolerance", "light_maps"));
+  for (const char* name : {"shadow_res", "tolerance"}) {
+    const std::string cmd = stats(dir + "/" + name + ".json")["command"].get<std::string>();
+    CliRun r = vgi(cmd.substr(4) + " --quiet -o " + dir + "/" + name + "_again.exr");
+    ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
+    EXPECT_EQ(difference(dir + "/" + name + ".exr", dir + "/" + name + "_again.exr").relMae, 0.0)
+        << name << ": bit-identical to " << cmd;
+  }
+}
+
 // --record writes every shown frame.
 TEST(View, RecordWritesANumberedFrameSequence) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
