@@ -5,35 +5,18 @@
 #include <chrono>
 #include <memory>
 
-#include "core/error.h"
-#include "core/scene.h"
 #include "traverse/embree_tracer.h"
 
 namespace vgi {
 
-namespace {
-// Mesh `m`'s simplified triangles at `time`, 3 world-space positions each (as flattenMesh transforms).
-void worldCorners(const Mesh& m, const SimplifiedMesh& s, float time, std::vector<glm::vec3>& out) {
-  const glm::mat4 M = m.objectToWorld(time);
-  for (const glm::uvec3& t : s.triangles)
-    for (int k = 0; k < 3; ++k) out.push_back(glm::vec3(M * glm::vec4(s.positions[t[k]], 1.0f)));
-}
-}  // namespace
-
 NearSurfaceFactory nearSurfaceByEmbree() {
   return [](const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& tris,
             float tolerance) -> NearSurface {
-    FlatScene f;
-    for (const glm::uvec3& t : tris) {
-      for (int k = 0; k < 3; ++k) {
-        f.positions.push_back(positions[t[k]]);
-        f.normals.emplace_back(0.0f, 0.0f, 1.0f);
-        f.uvs.emplace_back(0.0f);
-      }
-      f.material.push_back(0);
-      f.meshOfTriangle.push_back(0);
-    }
-    auto bvh = std::make_shared<EmbreeTracer>(f);
+    Scene mesh;
+    mesh.meshes.emplace_back();
+    mesh.meshes[0].positions = positions;
+    mesh.meshes[0].triangles = tris;
+    auto bvh = std::make_shared<EmbreeTracer>(flatten(mesh));
     return [bvh, tolerance](const glm::vec3& p, const glm::vec3& n) {
       return bvh->occluded(p, n, 0.0f, tolerance) || bvh->occluded(p, -n, 0.0f, tolerance);
     };
@@ -42,17 +25,18 @@ NearSurfaceFactory nearSurfaceByEmbree() {
 
 Occluders::Occluders(const Scene& scene, size_t budget, float tolerance, float time) {
   const auto t0 = std::chrono::steady_clock::now();
-  meshes_ = simplifySceneMeshes(scene, budget, tolerance, nearSurfaceByEmbree());
+  const std::vector<SimplifiedMesh> meshes =
+      simplifySceneMeshes(scene, budget, tolerance, nearSurfaceByEmbree());
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  std::vector<glm::vec3> corners;
   long splitOff = 0;
-  for (size_t i = 0; i < meshes_.size(); ++i) {
-    if (meshes_[i].simplified) tolerance_ = tolerance;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    if (meshes[i].simplified) tolerance_ = tolerance;
     first_.push_back(triangles_);
-    triangles_ += meshes_[i].triangles.size();
-    splitOff += meshes_[i].facesSplitOff;
-    worldCorners(scene.meshes[i], meshes_[i], time, corners);
+    triangles_ += meshes[i].triangles.size();
+    splitOff += meshes[i].facesSplitOff;
+    occluders_.meshes.push_back(withGeometry(scene.meshes[i], meshes[i]));
   }
+  const std::vector<glm::vec3> corners = flatten(occluders_, time).positions;
   glCreateVertexArrays(1, &vao_);
   glCreateBuffers(1, &vbo_);
   glNamedBufferStorage(vbo_, GLsizeiptr(std::max<size_t>(corners.size(), 1) * sizeof(glm::vec3)),
@@ -74,15 +58,13 @@ Occluders::~Occluders() {
   glDeleteVertexArrays(1, &vao_);
 }
 
-void Occluders::setTime(const Scene& scene, float time) {
-  VGI_CHECK(scene.meshes.size() == meshes_.size());
-  std::vector<glm::vec3> corners;
-  for (size_t i = 0; i < meshes_.size(); ++i) {
-    if (!scene.meshes[i].dynamic || meshes_[i].triangles.empty()) continue;
-    corners.clear();
-    worldCorners(scene.meshes[i], meshes_[i], time, corners);
+void Occluders::setTime(float time) {
+  for (size_t i = 0; i < occluders_.meshes.size(); ++i) {
+    if (!occluders_.meshes[i].dynamic || occluders_.meshes[i].triangles.empty()) continue;
+    FlatScene f;
+    flattenMesh(occluders_, int(i), time, f);
     glNamedBufferSubData(vbo_, GLintptr(first_[i] * 3 * sizeof(glm::vec3)),
-                         GLsizeiptr(corners.size() * sizeof(glm::vec3)), corners.data());
+                         GLsizeiptr(f.positions.size() * sizeof(glm::vec3)), f.positions.data());
   }
 }
 

@@ -8,11 +8,10 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "core/scene.h"
 #include "voxelize/mesh_simplify.h"
 
 namespace vgi {
-
-struct Scene;
 
 // The simplification's test of the new faces against the original surface
 // (voxelize/mesh_simplify.h): an Embree BVH of the mesh, a ray each way along
@@ -26,7 +25,7 @@ class Occluders {
   Occluders(const Occluders&) = delete;
   Occluders& operator=(const Occluders&) = delete;
 
-  void setTime(const Scene& scene, float time);   // re-uploads the dynamic meshes' triangles
+  void setTime(float time);                       // re-uploads the dynamic meshes' triangles
   void drawInstanced(int instances) const;        // all triangles, `instances` times (gl_InstanceID)
   unsigned vertexBuffer() const { return vbo_; }  // 3 world-space vec3 corners per triangle
   size_t triangleCount() const { return triangles_; }
@@ -37,7 +36,7 @@ class Occluders {
   nlohmann::json stats() const { return stats_; }
 
  private:
-  std::vector<SimplifiedMesh> meshes_;
+  Scene occluders_;            // the simplified meshes only (no materials or textures), as the scene's
   std::vector<size_t> first_;  // each mesh's first triangle in the buffer
   size_t triangles_ = 0;
   float tolerance_ = 0.0f;

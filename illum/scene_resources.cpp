@@ -183,7 +183,7 @@ bool SceneResources::update(float time, Profiler& prof) {
       occluders_ =
           std::make_unique<Occluders>(scene_, needs_.occluders->triangles, needs_.occluders->tolerance, time);
     else
-      occluders_->setTime(scene_, time);
+      occluders_->setTime(time);
   }
   if (needs_.lightMaps) {
     if (!lightMaps_)

@@ -149,6 +149,15 @@ SimplifiedMesh simplifyMesh(const std::vector<glm::vec3>& positions, const std::
   return out;
 }
 
+Mesh withGeometry(const Mesh& original, const SimplifiedMesh& simplified) {
+  Mesh m = original;
+  m.positions = simplified.positions;
+  m.triangles = simplified.triangles;
+  m.normals.clear();
+  m.uvs.clear();
+  return m;
+}
+
 std::vector<SimplifiedMesh> simplifySceneMeshes(const Scene& scene, size_t budget, float tolerance,
                                                 const NearSurfaceFactory& nearOriginal) {
   size_t total = 0, small = 0, large = 0;

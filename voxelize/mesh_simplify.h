@@ -57,4 +57,8 @@ constexpr size_t kKeptTriangles = 32;
 std::vector<SimplifiedMesh> simplifySceneMeshes(const Scene& scene, size_t budgetTriangles, float tolerance,
                                                 const NearSurfaceFactory& nearOriginal);
 
+// `original` (its transform, animation and material) with the simplified
+// geometry: no normals or uvs (flattenMesh then uses the face normals).
+Mesh withGeometry(const Mesh& original, const SimplifiedMesh& simplified);
+
 }  // namespace vgi

@@ -123,6 +123,16 @@ SHARED_FN vec3 vplGather(SHARED_IN(Vpl) v, vec3 p, vec3 n, float dMin2) {
   return vec3(v.flux.x, v.flux.y, v.flux.z) * (cosX * cosV * (INV_PI * INV_PI) / max(d2, dMin2));
 }
 
+// The VPL shadow-map test's depth slack at a receiver (gather.comp's
+// shadowMapSees): `biasTexels` of the map's angular texel `texel` at the
+// receiver's distance `dist`, plus the drawn occluders' `tolerance` (a
+// simplified surface may lie that far in front of the receiver's own), both
+// over `cosine`, the receiver's towards the VPL, at least 0.2 (a plane seen
+// at a grazing angle spans more depth per texel and per offset).
+SHARED_FN float vplShadowSlack(float biasTexels, float texel, float dist, float tolerance, float cosine) {
+  return (biasTexels * texel * dist + tolerance) / max(cosine, 0.2f);
+}
+
 SHARED_END
 
 // The descent itself reads the tree where it lives: an SSBO named vplFluxTree

@@ -18,25 +18,19 @@
 #include "core/scene.h"
 #include "core/scene_loader.h"
 #include "illum/occluders.h"
+#include "shaders/shared/vpl.glsl"
 #include "test_util.h"
 #include "traverse/embree_tracer.h"
 
 namespace vgi {
 namespace {
 
-// Triangles as a FlatScene (object space = world space), for Embree.
-FlatScene flatOf(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& tris,
-                 const glm::mat4& M = glm::mat4(1.0f), int mesh = 0, FlatScene f = {}) {
-  for (const glm::uvec3& t : tris) {
-    for (int k = 0; k < 3; ++k) {
-      f.positions.push_back(glm::vec3(M * glm::vec4(positions[t[k]], 1.0f)));
-      f.normals.emplace_back(0, 0, 1);
-      f.uvs.emplace_back(0, 0);
-    }
-    f.material.push_back(0);
-    f.meshOfTriangle.push_back(mesh);
-  }
-  return f;
+// The simplified meshes as a scene of their own (each with its original's transform), for Embree.
+FlatScene flatOf(const std::vector<SimplifiedMesh>& simplified, const Scene& original = Scene()) {
+  Scene s;
+  for (size_t i = 0; i < simplified.size(); ++i)
+    s.meshes.push_back(withGeometry(i < original.meshes.size() ? original.meshes[i] : Mesh(), simplified[i]));
+  return flatten(s);
 }
 
 // A unit sphere, rows × columns quads split in two, outward-facing.
@@ -94,7 +88,7 @@ TEST(MeshSimplify, ASphereStaysWithinTheToleranceBothWays) {
   EXPECT_LT(centroidIn, tol + 3e-4f) << "the new faces near the original surface (measured 1.2e-3)";
   EXPECT_LT(vertexOff, tol + 3e-4f);
   // The other way: each original vertex within the tolerance of the new faces, radially.
-  EmbreeTracer simplified(flatOf(s.positions, s.triangles));
+  EmbreeTracer simplified(flatOf({s}));
   int far = 0;
   for (const glm::vec3& p : pos) {
     const glm::vec3 n = glm::normalize(p);
@@ -180,7 +174,7 @@ TEST(Occluders, DynamicMeshesMoveWithTheScene) {
   const float tol = 1e-3f;
   Occluders moved(scene, 1000, tol, 0.0f);
   const std::vector<glm::vec3> atZero = corners(moved);
-  moved.setTime(scene, 1.0f);
+  moved.setTime(1.0f);
   const Occluders atOne(scene, 1000, tol, 1.0f);
   EXPECT_EQ(moved.tolerance(), tol);
   EXPECT_LT(moved.triangleCount(), scene.triangleCount() / 2);
@@ -215,13 +209,9 @@ TEST(MeshSimplify, SibenikPairsThatSeeEachOtherStillDo) {
   const FlatScene orig = flatten(scene);
   const EmbreeTracer exact(orig);
   auto blockedFraction = [&](const std::vector<SimplifiedMesh>& s, size_t& triangles) {
-    FlatScene f;
     triangles = 0;
-    for (size_t i = 0; i < s.size(); ++i) {
-      f = flatOf(s[i].positions, s[i].triangles, scene.meshes[i].objectToWorld(0), int(i), std::move(f));
-      triangles += s[i].triangles.size();
-    }
-    const EmbreeTracer simplified(f);
+    for (const SimplifiedMesh& m : s) triangles += m.triangles.size();
+    const EmbreeTracer simplified(flatOf(s, scene));
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     auto surfacePoint = [&](glm::vec3& p, glm::vec3& n) {
@@ -249,7 +239,8 @@ TEST(MeshSimplify, SibenikPairsThatSeeEachOtherStillDo) {
       if (exact.occluded(p0, n, eps, lift)) continue;                 // lifted into something
       if (exact.occluded(p, d, eps, len - eps)) continue;
       ++visible;
-      const float bias = tolerance / std::max(glm::dot(-d, m), 0.2f) + eps;
+      const float bias =
+          shared::vplShadowSlack(0.0f, 0.0f, len, tolerance, glm::dot(-d, m)) + eps;  // the gather's
       blocked += simplified.occluded(p, d, eps, len - bias);
     }
     EXPECT_GT(visible, 2000);

@@ -31,12 +31,10 @@ uniform float uVplShadowBias;  // shadow maps: texels (at the receiver's distanc
 uniform float uVplShadowTolerance;  // shadow maps: world units, how far the drawn occluders may be from the scene
 
 // The receiver p (normal n) against the VPL's map: lit unless the map saw a
-// surface nearer than p by more than the bias — uVplShadowBias texels of the
-// map's angular texel there (cube: 2/r; paraboloid: 2(1 + cos θ)/r, twice as
-// coarse at its centre as at its rim) times the distance, over the cosine
-// at the receiver (≥ 0.2: a plane seen at a grazing angle spans more depth per texel),
-// plus the occluders' tolerance over the same cosine (illum/occluders.h: a simplified
-// scene's surface may lie that much in front of the receiver's own, along its normal).
+// surface nearer than p by more than the slack (shared/vpl.glsl, vplShadowSlack):
+// uVplShadowBias texels of the map's angular texel there (cube: 2/r; paraboloid:
+// 2(1 + cos θ)/r, twice as coarse at its centre as at its rim) times the distance,
+// plus the occluders' tolerance (illum/occluders.h), over the receiver's cosine.
 bool shadowMapSees(Vpl v, uint slot, vec3 p, vec3 n) {
   vec3 w = p - vplShadowCentre(v);
   float dist = length(w);
@@ -48,8 +46,8 @@ bool shadowMapSees(Vpl v, uint slot, vec3 p, vec3 n) {
                                                  ivec2(uShadowRes - 1));
   float stored = texelFetch(uVplShadow, t, 0).x * uShadowFar;
   float texel = (uShadowCube != 0 ? 2.0f : 2.0f * (1.0f + c.z)) / float(uShadowRes);
-  float slope = max(abs(dot(n, w)) / max(dist, 1e-30f), 0.2f);
-  return dist - (uVplShadowBias * texel * dist + uVplShadowTolerance) / slope <= stored;
+  float cosine = abs(dot(n, w)) / max(dist, 1e-30f);
+  return dist - vplShadowSlack(uVplShadowBias, texel, dist, uVplShadowTolerance, cosine) <= stored;
 }
 uniform float uOffset;      // the two-point test's offset along each normal, world units
 
