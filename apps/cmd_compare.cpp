@@ -1,4 +1,4 @@
-// vgi compare: illum/compare.h (a method against its exact counterpart) with
+// vgi compare: experiments/compare.h (a method against its exact counterpart) with
 // the render options of the command line, and a printed summary.
 #include <cstdio>
 #include <filesystem>
@@ -7,8 +7,8 @@
 #include "core/error.h"
 #include "core/image_metrics.h"
 #include "core/progress.h"
-#include "illum/compare.h"
-#include "illum/render_job.h"
+#include "experiments/compare.h"
+#include "illum/framework/render_job.h"
 
 namespace vgi::app {
 

@@ -5,7 +5,7 @@
 #include "apps/commands.h"
 #include "core/error.h"
 #include "core/progress.h"
-#include "illum/render_job.h"
+#include "illum/framework/render_job.h"
 
 namespace vgi::app {
 

@@ -1,4 +1,4 @@
-// vgi sweep: illum/sweep.h — an experiment file expanded into independent
+// vgi sweep: experiments/sweep.h — an experiment file expanded into independent
 // `vgi render` processes (run here one after another, or printed for a batch
 // system), and the results collected into DIR/results.csv and results.json.
 #include <cstdio>
@@ -8,7 +8,7 @@
 #include "apps/commands.h"
 #include "core/error.h"
 #include "core/shader_library.h"
-#include "illum/sweep.h"
+#include "experiments/sweep.h"
 
 namespace vgi::app {
 
@@ -19,7 +19,7 @@ void addSweepCommand(CLI::App& app) {
   auto dir = std::make_shared<std::string>();
   auto print = std::make_shared<bool>(false);
   auto collect = std::make_shared<bool>(false);
-  cmd->add_option("experiment", *file, "the experiment file (JSON; see illum/sweep.h)")->required();
+  cmd->add_option("experiment", *file, "the experiment file (JSON; see experiments/sweep.h)")->required();
   cmd->add_option("-o,--output", *dir, "the output folder (renders, results.csv, results.json)")->required();
   cmd->add_flag("--print-commands", *print,
                 "print one vgi command per reference and point (for GNU parallel or a job array) and render "

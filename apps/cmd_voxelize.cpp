@@ -14,7 +14,7 @@
 #include "core/output_files.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
-#include "illum/light_maps.h"
+#include "illum/resources/light_maps.h"
 #include "voxelize/atlas.h"
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/exact_voxelizer.h"

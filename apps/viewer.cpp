@@ -28,9 +28,9 @@
 #include "core/params.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
-#include "illum/light_maps.h"
-#include "illum/sample_loop.h"
-#include "illum/scene_resources.h"
+#include "illum/framework/resources.h"
+#include "illum/framework/sample_loop.h"
+#include "illum/resources/light_maps.h"
 
 namespace vgi::app {
 
@@ -341,7 +341,7 @@ void Viewer::show(const std::string& channel) {
 
 std::vector<std::string> Viewer::lightMapViews() const {
   std::vector<std::string> views;
-  const std::optional<LightMapNeed>& need = job_->resources().needs().lightMaps;
+  const LightMapNeed* need = job_->resources().needs().find<LightMapNeed>();
   if (!need) return views;
   for (auto& c : LightMaps::channelNames(need->reflective))
     views.push_back((need->reflective ? "rsm." : "shadow_map.") + c);
@@ -349,7 +349,8 @@ std::vector<std::string> Viewer::lightMapViews() const {
 }
 
 int Viewer::lightFaces() const {
-  return job_->resources().hasLightMaps() ? job_->resources().lightMaps().faceCount() : -1;
+  const LightMaps* maps = job_->resources().tryGet<LightMaps>();
+  return maps ? maps->faceCount() : -1;
 }
 
 void Viewer::setLightFace(long face) {
@@ -365,7 +366,7 @@ void Viewer::setLightFace(long face) {
 // positions over the scene's bounds, distances over the scene diagonal; texels
 // no surface covers black. Reduced by a whole factor to fit the image area.
 Image Viewer::lightMapImage() const {
-  const LightMaps& maps = job_->resources().lightMaps();
+  const LightMaps& maps = job_->resources().get<LightMaps>();
   const std::string ch = channel_.substr(channel_.find('.') + 1);
   const int face = lightFace_;
   const Image raw = maps.readFace(face, ch), dist = ch == "distance" ? raw : maps.readFace(face, "distance");

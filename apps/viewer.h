@@ -1,6 +1,6 @@
 // `vgi view`: the interactive viewer (GLFW window, GL 4.5 core, Dear ImGui).
 // Every frame it adds one sample of the method to the accumulation the
-// framework's sample loop keeps (illum/sample_loop.h: SampleSession) and
+// framework's sample loop keeps (illum/framework/sample_loop.h: SampleSession) and
 // shows the mean so far; moving the camera, the scene time or a parameter
 // starts the accumulation again. The panel is generated from the method's
 // parameter table; the per-pass GPU timings are the profiler's.
@@ -34,7 +34,7 @@
 #pragma once
 #include <string>
 
-#include "illum/render_job.h"
+#include "illum/framework/render_job.h"
 
 namespace vgi::app {
 

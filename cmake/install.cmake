@@ -1,5 +1,5 @@
 # `cmake --install build --prefix P` installs the vgi tool, the libraries as
-# vgi:: targets (vgi::core, vgi::voxelize, vgi::traverse, vgi::illum,
+# vgi:: targets (vgi::core, vgi::voxelize, vgi::traverse, vgi::illum, vgi::experiments,
 # vgi::glad), their headers and the shaders; a consumer writes
 #   find_package(vgi REQUIRED)  target_link_libraries(app PRIVATE vgi::illum)
 # (tests/consumer is one, built by the suite's Install.ConsumerBuildsAndRuns).
@@ -8,11 +8,12 @@ set_target_properties(vgi_core PROPERTIES EXPORT_NAME core)
 set_target_properties(vgi_voxelize PROPERTIES EXPORT_NAME voxelize)
 set_target_properties(vgi_traverse PROPERTIES EXPORT_NAME traverse)
 set_target_properties(vgi_illum PROPERTIES EXPORT_NAME illum)
-install(TARGETS vgi_glad vgi_core vgi_voxelize vgi_traverse vgi_illum vgi
+set_target_properties(vgi_experiments PROPERTIES EXPORT_NAME experiments)
+install(TARGETS vgi_glad vgi_core vgi_voxelize vgi_traverse vgi_illum vgi_experiments vgi
         EXPORT vgiTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(_dir core voxelize traverse illum)
+foreach(_dir core voxelize traverse illum experiments)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_dir}/ DESTINATION ${VGI_INSTALL_INCLUDEDIR}/${_dir}
           FILES_MATCHING PATTERN "*.h")
 endforeach()

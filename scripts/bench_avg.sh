@@ -5,7 +5,7 @@
 # is the same), and per VPL count N:
 #   A  avg (rays marched through the AVG, per-VPL shadow maps, clamp);
 #      MAP=paraboloid for the paper's maps (each map draws the occluders,
-#      the scene simplified to vpl_shadow_triangles, illum/occluders.h)
+#      the scene simplified to vpl_shadow_triangles, illum/resources/occluders.h)
 #   P  avg shadow_map=paraboloid (when MAP is cube)
 #   S  A with vpl_shadow_triangles=0 (the maps draw the whole scene, not the
 #      simplified occluders; the same image where the scene is within the budget)

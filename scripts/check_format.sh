@@ -7,7 +7,7 @@ command -v clang-format >/dev/null || { echo "clang-format not found (scripts/se
 bad=()
 while IFS= read -r -d '' f; do
   clang-format --dry-run --Werror "$f" >/dev/null 2>&1 || bad+=("$f")
-done < <(find core illum voxelize traverse apps tests shaders -type f \( -name '*.cpp' -o -name '*.h' \) -print0)
+done < <(find core illum experiments voxelize traverse apps tests shaders -type f \( -name '*.cpp' -o -name '*.h' \) -print0)
 if [ ${#bad[@]} -gt 0 ]; then
   echo "not clang-formatted (fix: clang-format -i FILE):"
   printf '  %s\n' "${bad[@]}"

@@ -21,6 +21,7 @@ struct GridBox {
 
   shared::GridParams params() const;
   glm::vec3 voxelSize() const { return extent / glm::vec3(resolution); }
+  float voxelDiagonal() const { return glm::length(voxelSize()); }
   uint64_t cellCount() const { return uint64_t(resolution.x) * resolution.y * resolution.z; }
 };
 

@@ -1,8 +1,8 @@
-// The sample loop's accumulation (illum/sample_loop.h): sum += sample, per
+// The sample loop's accumulation (illum/framework/sample_loop.h): sum += sample, per
 // pixel, for one channel. Compensated mode is Kahan summation: the rounding
 // error of each add is kept in uCompensation and fed into the next, so the
 // mean of 10^5 samples stays within a few ulp of the exact mean where one
-// float add per sample drifts (tests/illum/sample_loop_test.cpp). `precise`
+// float add per sample drifts (tests/illum/modules_test.cpp, SampleLoop.*). `precise`
 // keeps the compiler from simplifying (t − sum) − y to zero.
 #include "../shared/bindings.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -1,4 +1,4 @@
-// Texture units of the G-buffer (illum/deferred.h) as the deferred passes read
+// Texture units of the G-buffer (illum/framework/deferred.h) as the deferred passes read
 // it: world position (w = 1 where a surface was seen), shading normal towards
 // the viewer (w = material), albedo, and the triangle's geometric normal (the
 // receiver plane of the shadow test); unit 3 is a pass's own input texture.

@@ -1,7 +1,7 @@
 // Virtual point lights (Keller 1997, instant radiosity; VGI §5.3): the VPL
 // record the GL many-light modules write and gather, the flux tree their
 // first-bounce VPLs are drawn from, and the gathered light — shared with the
-// C++ build (illum/vpl.cpp's exact-visibility gather, the tests).
+// C++ build (illum/methods/vpl.cpp's exact-visibility gather, the tests).
 //
 // Flux tree: per light-map face, level 0 holds each RSM texel's reflected
 // flux (scalar: the mean of Φ_rgb = π · L_rgb · A), level l+1 the sums of

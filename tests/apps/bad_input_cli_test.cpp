@@ -8,7 +8,7 @@
 
 #include "apps/cli_util.h"
 #include "core/image.h"
-#include "illum/render_job.h"
+#include "illum/framework/render_job.h"
 
 namespace vgi {
 using test::CliRun;

@@ -1,9 +1,9 @@
-// vgi sweep (illum/sweep.h) as a user runs it: the shipped smoke experiment
+// vgi sweep (experiments/sweep.h) as a user runs it: the shipped smoke experiment
 // (two methods × two settings on a 32² Cornell box) renders, its CSV has one
 // row per point and checkpoint, errors fall with the checkpoints, a second run
 // renders nothing, a point whose render was killed is rendered again; bad
 // experiment files are refused before anything renders.
-#include "illum/sweep.h"
+#include "experiments/sweep.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -61,6 +61,21 @@ std::string freshDir(const std::string& name) {
 
 nlohmann::json stats(const std::string& json) { return nlohmann::json::parse(std::ifstream(json)); }
 
+// Screenshot DIR/NAME.exr equals `vgi render` of the command its stats give, bit for bit.
+void expectSameAsRender(const std::string& dir, const std::string& name) {
+  const std::string cmd = stats(dir + "/" + name + ".json")["command"].get<std::string>();
+  CliRun r = vgi(cmd.substr(4) + " --quiet -o " + dir + "/" + name + "_again.exr");
+  ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
+  EXPECT_EQ(difference(dir + "/" + name + ".exr", dir + "/" + name + "_again.exr").relMae, 0.0)
+      << name << ": bit-identical to " << cmd;
+}
+
+// Whether the viewer kept `resource` across the change before screenshot DIR/NAME.
+bool kept(const std::string& dir, const std::string& name, const char* resource) {
+  const nlohmann::json list = stats(dir + "/" + name + ".json")["viewer"]["resources_kept"];
+  return std::find(list.begin(), list.end(), resource) != list.end();
+}
+
 }  // namespace
 
 // --frames 16 --screenshot of the Cornell box with nearfield equals vgi render --spp 16 of the same view.
@@ -277,11 +292,7 @@ TEST(View, SwitchingKeepsTheResourcesThatStayTheSame) {
     const nlohmann::json kept = s["viewer"]["resources_kept"];
     EXPECT_TRUE(has(kept, "binary_grid") && has(kept, "or_mip_pyramid")) << name << ": " << kept.dump();
     EXPECT_FALSE(s["timings_ms"].contains("pyramid")) << name << ": " << s["timings_ms"].dump();
-    const std::string cmd = s["command"].get<std::string>();
-    CliRun r = vgi(cmd.substr(4) + " --quiet -o " + dir + "/" + name + "_again.exr");
-    ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
-    EXPECT_EQ(difference(dir + "/" + name + ".exr", dir + "/" + name + "_again.exr").relMae, 0.0)
-        << name << ": bit-identical to " << cmd;
+    expectSameAsRender(dir, name);
   }
   const nlohmann::json vct = stats(dir + "/vct.json");
   EXPECT_TRUE(has(vct["viewer"]["resources_kept"], "value_grids")) << vct["viewer"]["resources_kept"].dump();
@@ -289,7 +300,33 @@ TEST(View, SwitchingKeepsTheResourcesThatStayTheSame) {
   EXPECT_TRUE(vct["timings_ms"].contains("shadow_maps"));
 }
 
-// avg's occluders (SceneNeeds::occluders) are kept when the resources change elsewhere (shadow_res: new
+// vct's radiance volume is a resource kind (cone_volume): a parameter of the march alone (step) keeps it,
+// a setting of its injection (shadow_bias) keeps its allocation and injects again, and each screenshot
+// equals `vgi render` of its command bit for bit (so the refilled volume is the one a fresh run builds).
+TEST(View, VctKeepsItsConeVolumeAcrossMarchParameters) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = freshDir("view_cone_volume");
+  const std::string script = dir + "/script.json";
+  std::ofstream(script) << R"([{"method": "vct"}, {"frames": 1}, {"set": {"step": 0.5}}, {"frames": 1},
+    {"screenshot": ")" << dir
+                        << R"(/step.exr"}, {"set": {"shadow_bias": 2}}, {"frames": 1},
+    {"screenshot": ")" << dir
+                        << R"(/bias.exr"}])";
+  CliRun v = underXvfb("--size 32x32 --script " + script);
+  ASSERT_EQ(v.code, 0) << v.output;
+  // step: the needs are the same, the job keeps all of its resources and nothing is built again.
+  const nlohmann::json step = stats(dir + "/step.json");
+  EXPECT_FALSE(step["timings_ms"].contains("vct_inject")) << step["timings_ms"].dump();
+  EXPECT_FALSE(step["timings_ms"].contains("value_resolve")) << step["timings_ms"].dump();
+  // shadow_bias: new needs (the volume's settings), the volume adopted by its key and injected again.
+  EXPECT_TRUE(kept(dir, "bias", "cone_volume"));
+  EXPECT_TRUE(kept(dir, "bias", "light_maps"));
+  const nlohmann::json bias = stats(dir + "/bias.json");
+  EXPECT_TRUE(bias["timings_ms"].contains("vct_inject")) << bias["timings_ms"].dump();
+  for (const char* name : {"step", "bias"}) expectSameAsRender(dir, name);
+}
+
+// avg's occluders (resource kind "occluders") are kept when the resources change elsewhere (shadow_res: new
 // light maps) and rebuilt when their own parameter changes (vpl_shadow_tolerance, the light maps kept);
 // the screenshots equal `vgi render`.
 TEST(View, AvgKeepsItsOccludersUntilTheirParametersChange) {
@@ -303,21 +340,11 @@ TEST(View, AvgKeepsItsOccludersUntilTheirParametersChange) {
                         << R"(/tolerance.exr"}])";
   CliRun v = underXvfb("--size 32x32 --script " + script);
   ASSERT_EQ(v.code, 0) << v.output;
-  auto kept = [&](const char* name, const char* resource) {
-    const nlohmann::json list = stats(dir + "/" + name + ".json")["viewer"]["resources_kept"];
-    return std::find(list.begin(), list.end(), resource) != list.end();
-  };
-  EXPECT_TRUE(kept("shadow_res", "occluders"));
-  EXPECT_FALSE(kept("shadow_res", "light_maps"));
-  EXPECT_FALSE(kept("tolerance", "occluders"));
-  EXPECT_TRUE(kept("tolerance", "light_maps"));
-  for (const char* name : {"shadow_res", "tolerance"}) {
-    const std::string cmd = stats(dir + "/" + name + ".json")["command"].get<std::string>();
-    CliRun r = vgi(cmd.substr(4) + " --quiet -o " + dir + "/" + name + "_again.exr");
-    ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
-    EXPECT_EQ(difference(dir + "/" + name + ".exr", dir + "/" + name + "_again.exr").relMae, 0.0)
-        << name << ": bit-identical to " << cmd;
-  }
+  EXPECT_TRUE(kept(dir, "shadow_res", "occluders"));
+  EXPECT_FALSE(kept(dir, "shadow_res", "light_maps"));
+  EXPECT_FALSE(kept(dir, "tolerance", "occluders"));
+  EXPECT_TRUE(kept(dir, "tolerance", "light_maps"));
+  for (const char* name : {"shadow_res", "tolerance"}) expectSameAsRender(dir, name);
 }
 
 // --record writes every shown frame.

@@ -7,8 +7,8 @@
 #include "core/build_info.h"
 #include "core/error.h"
 #include "core/shader_library.h"
-#include "illum/method.h"
-#include "illum/render_job.h"
+#include "illum/framework/method.h"
+#include "illum/framework/render_job.h"
 
 int main() {
   try {

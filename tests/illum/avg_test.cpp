@@ -1,9 +1,9 @@
-// avg (illum/avg.cpp): the grid's construction against the exact voxelizer
+// avg (illum/methods/avg.cpp): the grid's construction against the exact voxelizer
 // (single triangles of every orientation, including those perpendicular to a
 // projection axis), the light tracing against Embree tracing of the same
 // rays, shadow-map visibility against exact visibility, an occluder, and the
 // closed sphere's bounces (analytic_sphere_test.cpp).
-#include "illum/avg.h"
+#include "illum/methods/avg.h"
 
 #include <algorithm>
 #include <cmath>

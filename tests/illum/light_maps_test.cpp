@@ -2,7 +2,7 @@
 // lookup functions the GLSL passes run (shaders/shared/light_maps.glsl): every
 // point a light can see falls inside the face the lookup picks, and distances
 // and texel sizes follow the face's projection.
-#include "illum/light_maps.h"
+#include "illum/resources/light_maps.h"
 
 #include <random>
 

@@ -14,8 +14,8 @@
 #include "core/params.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
-#include "illum/render_job.h"
-#include "illum/sample_loop.h"
+#include "illum/framework/render_job.h"
+#include "illum/framework/sample_loop.h"
 #include "render_util.h"
 #include "test_util.h"
 

@@ -1,12 +1,12 @@
 // The Embree reference against analytic answers.
-#include "illum/reference.h"
+#include "illum/methods/reference.h"
 
 #include <cmath>
 
 #include "core/progress.h"
 #include "core/scene_loader.h"
-#include "illum/method.h"
-#include "illum/sample_loop.h"
+#include "illum/framework/method.h"
+#include "illum/framework/sample_loop.h"
 #include "test_util.h"
 
 namespace vgi {
@@ -16,7 +16,7 @@ RenderResult renderRef(const Scene& s, std::initializer_list<std::string> set, i
                        uint32_t seed = 1, int threads = 0) {
   ParamSet p;
   for (auto& kv : set) p.setFromString(kv);
-  auto m = createReferenceMethod(p, s);
+  auto m = referenceMethod().create(p, s);
   p.checkAllUsed("reference");
   RenderRequest r;
   r.scene = &s;
@@ -164,15 +164,15 @@ TEST(Reference, ParametersOfOtherIntegratorsAreRejected) {
   ParamSet p;
   p.setFromString("integrator=ao");
   p.setFromString("maxdepth=3");
-  test::expectError([&] { createReferenceMethod(p, s); }, {"maxdepth", "integrator=ao"});
+  test::expectError([&] { referenceMethod().create(p, s); }, {"maxdepth", "integrator=ao"});
   ParamSet docs;
-  createReferenceMethod(docs, s);
+  referenceMethod().create(docs, s);
   EXPECT_EQ(docs.docs().size(), 9u);                 // all parameters documented
   EXPECT_FALSE(docs.resolved().contains("radius"));  // only the path integrator's resolved
   ParamSet q;
   q.setFromString("integrator=path");
   q.setFromString("radius=-1");
-  test::expectError([&] { createReferenceMethod(q, s); }, {"radius"});
+  test::expectError([&] { referenceMethod().create(q, s); }, {"radius"});
 }
 
 TEST(Reference, InterruptKeepsWhatWasAccumulated) {
@@ -193,7 +193,7 @@ TEST(Reference, ManyPassesAccumulateExactly) {
   Scene s = loadScene("builtin:cornell");
   ParamSet p;
   p.setFromString("integrator=ao");
-  auto m = createReferenceMethod(p, s);
+  auto m = referenceMethod().create(p, s);
   RenderRequest r;
   r.scene = &s;
   r.width = 3;

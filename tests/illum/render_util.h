@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "illum/render_job.h"
+#include "illum/framework/render_job.h"
 
 namespace vgi::test {
 

@@ -1,4 +1,4 @@
-// Voxel cone tracing (illum/vct.cpp, illum/vct_ao.cpp, illum/cone_kit.h,
+// Voxel cone tracing (illum/methods/vct.cpp, illum/methods/vct_ao.cpp, illum/kits/cone_kit.h,
 // shaders/illum/vct/cones.glsl): the volume's pre-integration on the GPU
 // against the C++ builders of the same kernels, a single opaque cell seen
 // along each axis, the cone march through a uniform medium against the closed
@@ -14,7 +14,7 @@
 #include "core/gl_context.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
-#include "illum/cone_kit.h"
+#include "illum/kits/cone_kit.h"
 #include "render_util.h"
 #include "shaders/shared/bindings.glsl"
 #include "shaders/shared/value_grid.glsl"

@@ -1,4 +1,4 @@
-// voxelpath (illum/voxelpath.cpp) on its hard cases: maxdepth 1 is the direct
+// voxelpath (illum/methods/voxelpath.cpp) on its hard cases: maxdepth 1 is the direct
 // light, paths that leave the grid read the sky (analytic: a floor under a
 // uniform sky), zero albedo, a very high Phong exponent at grazing view, and
 // the glossy Cornell box against the exact path tracer (its bias measured,

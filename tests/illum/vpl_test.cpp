@@ -1,4 +1,4 @@
-// vpl (illum/vpl.cpp) on its hard cases: the flux tree's descent draws texels
+// vpl (illum/methods/vpl.cpp) on its hard cases: the flux tree's descent draws texels
 // exactly in proportion to their flux (shared code, C++), the VPL geometry
 // term on back faces, an occluder between the VPLs and a receiver (voxel,
 // exact and no visibility), voxel against exact visibility on a scene whose

@@ -17,7 +17,7 @@
 #include "core/gl_context.h"
 #include "core/scene.h"
 #include "core/scene_loader.h"
-#include "illum/occluders.h"
+#include "illum/resources/occluders.h"
 #include "shaders/shared/vpl.glsl"
 #include "test_util.h"
 #include "traverse/embree_tracer.h"

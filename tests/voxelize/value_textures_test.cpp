@@ -14,7 +14,9 @@
 #include "core/profiler.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
-#include "illum/scene_resources.h"
+#include "illum/framework/resources.h"
+#include "illum/resources/or_mip_pyramid.h"
+#include "illum/resources/value_grids.h"
 #include "shaders/shared/bindings.glsl"
 #include "shaders/shared/value_grid.glsl"
 #include "test_util.h"
@@ -243,26 +245,36 @@ TEST(ValueTextures, SceneResourcesBuildThemOnlyWithTheAtlasGrid) {
   std::unique_ptr<GlContext> gl = GlContext::create();
   ShaderLibrary shaders;
   const Scene scene = loadScene("builtin:cornell");
+  BinaryGridNeed grid;
+  grid.resolution = {64, 64, 128};
+  grid.values = {"normal", "albedo"};
   SceneNeeds n;
-  n.binaryGrid = BinaryGridNeed{{64, 64, 128}, "atlas"};
-  n.orMipPyramid = true;
-  n.valueGrids = ValueGridNeed{{"normal", "albedo"}, ValueMips::Isotropic};
+  n.add(OrMipPyramidNeed{grid});
+  n.add(ValueGridNeed{grid, ValueMips::Isotropic, std::nullopt});
   n.check("test", true);
   SceneResources res(scene, n, gl.get(), &shaders, {0.0f}, 0);
   Profiler prof(true);
   res.update(0.0f, prof);
   const std::vector<std::string> built = res.built();
-  EXPECT_EQ(built, (std::vector<std::string>{"binary_grid", "value_grids", "value_mips", "or_mip_pyramid"}));
+  EXPECT_EQ(built, (std::vector<std::string>{"binary_grid", "or_mip_pyramid", "value_grids", "value_mips"}));
   EXPECT_EQ(built, n.names());
-  EXPECT_EQ(res.valueTextures().levels(), 8);
-  EXPECT_TRUE(res.gridStats().contains("value_grids"));
-  SceneNeeds bad = n;
-  bad.binaryGrid->voxelizer = "exact";
-  test::expectError([&] { bad.check("m", true); }, {"m", "atlas", "voxelizer=exact"});
+  EXPECT_EQ(res.get<ValueTextures>().levels(), 8);
+  nlohmann::json stats;
+  res.addStats(stats);
+  EXPECT_EQ(stats["value_grids"]["channels"].size(), 2u) << stats.dump();
+  EXPECT_GT(stats["grid"]["voxels_set"].get<long>(), 0);
+  auto with = [&](const BinaryGridNeed& g) {
+    SceneNeeds m;
+    m.add(ValueGridNeed{g, ValueMips::None, std::nullopt});
+    return m;
+  };
+  BinaryGridNeed exact = grid;
+  exact.voxelizer = "exact";
+  test::expectError([&] { with(exact).check("m", true); }, {"m", "atlas", "voxelizer=exact"});
   test::expectError([&] { n.check("m", false); }, {"m", "CPU"});
-  SceneNeeds none = n;
-  none.valueGrids->channels = {"speed"};
-  test::expectError([&] { none.check("m", true); }, {"speed"});
+  BinaryGridNeed speed = grid;
+  speed.values = {"speed"};
+  test::expectError([&] { with(speed).check("m", true); }, {"speed"});
   EXPECT_EQ(gl->errorCount(), 0);
 }
 
@@ -291,19 +303,20 @@ TEST(ValueTextures, RadianceChannelIsTheDirectLightOfEachCell) {
   l.position = {0.0f, 0.5f, 0.0f};
   l.intensity = glm::vec3(1.0f);
   s.lights = {l};
+  BinaryGridNeed grid;
+  grid.resolution = {64, 64, 128};
+  grid.values = {"albedo", "radiance"};
   SceneNeeds n;
-  n.lightMaps = LightMapNeed{1024, false};
-  n.binaryGrid = BinaryGridNeed{{64, 64, 128}, "atlas"};
-  n.orMipPyramid = true;
-  n.valueGrids = ValueGridNeed{{"albedo", "radiance"}, ValueMips::None};
+  n.add(OrMipPyramidNeed{grid});
+  n.add(ValueGridNeed{grid, ValueMips::None, LightMapNeed{1024, false}});
   n.check("test", true);
-  SceneNeeds noMaps = n;
-  noMaps.lightMaps.reset();
+  SceneNeeds noMaps;
+  noMaps.add(ValueGridNeed{grid, ValueMips::None, std::nullopt});
   test::expectError([&] { noMaps.check("m", true); }, {"m", "radiance", "light maps"});
   SceneResources res(s, n, gl.get(), &shaders, {0.0f}, 0);
   Profiler prof(true);
   res.update(0.0f, prof);
-  const ValueTextures& tex = res.valueTextures();
+  const ValueTextures& tex = res.get<ValueTextures>();
   const std::vector<glm::vec4> rad = tex.read("radiance");
   const std::vector<uint32_t> counts = tex.readCounts();
   const GridBox& box = tex.box();
@@ -340,7 +353,9 @@ TEST(ValueTextures, RadianceChannelIsTheDirectLightOfEachCell) {
     }
   EXPECT_GT(lit, 200);
   EXPECT_GT(shadowed, 3);
-  EXPECT_TRUE(res.gridStats()["stats"].contains("radiance_max"));
+  nlohmann::json stats;
+  res.addStats(stats);
+  EXPECT_TRUE(stats["grid"]["stats"].contains("radiance_max")) << stats.dump();
   EXPECT_EQ(gl->errorCount(), 0);
 }
 

@@ -1,4 +1,4 @@
-// The screen-space gather kit (illum/gather_kit.h) that hemisphere-gathering
+// The screen-space gather kit (illum/kits/gather_kit.h) that hemisphere-gathering
 // modules share (nearfield, voxel_ao): a low-resolution gather buffer, its
 // interleaved direction sets, the geometry-aware blur and the joint bilateral
 // upsampling. This header holds what its passes share: the full-resolution

@@ -33,7 +33,7 @@
 // in one jump — samples that would have blended in a non-empty neighbour
 // inside that texel are skipped (the artefact the thesis shows, Fig. 18a).
 //
-// Bound by ConeVolume::bind (illum/cone_kit.h): the textures, the grid
+// Bound by ConeVolume::bind (illum/kits/cone_kit.h): the textures, the grid
 // uniforms, uVoxelSize, uMaxLod, uConeStep. A pass that defines CONE_SAMPLE
 // supplies its own coneSample() (the tests' uniform medium).
 #include "../../shared/constants.glsl"

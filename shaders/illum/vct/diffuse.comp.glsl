@@ -1,4 +1,4 @@
-// vct's diffuse cones (illum/vct.cpp; Dinse 2015 §3.3), a gather pass of the
+// vct's diffuse cones (illum/methods/vct.cpp; Dinse 2015 §3.3), a gather pass of the
 // kit (../gather/gather.glsl) at 1, ½ or ¼ resolution: per gather pixel the
 // constellation uCones (tangent-space axes, w = the axis' share of the
 // cosine-weighted hemisphere, Σ w = 1) turned by uTurn about the normal, each

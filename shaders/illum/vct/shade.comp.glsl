@@ -1,4 +1,4 @@
-// vct's full-resolution pass (illum/vct.cpp), after the kit's composite of
+// vct's full-resolution pass (illum/methods/vct.cpp), after the kit's composite of
 // the diffuse cones: per pixel
 //   specular (uSpecular): one cone along the reflected view direction, its
 //     half-angle from the Phong exponent (phongConeTanHalf), reflected as

@@ -1,4 +1,4 @@
-// vct_ao's gather (illum/vct_ao.cpp; Basgier 2015 §5.2, §6.3.1): per gather
+// vct_ao's gather (illum/methods/vct_ao.cpp; Basgier 2015 §5.2, §6.3.1): per gather
 // pixel the constellation uCones (tangent-space axes aligned to the normal and
 // the tangent frame, w = each axis' cosine-weighted share, Σ w = 1), turned
 // about the normal by uTurn (per sample) plus, with uJitter, a per-pixel

@@ -1,4 +1,4 @@
-// voxel_ao's gather (illum/voxel_ao.cpp): per gather pixel, N cosine rays of
+// voxel_ao's gather (illum/methods/voxel_ao.cpp): per gather pixel, N cosine rays of
 // the kit's interleaved sets (../gather/gather.glsl) from the G-buffer point,
 // started uOffset along the normal, traced through the binary grid with the
 // chosen GLSL tracer up to the radius; AO = the fraction that reach it.

@@ -1,4 +1,4 @@
-// VGI §5.2 voxel path tracing (illum/voxelpath.cpp), one invocation per pixel
+// VGI §5.2 voxel path tracing (illum/methods/voxelpath.cpp), one invocation per pixel
 // and one path per sample. The primary vertex x0 is the G-buffer's (its
 // direct light is already in the sample image: the deferred pass); from it a
 // path of up to uMaxDepth − 1 bounces: the next direction by BRDF importance

@@ -1,6 +1,6 @@
 // The VPL gather (VGI §5.3; deferred and interleaved, Keller and Heidrich
 // 2001), one invocation per gather pixel q of the gather kit's buffer
-// (illum/gather_kit.h): the surface of q's representative image pixel
+// (illum/kits/gather_kit.h): the surface of q's representative image pixel
 // gathers from the chains of its interleave subset (shared/vpl.glsl:
 // vplSubset — chains i ≡ s mod k², each weighted k²), every bounce of each.
 // Visibility (uVisibility): 1 the two-point test of VGI §4.1 through the
@@ -34,7 +34,7 @@ uniform float uVplShadowTolerance;  // shadow maps: world units, how far the dra
 // surface nearer than p by more than the slack (shared/vpl.glsl, vplShadowSlack):
 // uVplShadowBias texels of the map's angular texel there (cube: 2/r; paraboloid:
 // 2(1 + cos θ)/r, twice as coarse at its centre as at its rim) times the distance,
-// plus the occluders' tolerance (illum/occluders.h), over the receiver's cosine.
+// plus the occluders' tolerance (illum/resources/occluders.h), over the receiver's cosine.
 bool shadowMapSees(Vpl v, uint slot, vec3 p, vec3 n) {
   vec3 w = p - vplShadowCentre(v);
   float dist = length(w);

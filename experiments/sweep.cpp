@@ -1,0 +1,636 @@
+#include "experiments/sweep.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "core/error.h"
+#include "core/image.h"
+#include "core/params.h"
+#include "illum/framework/method.h"
+#include "illum/framework/render_job.h"
+
+namespace vgi {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A JSON scalar as `--set` text; anything else is refused naming the key.
+std::string paramText(const nlohmann::json& v, const std::string& key) {
+  std::string text;
+  if (!paramTextOf(v, text)) fail("experiment: '", key, "' = ", v.dump(), " is not a number, string or bool");
+  return text;
+}
+
+std::string hashId(const std::vector<std::string>& parts) {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a 64
+  for (auto& p : parts) {
+    for (unsigned char c : p) h = (h ^ c) * 1099511628211ull;
+    h = (h ^ 0xffu) * 1099511628211ull;
+  }
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%012llx", (unsigned long long)(h & 0xffffffffffffull));
+  return buf;
+}
+
+void checkKeys(const nlohmann::json& obj, const std::string& where, const std::set<std::string>& known) {
+  if (!obj.is_object()) fail("experiment: ", where, " must be a JSON object, not ", obj.dump());
+  for (auto& [k, v] : obj.items())
+    if (!known.count(k)) {
+      std::string list;
+      for (auto& n : known) list += (list.empty() ? "" : ", ") + n;
+      fail("experiment: unknown key '", k, "' in ", where, " (known: ", list, ")");
+    }
+}
+
+int intIn(const nlohmann::json& v, const std::string& key, int lo, int hi) {
+  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+    fail("experiment: '", key, "' = ", v.dump(), " must be an integer in [", lo, ", ", hi, "]");
+  return v.get<int>();
+}
+
+double positive(const nlohmann::json& v, const std::string& key) {
+  if (!v.is_number() || !(v.get<double>() > 0) || !std::isfinite(v.get<double>()))
+    fail("experiment: '", key, "' = ", v.dump(), " must be a positive number");
+  return v.get<double>();
+}
+
+std::string stemOfRender(const SweepRender& r) { return fs::path(r.stem).replace_extension("").string(); }
+
+// Render arguments shared by points, references and counterpart curves.
+std::vector<std::string> renderArgs(const Experiment& e, const std::string& scene, const std::string& method,
+                                    const std::vector<std::string>& set, int spp,
+                                    const std::vector<std::string>& aovs, const std::vector<int>& checkpoints,
+                                    uint32_t seed, double timeLimitS) {
+  std::vector<std::string> a = {"render", "--scene", scene, "--method", method};
+  for (auto& s : set) a.insert(a.end(), {"--set", s});
+  a.insert(a.end(), {"--size", std::to_string(e.width) + "x" + std::to_string(e.height), "--spp",
+                     std::to_string(spp), "--seed", std::to_string(seed), "--quiet"});
+  if (!checkpoints.empty()) {
+    std::string c;
+    for (int k : checkpoints) c += (c.empty() ? "" : ",") + std::to_string(k);
+    a.insert(a.end(), {"--checkpoints", c});
+  }
+  if (timeLimitS > 0) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.9g", timeLimitS);
+    a.insert(a.end(), {"--time-limit", t});
+  }
+  if (!aovs.empty()) {
+    std::string c;
+    for (auto& k : aovs) c += (c.empty() ? "" : ",") + k;
+    a.insert(a.end(), {"--aov", c});
+  }
+  return a;
+}
+
+SweepRender makeRender(const std::string& dir, const std::string& kind, const std::string& name,
+                       std::vector<std::string> args) {
+  SweepRender r;
+  r.id = name + "-" + hashId(args);
+  r.dir = dir + "/" + kind + "/" + r.id;
+  r.stem = r.dir + (kind == "references" ? "/ref.exr" : "/render.exr");
+  args.insert(args.end(), {"-o", r.stem});
+  r.args = std::move(args);
+  return r;
+}
+
+std::string shellQuote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string machineName() {
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  return std::string(host) + " (" + std::to_string(std::thread::hardware_concurrency()) + " threads)";
+}
+
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return nullptr;
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const std::exception&) {
+    return nullptr;  // a render killed while writing it
+  }
+}
+
+}  // namespace
+
+Experiment loadExperiment(const std::string& path, const std::string& dir) {
+  if (!fs::is_regular_file(path))
+    fail("experiment file '", path, "' does not exist or is not a regular file");
+  nlohmann::json j;
+  {
+    std::ifstream in(path);
+    try {
+      j = nlohmann::json::parse(in);
+    } catch (const std::exception& ex) {
+      fail("experiment file '", path, "': not valid JSON (", ex.what(), ")");
+    }
+  }
+  checkKeys(j, "the experiment",
+            {"name", "scenes", "size", "spp", "checkpoints", "seed", "aovs", "epsilon", "relative_epsilon",
+             "time_budget_s", "reference", "methods"});
+  Experiment e;
+  e.path = path;
+  e.dir = dir;
+  e.name = j.value("name", fs::path(path).stem().string());
+  for (const char* k : {"scenes", "size", "spp", "methods"})
+    if (!j.contains(k)) fail("experiment file '", path, "': '", k, "' is missing");
+  if (!j["scenes"].is_array() || j["scenes"].empty())
+    fail("experiment: 'scenes' = ", j["scenes"].dump(), " must be a non-empty list of scenes");
+  for (auto& s : j["scenes"]) {
+    if (!s.is_string()) fail("experiment: scene ", s.dump(), " is not a string");
+    e.scenes.push_back(s.get<std::string>());
+  }
+  if (!j["size"].is_string()) fail("experiment: 'size' = ", j["size"].dump(), " must be \"WxH\"");
+  parseSize(j["size"].get<std::string>(), e.width, e.height);
+  e.spp = intIn(j["spp"], "spp", 1, 1 << 20);
+  if (j.contains("seed")) e.seed = uint32_t(intIn(j["seed"], "seed", 0, 1 << 30));
+  if (j.contains("checkpoints")) {
+    if (!j["checkpoints"].is_array()) fail("experiment: 'checkpoints' must be a list of sample counts");
+    std::set<int> c;
+    for (auto& v : j["checkpoints"]) {
+      const int k = intIn(v, "checkpoints", 1, e.spp);
+      if (k < e.spp) c.insert(k);
+    }
+    e.checkpoints.assign(c.begin(), c.end());
+  }
+  if (j.contains("aovs")) {
+    if (!j["aovs"].is_array()) fail("experiment: 'aovs' must be a list of output names");
+    for (auto& a : j["aovs"]) {
+      if (!a.is_string()) fail("experiment: aov ", a.dump(), " is not a string");
+      e.aovs.push_back(a.get<std::string>());
+    }
+  }
+  if (j.contains("epsilon")) e.diff.epsilon = positive(j["epsilon"], "epsilon");
+  if (j.contains("relative_epsilon")) e.relativeEpsilon = positive(j["relative_epsilon"], "relative_epsilon");
+  if (j.contains("time_budget_s")) e.timeBudgetS = positive(j["time_budget_s"], "time_budget_s");
+
+  // The output folder must be writable before anything renders.
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const std::string probe = dir + "/.vgi_sweep_probe";
+  if (ec || !std::ofstream(probe)) fail("sweep output folder '", dir, "' cannot be written");
+  fs::remove(probe, ec);
+
+  const nlohmann::json ref = j.value("reference", nlohmann::json::object());
+  checkKeys(ref, "'reference'", {"spp", "method", "set", "file", "convergence"});
+  if (ref.contains("file") && (ref.contains("method") || ref.contains("spp") || ref.contains("convergence")))
+    fail("experiment: 'reference' has a 'file' and a method, spp or convergence: give one of them");
+  const int refSpp = ref.contains("spp") ? intIn(ref["spp"], "reference.spp", 1, 1 << 20) : 256;
+  if (ref.contains("convergence")) {
+    if (!ref["convergence"].is_array() || ref["convergence"].empty())
+      fail("experiment: 'reference.convergence' = ", ref["convergence"].dump(),
+           " must be a non-empty list of sample counts");
+    std::set<int> c;
+    for (auto& v : ref["convergence"]) c.insert(intIn(v, "reference.convergence", 1, refSpp));
+    e.curveCounts.assign(c.begin(), c.end());
+  }
+  if (ref.contains("file")) {
+    if (e.scenes.size() != 1)
+      fail("experiment: a reference 'file' stands for one scene, but 'scenes' lists ", e.scenes.size());
+    SweepRender r;
+    r.file = ref["file"].get<std::string>();
+    if (fs::path(r.file).is_relative()) r.file = (fs::path(path).parent_path() / r.file).string();
+    const Image img = readImage(r.file);  // throws naming a missing or unreadable file
+    if (img.width != e.width || img.height != e.height)
+      fail("experiment: reference file '", r.file, "' is ", img.width, "x", img.height,
+           ", the experiment's size is ", e.width, "x", e.height);
+    r.id = "file";
+    r.stem = r.file;
+    e.references.push_back(r);
+    e.curves.emplace_back();
+  }
+
+  if (!j["methods"].is_array() || j["methods"].empty())
+    fail("experiment: 'methods' must be a non-empty list of {\"method\": …}");
+  for (size_t mi = 0; mi < j["methods"].size(); ++mi) {
+    const nlohmann::json& m = j["methods"][mi];
+    const std::string where = "methods[" + std::to_string(mi) + "]";
+    checkKeys(m, where, {"method", "label", "set", "grid", "spp", "reference"});
+    if (!m.contains("method") || !m["method"].is_string())
+      fail("experiment: ", where, " has no \"method\" name");
+    const std::string method = m["method"].get<std::string>();
+    const MethodInfo& info = findMethod(method, "experiment " + where + ".method");
+    const int spp = m.contains("spp") ? intIn(m["spp"], where + ".spp", 1, 1 << 20) : e.spp;
+    std::vector<int> checkpoints;
+    for (int k : e.checkpoints)
+      if (k < spp) checkpoints.push_back(k);
+    // Its own reference: another method's counterpart (shared with that method's points), or a method.
+    const nlohmann::json mref = m.value("reference", nlohmann::json::object());
+    checkKeys(mref, where + ".reference", {"counterpart_of", "method", "set"});
+    if (m.contains("reference") && mref.contains("counterpart_of") == mref.contains("method"))
+      fail("experiment: ", where, ".reference = ", mref.dump(),
+           " needs one of \"counterpart_of\" or \"method\"");
+    std::vector<std::string> fixed;
+    const nlohmann::json set = m.value("set", nlohmann::json::object()),
+                         grid = m.value("grid", nlohmann::json::object());
+    for (const auto* o : {&set, &grid})
+      if (!o->is_object())
+        fail("experiment: ", where, o == &set ? ".set" : ".grid", " must be an object of parameters, not ",
+             o->dump());
+    for (auto& [k, v] : set.items()) fixed.push_back(k + "=" + paramText(v, where + ".set." + k));
+    // The grid: every combination, keys in the file's (sorted) order.
+    std::vector<std::pair<std::string, std::vector<std::string>>> axes;
+    for (auto& [k, v] : grid.items()) {
+      if (!v.is_array() || v.empty())
+        fail("experiment: ", where, ".grid.", k, " = ", v.dump(), " must be a non-empty list of values");
+      std::vector<std::string> values;
+      for (auto& x : v) values.push_back(paramText(x, where + ".grid." + k));
+      axes.emplace_back(k, values);
+    }
+    size_t combos = 1;
+    for (auto& a : axes) combos *= a.second.size();
+    if (combos > 10000) fail("experiment: ", where, " expands to ", combos, " points (at most 10000)");
+    for (const std::string& scene : e.scenes)
+      for (size_t c = 0; c < combos; ++c) {
+        SweepPoint pt;
+        pt.scene = scene;
+        pt.method = method;
+        pt.label = m.value("label", method);
+        std::vector<std::string> set = fixed;
+        size_t rest = c;
+        pt.params = nlohmann::json::object();
+        for (auto& [k, values] : axes) {
+          const std::string& v = values[rest % values.size()];
+          rest /= values.size();
+          set.push_back(k + "=" + v);
+          pt.params[k] = v;
+        }
+        RenderOptions o;
+        o.scene = scene;
+        o.method = method;
+        o.methodGiven = true;
+        o.set = set;
+        o.width = e.width;
+        o.height = e.height;
+        o.spp = spp;
+        nlohmann::json resolved;
+        std::vector<std::string> outputs;
+        try {
+          resolved =
+              resolveParameters(o, &outputs);  // unknown or out-of-range parameters, a scene that fails
+        } catch (const Error& ex) {
+          fail("experiment: ", where, " (", method, " on ", scene, ", ", pt.params.dump(), "): ", ex.what());
+        }
+        // Only the outputs this method writes are asked of it.
+        std::vector<std::string> aovs;
+        for (auto& a : e.aovs)
+          if (std::find(outputs.begin(), outputs.end(), a) != outputs.end()) aovs.push_back(a);
+        pt.render =
+            makeRender(dir, "points", method,
+                       renderArgs(e, scene, method, set, spp, aovs, checkpoints, e.seed, e.timeBudgetS));
+        pt.spp = spp;
+        // The reference.
+        SweepRender r;
+        if (ref.contains("file") && !m.contains("reference")) {
+          pt.reference = 0;
+        } else {
+          std::string rmethod;
+          std::vector<std::string> rset, raovs;
+          if (mref.contains("method")) {
+            rmethod = mref["method"].get<std::string>();
+            findMethod(rmethod, "experiment " + where + ".reference.method");
+            const nlohmann::json refSet = mref.value("set", nlohmann::json::object());
+            if (!refSet.is_object())
+              fail("experiment: ", where, ".reference.set must be an object of parameters");
+            for (auto& [k, v] : refSet.items())
+              rset.push_back(k + "=" + paramText(v, where + ".reference.set." + k));
+            raovs = e.aovs;
+          } else if (mref.contains("counterpart_of")) {
+            const std::string other =
+                mref["counterpart_of"].is_string() ? mref["counterpart_of"].get<std::string>() : "";
+            const MethodInfo& oi = findMethod(other, "experiment " + where + ".reference.counterpart_of");
+            if (!oi.counterpart)
+              fail("experiment: ", where, ".reference.counterpart_of: '", other, "' has no counterpart");
+            RenderOptions oo = o;
+            oo.method = other;
+            oo.set.clear();
+            const Counterpart cp = oi.counterpart(resolveParameters(oo));
+            rmethod = cp.method;
+            rset = cp.set;
+            for (auto& a : e.aovs)
+              if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
+          } else if (ref.contains("method")) {
+            rmethod = ref["method"].get<std::string>();
+            findMethod(rmethod, "experiment reference.method");
+            const nlohmann::json refSet = ref.value("set", nlohmann::json::object());
+            if (!refSet.is_object()) fail("experiment: reference.set must be an object of parameters");
+            for (auto& [k, v] : refSet.items()) rset.push_back(k + "=" + paramText(v, "reference.set." + k));
+            raovs = e.aovs;
+          } else {
+            if (!info.counterpart)
+              fail("experiment: ", where, ": method '", method,
+                   "' has no exact counterpart; give "
+                   "\"reference\": {\"method\": …}");
+            const Counterpart cp = info.counterpart(resolved);
+            rmethod = cp.method;
+            rset = cp.set;
+            for (auto& a : e.aovs)
+              if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
+          }
+          r = makeRender(dir, "references", rmethod,
+                         renderArgs(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
+          auto same = std::find_if(e.references.begin(), e.references.end(),
+                                   [&](const SweepRender& x) { return x.id == r.id; });
+          if (same == e.references.end()) {
+            RenderOptions ro;
+            ro.scene = scene;
+            ro.method = rmethod;
+            ro.methodGiven = true;
+            ro.set = rset;
+            try {
+              resolveParameters(ro);
+            } catch (const Error& ex) {
+              fail("experiment: reference of ", where, " (", rmethod, " on ", scene, "): ", ex.what());
+            }
+            e.references.push_back(r);
+            pt.reference = e.references.size() - 1;
+            // Its own convergence: the same integral with the next seed, against the reference.
+            SweepRender curve;
+            if (!e.curveCounts.empty()) {
+              const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
+              curve = makeRender(
+                  dir, "curves", rmethod,
+                  renderArgs(e, scene, rmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
+            }
+            e.curves.push_back(curve);
+          } else {
+            pt.reference = size_t(same - e.references.begin());
+          }
+        }
+        e.points.push_back(std::move(pt));
+      }
+  }
+  return e;
+}
+
+std::string sweepCommand(const SweepRender& r, const std::string& vgi) {
+  std::string c = shellQuote(vgi);
+  for (auto& a : r.args) c += " " + shellQuote(a);
+  return c;
+}
+
+bool sweepRenderDone(const SweepRender& r, int spp) {
+  if (!r.file.empty()) return true;
+  const nlohmann::json s = readJson(stemOfRender(r) + ".json");
+  return s.is_object() && (s.value("spp_completed", 0) >= spp || s.value("time_limited", false));
+}
+
+int sweepRenderSpp(const SweepRender& r) {
+  const auto it = std::find(r.args.begin(), r.args.end(), "--spp");
+  return it != r.args.end() && it + 1 != r.args.end() ? std::atoi((it + 1)->c_str()) : 1;
+}
+
+int runSweep(const Experiment& e, const std::string& vgi) {
+  std::vector<std::pair<const SweepRender*, int>> todo;
+  for (const auto* list : {&e.references, &e.curves})
+    for (auto& r : *list)
+      if (!r.args.empty() && !sweepRenderDone(r, sweepRenderSpp(r))) todo.emplace_back(&r, sweepRenderSpp(r));
+  for (auto& p : e.points)
+    if (!sweepRenderDone(p.render, p.spp)) todo.emplace_back(&p.render, p.spp);
+  int n = 0;
+  std::vector<std::string> failed;
+  for (auto& [r, spp] : todo) {
+    fs::create_directories(r->dir);
+    const std::string cmd = sweepCommand(*r, vgi);
+    std::ofstream(r->dir + "/command.txt") << cmd << "\n";
+    std::fprintf(stderr, "sweep %s: [%d/%zu] %s\n", e.name.c_str(), ++n, todo.size(), r->id.c_str());
+    const int rc = std::system((cmd + " > " + shellQuote(r->dir + "/log.txt") + " 2>&1").c_str());
+    if ((WIFSIGNALED(rc) && (WTERMSIG(rc) == SIGINT || WTERMSIG(rc) == SIGTERM)) ||
+        (WIFEXITED(rc) && WEXITSTATUS(rc) == 130))
+      fail("sweep: interrupted during ", r->id, " (", n - 1, " of ", todo.size(),
+           " renders done); run it again to resume");
+    if (rc != 0 || !sweepRenderDone(*r, spp)) failed.push_back(r->id + " (see " + r->dir + "/log.txt)");
+  }
+  if (!failed.empty()) {
+    std::string list;
+    for (auto& f : failed) list += "\n  " + f;
+    fail("sweep: ", failed.size(), " of ", todo.size(), " renders failed:", list);
+  }
+  return n;
+}
+
+namespace {
+
+// <stem>.sppNNNNN of a checkpoint below the render's last sample count.
+std::string checkpointStem(const SweepRender& r, int spp) {
+  char number[24];
+  std::snprintf(number, sizeof number, ".spp%05d", spp);
+  return stemOfRender(r) + number;
+}
+
+// The rows of one render (a point or a counterpart curve): one per checkpoint
+// it reached and one for its last image, each against the reference.
+void addRows(const Experiment& e, const SweepRender& render, const std::vector<int>& checkpoints,
+             const SweepRender& ref, const nlohmann::json& base, const std::string& machine,
+             nlohmann::json& rows) {
+  const nlohmann::json last = readJson(stemOfRender(render) + ".json");
+  const int completed = last.is_object() ? last.value("spp_completed", 0) : 0;
+  std::vector<std::pair<int, std::string>> images;
+  for (int k : checkpoints)
+    if (completed == 0 || k < completed) images.emplace_back(k, checkpointStem(render, k));
+  if (completed > 0) images.emplace_back(completed, stemOfRender(render));
+  DiffOptions relative;
+  relative.relativeEpsilon = e.relativeEpsilon;
+  const std::string refStem = stemOfRender(ref);
+  for (auto& [spp, stem] : images) {
+    const nlohmann::json stats = readJson(stem + ".json");
+    if (!stats.is_object() || !fs::exists(stem + ".exr")) continue;
+    nlohmann::json row = base;
+    row["resolved_params"] = stats.value("params", nlohmann::json::object());
+    row["reference"] = ref.id;
+    row["spp"] = spp;
+    double sampleMs = 0, total = stats.value("total_ms", 0.0);
+    const nlohmann::json timings = stats.value("timings_ms", nlohmann::json::object());
+    const nlohmann::json passes = stats.value("sample_passes", nlohmann::json::array());
+    for (auto& pass : passes) sampleMs += timings.value(pass.get<std::string>(), 0.0);
+    if (!stats.contains("sample_passes")) sampleMs = total;  // CPU methods: all per sample
+    row["time_ms"] = total;
+    row["sample_ms"] = sampleMs;
+    row["setup_ms"] = std::max(0.0, total - sampleMs);
+    row["time_limited"] = stats.value("time_limited", false);
+    row["gl_renderer"] = stats.value("gl_renderer", "");
+    row["git_revision"] = stats.value("git_revision", "");
+    row["machine"] = machine;
+    std::vector<std::string> channels = {"image"};
+    channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+    for (auto& ch : channels) {
+      const std::string a = ch == "image" ? stem + ".exr" : stem + "." + ch + ".exr";
+      const std::string b = ch == "image" ? refStem + ".exr" : refStem + "." + ch + ".exr";
+      if (!fs::exists(a) || !fs::exists(b)) continue;
+      const Image ia = readImage(a), ib = readImage(b);
+      const ImageDiff d = compareImages(ia, ib, a, b, e.diff), dr = compareImages(ia, ib, a, b, relative);
+      row[ch] = {{"relmse", d.relMse},
+                 {"relmse_relative", dr.relMse},
+                 {"rel_mae", d.relMae},
+                 {"ssim", d.ssim},
+                 {"energy", (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0}};
+    }
+    rows.push_back(row);
+  }
+}
+
+}  // namespace
+
+EqualError equalErrorTime(const std::vector<CurvePoint>& curve, double error) {
+  EqualError r;
+  std::vector<CurvePoint> c;
+  for (auto& p : curve)
+    if (p.error > 0 && std::isfinite(p.error) && p.timeMs > 0) c.push_back(p);
+  if (c.empty() || !(error > 0) || !std::isfinite(error)) return r;
+  std::sort(c.begin(), c.end(), [](const CurvePoint& a, const CurvePoint& b) { return a.timeMs < b.timeMs; });
+  // Inside the curve: log-log interpolation between the two measurements around `error`.
+  for (size_t i = 0; i + 1 < c.size(); ++i) {
+    const CurvePoint &a = c[i], &b = c[i + 1];
+    if ((a.error - error) * (b.error - error) <= 0 && a.error != b.error) {
+      const double t = std::log(error / a.error) / std::log(b.error / a.error);
+      r.timeMs = a.timeMs * std::pow(b.timeMs / a.timeMs, t);
+      r.valid = true;
+      return r;
+    }
+  }
+  // Outside: Monte Carlo's rate (relMSE ∝ 1 / samples) on the per-sample time from the nearest end.
+  const CurvePoint& end = error < c.back().error ? c.back() : c.front();
+  const double setup = std::max(0.0, end.timeMs - end.sampleMs);
+  r.timeMs = setup + std::max(end.sampleMs, 1e-9) * end.error / error;
+  r.valid = true;
+  r.extrapolated = true;
+  return r;
+}
+
+nlohmann::json collectSweep(const Experiment& e) {
+  nlohmann::json rows = nlohmann::json::array();
+  const std::string machine = machineName();
+  std::vector<std::string> channels = {"image"};
+  channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+  // The counterparts' own curves first: each point's equal-error time is read off them.
+  std::vector<nlohmann::json> curveRows(e.references.size(), nlohmann::json::array());
+  for (size_t i = 0; i < e.references.size(); ++i) {
+    const SweepRender& ref = e.references[i];
+    if (e.curves[i].args.empty() || !readJson(stemOfRender(ref) + ".json").is_object()) continue;
+    std::string scene;
+    for (auto& p : e.points)
+      if (p.reference == i) scene = p.scene;
+    const std::string method = ref.args.size() > 4 ? ref.args[4] : ref.id;
+    std::string label = method;  // with its parameters: two counterparts of one scene differ in them
+    for (size_t a = 0; a + 1 < ref.args.size(); ++a)
+      if (ref.args[a] == "--set") label += " " + ref.args[a + 1];
+    const nlohmann::json base = {{"scene", scene},
+                                 {"method", method},
+                                 {"label", label + " (exact, seed " + std::to_string(e.seed + 1) + ")"},
+                                 {"role", "counterpart"},
+                                 {"params", nlohmann::json::object()},
+                                 {"point", e.curves[i].id}};
+    const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
+    addRows(e, e.curves[i], below, ref, base, machine, curveRows[i]);
+    for (auto& r : curveRows[i]) rows.push_back(r);
+  }
+  for (const SweepPoint& p : e.points) {
+    const SweepRender& ref = e.references[p.reference];
+    if (ref.file.empty() && !readJson(stemOfRender(ref) + ".json").is_object()) continue;  // not rendered yet
+    const nlohmann::json base = {{"scene", p.scene}, {"method", p.method}, {"label", p.label},
+                                 {"role", "point"},  {"params", p.params}, {"point", p.render.id}};
+    nlohmann::json mine = nlohmann::json::array();
+    std::vector<int> checkpoints;
+    for (int k : e.checkpoints)
+      if (k < p.spp) checkpoints.push_back(k);
+    addRows(e, p.render, checkpoints, ref, base, machine, mine);
+    for (auto& row : mine) {
+      // The time the exact counterpart takes to reach this row's error (relMSE, relative ε).
+      for (auto& ch : channels) {
+        if (!row.contains(ch) || curveRows[p.reference].empty()) continue;
+        std::vector<CurvePoint> curve;
+        for (auto& c : curveRows[p.reference])
+          if (c.contains(ch))
+            curve.push_back({c["time_ms"].get<double>(), c["sample_ms"].get<double>(),
+                             c[ch]["relmse_relative"].get<double>()});
+        const EqualError eq = equalErrorTime(curve, row[ch]["relmse_relative"].get<double>());
+        if (!eq.valid) continue;
+        row[ch]["equal_error_time_ms"] = eq.timeMs;
+        row[ch]["equal_error_time_ratio"] = eq.timeMs / std::max(row["time_ms"].get<double>(), 1e-9);
+        row[ch]["equal_error_extrapolated"] = eq.extrapolated;
+      }
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
+nlohmann::json writeSweepResults(const Experiment& e) {
+  const nlohmann::json rows = collectSweep(e);
+  // Each finished point's signed error map against its reference (the report's third image).
+  for (const SweepPoint& p : e.points) {
+    const std::string a = stemOfRender(p.render) + ".exr",
+                      b = stemOfRender(e.references[p.reference]) + ".exr";
+    if (sweepRenderDone(p.render, p.spp) && fs::exists(b))
+      writeSignedError(signedDifference(readImage(a), readImage(b)), p.render.dir + "/error.png");
+  }
+  nlohmann::json out = {{"experiment", e.name},
+                        {"file", e.path},
+                        {"size", {e.width, e.height}},
+                        {"spp", e.spp},
+                        {"checkpoints", e.checkpoints},
+                        {"epsilon", e.diff.epsilon},
+                        {"relative_epsilon", e.relativeEpsilon},
+                        {"time_budget_s", e.timeBudgetS},
+                        {"convergence", e.curveCounts},
+                        {"points", e.points.size()},
+                        {"rows", rows}};
+  std::ofstream(e.dir + "/results.json") << out.dump(2) << "\n";
+  // CSV: the fixed columns, the grid's parameter keys, then per channel the metrics.
+  std::set<std::string> keys;
+  for (auto& p : e.points)
+    for (auto& [k, v] : p.params.items()) keys.insert(k);
+  std::vector<std::string> channels = {"image"};
+  channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+  std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy"};
+  if (!e.curveCounts.empty()) metrics.push_back("equal_error_time_ratio");
+  std::ofstream csv(e.dir + "/results.csv");
+  csv << "scene,method,label,role,point";
+  for (auto& k : keys) csv << "," << k;
+  csv << ",spp,time_ms,sample_ms,setup_ms,time_limited";
+  for (auto& ch : channels)
+    for (auto& m : metrics) csv << "," << ch << "_" << m;
+  csv << ",gl_renderer,machine,git_revision\n";
+  auto field = [](const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+  };
+  for (auto& r : rows) {
+    csv << field(r["scene"]) << "," << field(r["method"]) << "," << field(r["label"]) << ","
+        << field(r["role"]) << "," << field(r["point"]);
+    for (auto& k : keys) csv << "," << field(r["params"].value(k, ""));
+    csv << "," << r["spp"].get<int>() << "," << r["time_ms"].get<double>() << ","
+        << r["sample_ms"].get<double>() << "," << r["setup_ms"].get<double>() << ","
+        << (r["time_limited"].get<bool>() ? "true" : "false");
+    for (auto& ch : channels)
+      for (auto& m : metrics) {
+        csv << ",";
+        if (r.contains(ch) && r[ch].contains(m)) csv << r[ch][m].get<double>();
+      }
+    csv << "," << field(r["gl_renderer"]) << "," << field(r["machine"]) << "," << field(r["git_revision"])
+        << "\n";
+  }
+  return rows;
+}
+
+}  // namespace vgi

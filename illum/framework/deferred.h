@@ -1,0 +1,67 @@
+// Building blocks the GL modules share: the camera of a (jittered) frame, the
+// G-buffer and the deferred direct-lighting pass. `direct` is these alone; the
+// GI modules add to them. (Accumulation is the sample loop's: illum/framework/sample_loop.h.)
+#pragma once
+#include <glm/glm.hpp>
+
+#include "core/gl_handles.h"
+#include "core/image.h"
+#include "core/scene.h"
+
+namespace vgi {
+
+class GpuScene;
+class LightMaps;
+class ShaderLibrary;
+
+// Halton radical inverse (sub-pixel jitter, frame rotations).
+float halton(int index, int base);
+
+struct FrameCamera {
+  glm::mat4 viewProj, invViewProj;
+  glm::vec3 position;
+};
+// Jittered frame `frame`: frame 0 at pixel centres, frame k > 0 at Halton
+// (2,3) point k + 1, an offset in [−½, ½)² pixels. A frame's jitter does not
+// depend on how many frames follow, so the first k samples of any run are the
+// same k samples (the viewer's screenshot after k frames is `vgi render --spp k`).
+FrameCamera frameCamera(const Camera& camera, const Bounds& bounds, int width, int height, int frame);
+
+// Position (w = 1 where a surface was seen), normal facing the viewer (w =
+// material index), albedo and the geometric normal, at the texture units of
+// shaders/shared/gbuffer.glsl when bound.
+class GBuffer {
+ public:
+  GBuffer(int width, int height, ShaderLibrary& shaders);
+  ~GBuffer();
+  GBuffer(const GBuffer&) = delete;
+  GBuffer& operator=(const GBuffer&) = delete;
+  void render(const GpuScene& gpu, const FrameCamera& camera);
+  void bind() const;  // at the units of shaders/shared/gbuffer.glsl
+  // Channel c (0 position, 1 normal, 2 albedo, 3 geometric normal; RGBA32F, rows bottom-up).
+  unsigned texture(int c) const { return tex_[c].get(); }
+  int width() const { return w_; }
+  int height() const { return h_; }
+
+ private:
+  int w_, h_;
+  ShaderLibrary& shaders_;
+  GlTexture tex_[4];
+  unsigned depth_ = 0, fbo_ = 0, prog_ = 0;
+};
+
+// Deferred direct lighting (emission + delta lights through the light maps;
+// environment behind) written into an RGBA32F image (a sample image of the
+// loop): the `direct` module's sample, and the GI modules' direct part.
+class DirectPass {
+ public:
+  DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadowBias, float normalOffset);
+  void shade(const GBuffer& gbuffer, const LightMaps& maps, const FrameCamera& camera, unsigned targetImage);
+
+ private:
+  ShaderLibrary& shaders_;
+  const GpuScene& gpu_;
+  unsigned prog_ = 0;
+};
+
+}  // namespace vgi

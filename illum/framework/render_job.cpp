@@ -1,0 +1,557 @@
+#include "illum/framework/render_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "core/build_info.h"
+#include "core/error.h"
+#include "core/image.h"
+#include "core/json_text.h"
+#include "core/output_files.h"
+#include "core/progress.h"
+#include "core/scene_loader.h"
+#include "core/shader_library.h"
+#include "illum/framework/sample_loop.h"
+
+namespace fs = std::filesystem;
+
+namespace vgi {
+
+void parseSize(const std::string& text, int& w, int& h) {
+  auto x = text.find('x');
+  // Each side parsed from a string that outlives the check of `end` (a
+  // substr() temporary would be destroyed before *end is read).
+  auto side = [](const std::string& digits) {
+    if (digits.empty() || digits.size() > 9) return -1L;
+    char* end = nullptr;
+    long v = std::strtol(digits.c_str(), &end, 10);
+    return *end ? -1L : v;
+  };
+  long a = -1, b = -1;
+  if (x != std::string::npos) {
+    a = side(text.substr(0, x));
+    b = side(text.substr(x + 1));
+  }
+  if (a < 1 || b < 1 || a > 16384 || b > 16384)
+    fail("--size '", text, "': expected WxH with 1 <= W, H <= 16384 (e.g. 512x512)");
+  w = int(a);
+  h = int(b);
+}
+
+void checkOutputPath(const std::string& path) {
+  fs::path p(path);
+  std::string ext = p.extension().string();
+  if (ext != ".exr" && ext != ".png")
+    fail("-o '", path, "': the output must end in .exr or .png (both are written, plus a .json sidecar)");
+  checkOutputFile(path, "-o");
+}
+
+namespace {
+// The scene preset, then --set, then the method (unknown keys are errors).
+std::unique_ptr<Method> createMethod(const RenderOptions& opt, const MethodInfo& info, const Scene& scene,
+                                     ParamSet& params) {
+  if (!opt.preset.empty()) {
+    auto it = scene.presets.find(opt.preset);
+    if (it == scene.presets.end()) {
+      std::string known;
+      for (auto& [k, v] : scene.presets) known += (known.empty() ? "" : ", ") + k;
+      fail("--preset '", opt.preset, "': scene '", opt.scene, "' has no such preset (",
+           known.empty() ? "it has none" : "known: " + known, ")");
+    }
+    for (auto& [k, v] : it->second)
+      if (k != "method") params.set(k, v, "preset '" + opt.preset + "'");
+  }
+  for (auto& kv : opt.set) params.setFromString(kv, "--set");
+  std::unique_ptr<Method> method = info.create(params, scene);
+  params.checkAllUsed("method '" + info.name + "'");
+  return method;
+}
+
+}  // namespace
+
+// What one render() reports: samples, per-pass timings, the method's stats.
+nlohmann::json renderStats(const RenderResult& r, const Profiler& profiler) {
+  const nlohmann::json timings = profiler.timingsMs();
+  return {{"spp_completed", r.sppCompleted},
+          {"timings_ms", timings},
+          {"cpu_timings_ms", profiler.cpuTimingsMs()},
+          {"pass_calls", profiler.callCounts()},
+          {"total_ms", profiler.totalMs()},
+          {"extra", r.extra},
+          {"built", r.built},
+          {"sample_passes", r.samplePasses}};
+}
+
+namespace {
+
+// A method that returns a non-finite pixel must never have it written as if
+// it were an image (a NaN turns black in the PNG and poisons every metric).
+void checkFinite(const RenderResult& r, const std::string& method) {
+  auto check = [&](const Image& img, const std::string& what) {
+    for (size_t i = 0; i < img.pixels.size(); ++i) {
+      const glm::vec3 c = img.pixels[i];
+      if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z))
+        fail("method '", method, "' computed a non-finite value in its ", what, " at pixel (",
+             i % size_t(img.width), ", ", i / size_t(img.width), "): (", c.x, ", ", c.y, ", ", c.z,
+             "); the scene's values overflow float there. Nothing was written");
+    }
+  };
+  check(r.image, "image");
+  for (auto& [name, image] : r.aovs) check(image, "output '" + name + "'");
+}
+
+// The method a render uses: --method, or the one the preset names (a preset
+// written for one method says so with the key "method").
+std::string methodFor(const RenderOptions& opt, const Scene& scene) {
+  if (opt.preset.empty()) return opt.method;
+  auto it = scene.presets.find(opt.preset);
+  if (it == scene.presets.end()) return opt.method;  // createMethod names the error
+  auto m = it->second.find("method");
+  if (m == it->second.end()) return opt.method;
+  if (opt.methodGiven && opt.method != m->second)
+    fail("--preset '", opt.preset, "' is written for method '", m->second, "', not --method '", opt.method,
+         "' (drop --method, or give --method ", m->second, ")");
+  return m->second;
+}
+}  // namespace
+
+nlohmann::json resolveParameters(const RenderOptions& opt, std::vector<std::string>* outputs) {
+  Scene scene = loadScene(opt.scene);
+  ParamSet params;
+  std::unique_ptr<Method> method = createMethod(opt, findMethod(methodFor(opt, scene)), scene, params);
+  if (outputs) *outputs = method->outputs();
+  return params.resolved();
+}
+
+std::string cameraText(const Camera& c) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.position.x,
+                c.position.y, c.position.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y, c.up.z,
+                c.fovYDeg);
+  return buf;
+}
+
+Camera parseCamera(const std::string& text) {
+  std::vector<float> v;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) {
+    char* end = nullptr;
+    const float x = std::strtof(item.c_str(), &end);
+    if (item.empty() || *end || !std::isfinite(x))
+      fail("--camera '", text, "': '", item, "' is not a finite number");
+    v.push_back(x);
+  }
+  if (v.size() != 9 && v.size() != 10)
+    fail("--camera '", text, "': expected px,py,pz,tx,ty,tz,ux,uy,uz[,fov_y_deg] (", v.size(),
+         " numbers given)");
+  Camera c;
+  c.position = {v[0], v[1], v[2]};
+  c.target = {v[3], v[4], v[5]};
+  c.up = {v[6], v[7], v[8]};
+  if (v.size() == 10) c.fovYDeg = v[9];
+  if (glm::length(c.target - c.position) < 1e-12f)
+    fail("--camera '", text, "': the position and the target coincide");
+  if (glm::length(glm::cross(c.target - c.position, c.up)) < 1e-12f * glm::length(c.target - c.position))
+    fail("--camera '", text, "': the up vector is parallel to the view direction (or zero)");
+  if (!(c.fovYDeg > 0.0f && c.fovYDeg < 180.0f))
+    fail("--camera '", text, "': the vertical field of view ", c.fovYDeg, " must be in (0, 180) degrees");
+  return c;
+}
+
+std::pair<int, glm::vec3> parseLightPosition(const std::string& text) {
+  const size_t eq = text.find('=');
+  char* end = nullptr;
+  const long index = eq == std::string::npos ? -1 : std::strtol(text.c_str(), &end, 10);
+  if (eq == std::string::npos || eq == 0 || end != text.c_str() + eq || index < 0 || index > 1000000)
+    fail("--light '", text, "': expected I=x,y,z (I: the light's index in the scene, from 0)");
+  std::vector<float> v;
+  std::stringstream ss(text.substr(eq + 1));
+  for (std::string item; std::getline(ss, item, ',');) {
+    const float x = std::strtof(item.c_str(), &end);
+    if (item.empty() || *end || !std::isfinite(x))
+      fail("--light '", text, "': '", item, "' is not a finite number");
+    v.push_back(x);
+  }
+  if (v.size() != 3) fail("--light '", text, "': expected I=x,y,z (", v.size(), " numbers given)");
+  return {int(index), glm::vec3(v[0], v[1], v[2])};
+}
+
+std::string lightPositionText(int index, glm::vec3 p) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%d=%.9g,%.9g,%.9g", index, p.x, p.y, p.z);
+  return buf;
+}
+
+void placeLight(std::vector<Light>& lights, int index, glm::vec3 position) {
+  if (index < 0 || index >= int(lights.size()))
+    fail("light ", index, " does not exist: the scene has ", lights.size(), " delta lights",
+         lights.empty() ? "" : " (0 … " + std::to_string(lights.size() - 1) + ")");
+  if (lights[size_t(index)].type == LightType::Directional)
+    fail("light ", index, " is directional (it has no position)");
+  lights[size_t(index)].position = position;
+}
+
+void checkRenderOptions(const RenderOptions& opt) {
+  if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
+  if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
+    fail("--size ", opt.width, "x", opt.height, ": each side must be in [1, 16384]");
+  if (opt.threads < 0 || opt.threads > 1024) fail("--threads ", opt.threads, ": must be in [0, 1024]");
+  if (opt.frames < 1 || opt.frames > 100000) fail("--frames ", opt.frames, ": must be in [1, 100000]");
+  if (!std::isfinite(opt.time) || !std::isfinite(opt.timeStep))
+    fail("--time ", opt.time, " / --time-step ", opt.timeStep, ": must be finite numbers");
+  if (!(opt.timeLimitS >= 0) || !std::isfinite(opt.timeLimitS))
+    fail("--time-limit ", opt.timeLimitS, ": must be a finite number of seconds >= 0 (0 = no limit)");
+  if (opt.timeLimitS > 0 && opt.frames > 1)
+    fail("--time-limit applies to a still; --frames ", opt.frames, " renders an animation");
+  if (!opt.checkpoints.empty() && opt.frames > 1)
+    fail("--checkpoints applies to a still; --frames ", opt.frames, " renders an animation");
+  for (int c : opt.checkpoints)
+    if (c < 1 || c > opt.spp)
+      fail("--checkpoints: ", c, " is not a sample count in [1, --spp ", opt.spp, "]");
+}
+
+RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options) {
+  checkRenderOptions(opt_);
+  findMethod(opt_.method);  // a misspelt --method is named before the scene is loaded
+  scene_ = loadScene(opt_.scene);
+  if (opt_.camera) scene_.camera = *opt_.camera;
+  for (auto& [index, position] : opt_.lightPositions) {
+    try {
+      placeLight(scene_.lights, index, position);
+    } catch (const Error& e) {
+      fail("--light ", lightPositionText(index, position), ": ", e.what(), " in '", opt_.scene, "'");
+    }
+  }
+  gl_ = gl;
+  setMethod(methodFor(opt_, scene_), opt_.set, opt_.aovs);
+}
+
+RenderJob::~RenderJob() = default;
+
+void RenderJob::setMethod(const std::string& name, const std::vector<std::string>& set,
+                          const std::vector<std::string>& aovs) {
+  RenderOptions o = opt_;
+  o.method = name;
+  o.set = set;
+  o.aovs = aovs;
+  const MethodInfo& info = findMethod(o.method);
+  auto params = std::make_unique<ParamSet>();
+  std::unique_ptr<Method> method = createMethod(o, info, scene_, *params);
+  const std::vector<std::string> outputs = method->outputs();
+  for (auto& a : o.aovs)
+    if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) {
+      std::string known;
+      for (auto& out : outputs) known += (known.empty() ? "" : ", ") + out;
+      fail("--aov '", a, "': method '", info.name, "' has no such output (",
+           known.empty() ? "it has none besides the image" : "known: " + known, ")");
+    }
+  if (info.needsGl && !gl_) {
+    ownGl_ = GlContext::create(o.gl);
+    gl_ = ownGl_.get();
+  }
+  if (info.needsGl && !shaders_) shaders_ = std::make_unique<ShaderLibrary>();
+  const SceneNeeds needs = method->needs();
+  needs.check(info.name, info.needsGl);
+  // Everything checked: the new method replaces the old one. The resources are kept when the new
+  // method needs the same (a parameter that does not change them, e.g. the ray count).
+  const bool keep = resources_ && resources_->needs() == needs && info_->needsGl == info.needsGl;
+  method_ = std::move(method);
+  params_ = std::move(params);
+  info_ = &info;
+  if (!keep) makeResources(needs);
+  opt_.method = name;
+  opt_.set = set;
+  opt_.aovs = aovs;
+}
+
+void RenderJob::lightsChanged() { resources_->lightsChanged(); }
+
+void RenderJob::makeResources(SceneNeeds needs) {
+  auto fresh =
+      std::make_unique<SceneResources>(scene_, std::move(needs), gl(), shaders(), frameTimes(), opt_.threads);
+  if (resources_) fresh->adopt(*resources_);  // what is built the same way is kept
+  resources_.reset();  // the rest of the old GL objects go before the new ones are made (at update)
+  resources_ = std::move(fresh);
+}
+
+std::vector<float> RenderJob::frameTimes() const {
+  std::vector<float> t;
+  for (int f = 0; f < opt_.frames; ++f) t.push_back(opt_.time + float(f) * opt_.timeStep);
+  return t;
+}
+
+RenderRequest RenderJob::request() const {
+  RenderRequest req;
+  req.scene = &scene_;
+  req.method = info_->name;
+  req.accumulation = opt_.accumulation;
+  req.checkpoints = opt_.checkpoints;
+  req.timeLimitS = opt_.timeLimitS;
+  req.width = opt_.width;
+  req.height = opt_.height;
+  req.spp = opt_.spp;
+  req.seed = opt_.seed;
+  req.threads = opt_.threads;
+  req.progress = opt_.progress && opt_.frames == 1;
+  req.aovs = opt_.aovs;
+  req.frameTimes = frameTimes();
+  req.time = opt_.time;
+  return req;
+}
+
+ShaderLibrary* RenderJob::shaders() const { return info_->needsGl ? shaders_.get() : nullptr; }
+GlContext* RenderJob::gl() const { return info_->needsGl ? gl_ : nullptr; }
+
+nlohmann::json RenderJob::describe() const {
+  const SceneNeeds needs = method_->needs();
+  GlContext* gl = this->gl();
+  nlohmann::json run;
+  run["method"] = info_->name;
+  run["scene"] = opt_.scene;
+  run["width"] = opt_.width;
+  run["height"] = opt_.height;
+  run["spp"] = opt_.spp;
+  run["seed"] = opt_.seed;
+  run["time"] = opt_.time;
+  const Camera& c = scene_.camera;
+  run["camera"] = {{"position", {c.position.x, c.position.y, c.position.z}},
+                   {"target", {c.target.x, c.target.y, c.target.z}},
+                   {"up", {c.up.x, c.up.y, c.up.z}},
+                   {"fov_y_deg", c.fovYDeg},
+                   {"option", cameraText(c)}};
+  nlohmann::json lights = nlohmann::json::array();
+  for (size_t i = 0; i < scene_.lights.size(); ++i) {
+    const Light& l = scene_.lights[i];
+    nlohmann::json j = {{"type", lightTypeName(l.type)}};
+    if (l.type != LightType::Directional) {
+      j["position"] = {l.position.x, l.position.y, l.position.z};
+      j["option"] = lightPositionText(int(i), l.position);  // vgi render --light
+    }
+    lights.push_back(j);
+  }
+  run["lights"] = lights;
+  run["gl_renderer"] = gl ? gl->renderer() : "none (CPU method)";
+  run["gl_version"] = gl ? gl->version() : "";
+  run["gl_backend"] = gl ? gl->backendName() : "";
+  run["cpu_threads_available"] = std::thread::hardware_concurrency();
+  run["params"] = params_->resolved();
+  run["preset"] = opt_.preset;
+  run["git_revision"] = gitRevision();
+  run["vgi_version"] = version();
+  run["shader_dir"] = defaultShaderDir();
+  run["triangles"] = scene_.triangleCount();
+  run["degenerate_triangles_dropped"] = scene_.report.degenerateTrianglesDropped;
+  run["warnings"] = scene_.report.warnings;
+  run["needs"] = needs.names();
+  run["accumulation"] = opt_.accumulation == Accumulation::Compensated ? "compensated" : "plain";
+  run["aovs"] = opt_.aovs;
+  return run;
+}
+
+void RenderJob::checkGl() const {
+  GlContext* gl = this->gl();
+  if (gl && gl->errorCount() > 0)
+    fail("method '", info_->name, "' raised ", gl->errorCount(), " GL error(s) on ", gl->renderer(),
+         "; the image is not trustworthy and was not written");
+}
+
+void RenderJob::checkFiniteResult(const RenderResult& r) const { checkFinite(r, info_->name); }
+
+RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
+                       const CheckpointSink& onCheckpoint) {
+  RenderJob job(opt);
+  const MethodInfo& info = job.info();
+  const Scene& scene = job.scene();
+  Method* method = &job.method();
+  SceneResources& resources = job.resources();
+  SampleTargets& targets = job.targets();
+  ShaderLibrary* shaders = job.shaders();
+  GlContext* gl = job.gl();
+  RenderRequest req = job.request();
+  nlohmann::json run = job.describe();
+  auto checkGl = [&] { job.checkGl(); };
+
+  RenderOutput out;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (opt.frames == 1) {
+    req.time = opt.time;
+    Profiler profiler(gl != nullptr);
+    if (onCheckpoint)
+      req.onCheckpoint = [&](const RenderResult& sofar, Profiler& p) {
+        checkFinite(sofar, info.name);
+        RenderOutput c;
+        c.result = sofar;
+        c.stats = run;
+        p.resolve(true);
+        c.stats.update(renderStats(sofar, p));
+        c.stats["checkpoint"] = true;
+        c.stats["wall_ms"] =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        onCheckpoint(sofar.sppCompleted, c);
+      };
+    out.result = renderFrame(*method, req, resources, targets, shaders, profiler);
+    profiler.resolve(true);
+    checkFinite(out.result, info.name);
+    nlohmann::json& s = out.stats;
+    s = run;
+    s.update(renderStats(out.result, profiler));
+    s["interrupted"] = out.result.interrupted;
+    s["time_limit_s"] = opt.timeLimitS;
+    s["time_limited"] = out.result.timeLimited;
+    s["gl_errors"] = gl ? gl->errorCount() : 0;
+    out.stats["wall_ms"] =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    checkGl();
+    return out;
+  }
+
+  // An animation: one Profiler per frame; the run's timings are their sums.
+  if (!scene.hasDynamicMeshes())
+    run["warnings"].push_back("--frames " + std::to_string(opt.frames) +
+                              ": the scene has no dynamic meshes, so every frame shows the same instant");
+  nlohmann::json frames = nlohmann::json::array(), timings = nlohmann::json::object(),
+                 cpuTimings = nlohmann::json::object(), calls = nlohmann::json::object();
+  auto addInto = [](nlohmann::json& sum, const nlohmann::json& part) {
+    for (auto& [k, v] : part.items())
+      sum[k] = (sum.contains(k) ? sum[k].get<double>() : 0.0) + v.get<double>();
+  };
+  ProgressBar bar("frames", opt.frames);
+  bool interrupted = false;
+  for (int f = 0; f < opt.frames && !interrupted; ++f) {
+    req.frame = f;
+    req.time = req.frameTimes[size_t(f)];
+    const auto tf = std::chrono::steady_clock::now();
+    Profiler profiler(gl != nullptr);
+    out.result = renderFrame(*method, req, resources, targets, shaders, profiler);
+    profiler.resolve(true);
+    checkGl();
+    checkFinite(out.result, info.name);
+    interrupted = out.result.interrupted || interruptRequested();
+    // Stopped before every pixel of this frame had a sample: the frames so far stand, this one is not
+    // written.
+    if (out.result.sppCompleted == 0) break;
+    nlohmann::json fs = renderStats(out.result, profiler);
+    fs["frame"] = f;
+    fs["time"] = req.time;
+    fs["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tf).count();
+    addInto(timings, fs["timings_ms"]);
+    addInto(cpuTimings, fs["cpu_timings_ms"]);
+    addInto(calls, fs["pass_calls"]);
+    out.stats = run;
+    out.stats.update(fs);
+    if (onFrame) onFrame(f, out);
+    frames.push_back(fs);
+    if (opt.progress) bar.advance();
+  }
+  bar.finish();
+  nlohmann::json& s = out.stats;
+  s = run;
+  s["frames_requested"] = opt.frames;
+  s["frames_completed"] = frames.size();
+  s["time_step"] = opt.timeStep;
+  s["interrupted"] = interrupted;
+  s["gl_errors"] = gl ? gl->errorCount() : 0;
+  s["timings_ms"] = timings;
+  s["cpu_timings_ms"] = cpuTimings;
+  s["pass_calls"] = calls;
+  double total = 0;
+  for (auto& [k, v] : timings.items()) total += v.get<double>();
+  s["total_ms"] = total;
+  s["built"] = out.result.built;
+  s["frames"] = frames;
+  s["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+namespace {
+
+// <stem>.exr, <stem>.png, then <stem>.<aov>.exr/.png per extra output.
+std::vector<std::string> writeImages(const RenderResult& r, const std::string& stem, float exposure) {
+  std::vector<std::string> files = {stem + ".exr", stem + ".png"};
+  writeImage(r.image, files[0]);
+  writeImage(r.image, files[1], exposure);
+  for (auto& [name, image] : r.aovs) {
+    for (const char* ext : {".exr", ".png"}) {
+      files.push_back(stem + "." + name + ext);
+      writeImage(image, files.back(), ext[1] == 'p' ? exposure : 1.0f);
+    }
+  }
+  return files;
+}
+
+void writeStats(nlohmann::json s, const std::string& json, const std::vector<std::string>& files,
+                float exposure) {
+  s["outputs"] = files;
+  s["exposure_png"] = exposure;
+  writeJsonFile(s, json);
+}
+
+std::string stemOf(const std::string& path) {
+  checkOutputPath(path);
+  return fs::path(path).replace_extension("").string();
+}
+
+}  // namespace
+
+std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path,
+                                            float exposure) {
+  const std::string stem = stemOf(path);
+  std::vector<std::string> files = writeImages(out.result, stem, exposure);
+  files.insert(files.begin() + 2, stem + ".json");
+  writeStats(out.stats, stem + ".json", files, exposure);
+  return files;
+}
+
+std::vector<std::string> writeCheckpointOutputs(const RenderOutput& out, const std::string& path, int spp,
+                                                float exposure) {
+  char number[24];
+  std::snprintf(number, sizeof number, ".spp%05d", spp);
+  const std::string stem = stemOf(path) + number;
+  std::vector<std::string> files = writeImages(out.result, stem, exposure);
+  files.insert(files.begin() + 2, stem + ".json");
+  writeStats(out.stats, stem + ".json", files, exposure);
+  return files;
+}
+
+std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame,
+                                          float exposure) {
+  char number[16];
+  std::snprintf(number, sizeof number, "_%04d", frame);
+  return writeImages(out.result, stemOf(path) + number, exposure);
+}
+
+std::string writeAnimationStats(const RenderOutput& out, const std::string& path,
+                                const std::vector<std::string>& files, float exposure) {
+  const std::string json = stemOf(path) + ".json";
+  writeStats(out.stats, json, files, exposure);
+  return json;
+}
+
+std::string describeMethod(const std::string& name, const std::string& sceneSpec) {
+  const MethodInfo& info = findMethod(name, "--help-module");
+  Scene scene = loadScene(sceneSpec);  // defaults that depend on the scene (the radius) are this scene's
+  ParamSet params;
+  std::unique_ptr<Method> method = info.create(params, scene);
+  std::ostringstream os;
+  os << name << ": " << info.description << (info.needsGl ? " [GL]" : " [CPU]") << "\n";
+  auto list = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? std::string("-") : s;
+  };
+  os << "needs: " << list(method->needs().names()) << " (with these defaults)\n";
+  os << "outputs: image" << (method->outputs().empty() ? "" : ", " + list(method->outputs()))
+     << " (--aov NAME,...)\n";
+  os << "parameters (--set key=value; scene-dependent defaults shown for " << sceneSpec << "):\n";
+  for (auto& d : params.docs())
+    os << "  " << d.key << " (" << d.type << ", default " << d.defaultValue << "): " << d.doc << "\n";
+  return os.str();
+}
+
+}  // namespace vgi

@@ -1,0 +1,160 @@
+// One render as `vgi render` runs it: load the scene, resolve parameters
+// (scene preset, then --set), create the method, make a GL context if the
+// method needs one, render, and describe everything in a stats JSON.
+#pragma once
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/gl_context.h"
+#include "core/output_files.h"
+#include "illum/framework/method.h"
+#include "illum/framework/sample_loop.h"
+
+namespace vgi {
+
+struct RenderOptions {
+  std::string scene = "builtin:cornell";
+  std::string method = defaultMethodName();
+  bool methodGiven = false;      // --method was on the command line (a preset may name its method otherwise)
+  std::vector<std::string> set;  // key=value
+  std::string preset;            // scene preset name, applied before `set`
+  int width = 512, height = 512;
+  int spp = 16;
+  uint32_t seed = 1;
+  int threads = 0;
+  float time = 0;
+  int frames = 1;  // > 1: an animation from `time`, `timeStep` apart
+  float timeStep = 1.0f / 30.0f;
+  GlBackend gl = GlBackend::Auto;
+  bool progress = true;
+  std::vector<std::string> aovs;                          // --aov: extra output channels
+  Accumulation accumulation = Accumulation::Compensated;  // --accumulate
+  std::vector<int> checkpoints;  // --checkpoints: sample counts to write the image at (a still)
+  double timeLimitS = 0;         // --time-limit: a still stops accumulating after this wall time
+  std::optional<Camera> camera;  // --camera: replaces the scene's
+  // --light I=x,y,z: light I (scene order) placed at x,y,z (point and spot lights)
+  std::vector<std::pair<int, glm::vec3>> lightPositions;
+};
+
+struct RenderOutput {
+  RenderResult result;
+  nlohmann::json stats;
+};
+
+// Parses "WxH" (each 1..16384); throws naming the option and value.
+void parseSize(const std::string& text, int& width, int& height);
+// --camera text: "px,py,pz,tx,ty,tz,ux,uy,uz[,fov_y_deg]" (the stats JSON's camera.option);
+// throws naming the value when it is not a camera.
+Camera parseCamera(const std::string& text);
+std::string cameraText(const Camera& camera);
+// --light text: "I=x,y,z" (index, position); throws naming the value.
+std::pair<int, glm::vec3> parseLightPosition(const std::string& text);
+std::string lightPositionText(int index, glm::vec3 position);
+// Places point or spot light `index` at `position`; throws naming the index if there is no such light
+// or it is directional.
+void placeLight(std::vector<Light>& lights, int index, glm::vec3 position);
+// Throws naming the option when a value of `options` is out of range.
+void checkRenderOptions(const RenderOptions& options);
+
+// What a render is made of, built from its options: the scene (its camera
+// replaced by --camera), the method with its parameters (preset, then --set),
+// a GL context if the method needs one (or the caller's: the viewer's
+// window), the scene resources and the sample targets. runRender drives it;
+// the viewer keeps one, moves the scene's camera, and swaps the method.
+class RenderJob {
+ public:
+  explicit RenderJob(const RenderOptions& options, GlContext* gl = nullptr);
+  ~RenderJob();
+  RenderJob(const RenderJob&) = delete;
+  RenderJob& operator=(const RenderJob&) = delete;
+
+  // Replaces the method (and its --set and outputs); everything is checked
+  // before anything changes, so on an error the job keeps the old method.
+  // The scene resources are kept when the new method needs the same ones.
+  void setMethod(const std::string& name, const std::vector<std::string>& set,
+                 const std::vector<std::string>& aovs);
+
+  const RenderOptions& options() const { return opt_; }
+  RenderOptions& options() { return opt_; }  // size, spp, seed, time: read by request()
+  Scene& scene() { return scene_; }
+  const Scene& scene() const { return scene_; }
+  const MethodInfo& info() const { return *info_; }
+  Method& method() { return *method_; }
+  const ParamSet& params() const { return *params_; }
+  SceneResources& resources() { return *resources_; }
+  SampleTargets& targets() { return targets_; }
+  ShaderLibrary* shaders() const;  // set for a GL method
+  GlContext* gl() const;           // set for a GL method
+  // The request of a still with these options (time = options().time).
+  RenderRequest request() const;
+  // The scene's lights changed (the viewer moved one): the resources re-derive what depends on
+  // them (light maps, radiance) at the next update, and keep the rest (the grid, the pyramid).
+  void lightsChanged();
+  // The stats of the run (method, scene, size, camera, resolved parameters, GL renderer, revision, …).
+  nlohmann::json describe() const;
+  // Throws if the GL context counted errors; throws if the result has a non-finite pixel.
+  void checkGl() const;
+  void checkFiniteResult(const RenderResult& result) const;
+
+ private:
+  std::vector<float> frameTimes() const;
+  void makeResources(SceneNeeds needs);  // for the current method
+  RenderOptions opt_;
+  Scene scene_;
+  std::unique_ptr<GlContext> ownGl_;
+  GlContext* gl_ = nullptr;
+  std::unique_ptr<ShaderLibrary> shaders_;
+  const MethodInfo* info_ = nullptr;
+  std::unique_ptr<ParamSet> params_;
+  std::unique_ptr<Method> method_;
+  std::unique_ptr<SceneResources> resources_;
+  SampleTargets targets_;
+};
+
+// Renders a still (options.frames == 1: the returned output holds the image)
+// or an animation: then `onFrame` receives each frame as it completes (its
+// stats are the frame's: time, timings, extra) and the returned output holds
+// the last frame's image and stats for the whole run, with a "frames" array.
+// Ctrl-C stops an animation after the current frame.
+// With checkpoints, `onCheckpoint` receives the image and its stats at each
+// of those sample counts below --spp (the result is the last).
+using FrameSink = std::function<void(int frame, const RenderOutput& output)>;
+using CheckpointSink = std::function<void(int spp, const RenderOutput& output)>;
+RenderOutput runRender(const RenderOptions& options, const FrameSink& onFrame = {},
+                       const CheckpointSink& onCheckpoint = {});
+
+// What one frame reports: samples, per-pass timings (GPU where measured),
+// calls, the method's stats, what was built, the per-sample passes.
+nlohmann::json renderStats(const RenderResult& result, const Profiler& profiler);
+
+// The method's parameters as a render with these options would resolve them
+// (scene-dependent defaults included), without rendering; `outputs`, when
+// given, receives the extra outputs (AOVs) the method can write.
+nlohmann::json resolveParameters(const RenderOptions& options, std::vector<std::string>* outputs = nullptr);
+
+// Writes <stem>.exr, <stem>.png and <stem>.json (stats) for output path `path`
+// (.exr or .png), and <stem>.<aov>.exr/.png per extra output; returns the files written.
+std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path, float exposure);
+// A checkpoint of a still: <stem>.sppNNNNN.exr/.png/.json (+ outputs); returns the files written.
+std::vector<std::string> writeCheckpointOutputs(const RenderOutput& out, const std::string& path, int spp,
+                                                float exposure);
+// An animation's frame: <stem>_NNNN.exr/.png and <stem>_NNNN.<aov>.exr/.png (no JSON);
+// returns the files written.
+std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame,
+                                          float exposure);
+// The stats JSON <stem>.json of an animation, listing `files`; returns its path.
+std::string writeAnimationStats(const RenderOutput& out, const std::string& path,
+                                const std::vector<std::string>& files, float exposure);
+
+// Throws if `path` cannot be written (bad extension, see core/output_files.h) —
+// checked before a long render, so nothing is lost at the end.
+void checkOutputPath(const std::string& path);
+// The parameter table of a method, for --help-module, with the defaults
+// that depend on the scene (e.g. the radius) resolved for `scene`.
+std::string describeMethod(const std::string& name, const std::string& scene);
+
+}  // namespace vgi

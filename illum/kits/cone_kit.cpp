@@ -1,0 +1,140 @@
+#include "illum/kits/cone_kit.h"
+
+#include <glad/gl.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/params.h"
+#include "core/shader_library.h"
+#include "shaders/shared/bindings.glsl"
+#include "shaders/shared/sampling.glsl"
+#include "traverse/gl_ray_tracer.h"
+#include "voxelize/gpu_grid.h"
+#include "voxelize/value_textures.h"
+
+namespace vgi {
+
+ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool anisotropicDefault,
+                                        bool absWeightsDefault, float stepDefault) {
+  ConeVolumeSettings s;
+  if (withRadiance)
+    s.radiance =
+        p.getString("radiance", "inject",
+                    "voxel radiance: inject (conservative rasterization lit through the shadow maps, "
+                    "the VCT thesis) or atlas (the atlas voxelizer's radiance channel, VGI 3; needs "
+                    "voxelizer=atlas)",
+                    {"inject", "atlas"});
+  else
+    s.radiance = "none";
+  s.grid = readBinaryGridParams(p, 4, false, s.radiance == "atlas" ? "atlas" : "conservative");
+  s.grid.cubicCells = true;
+  if (s.radiance == "atlas" && s.grid.voxelizer != "atlas")
+    fail("parameter 'voxelizer': '", s.grid.voxelizer,
+         "' with radiance=atlas (the radiance channel comes from the atlas voxelizer's points: "
+         "voxelizer=atlas)");
+  // Bytes per cell: sums 16 + counts 4, the count texture 4, occupancy ≈ 1.14,
+  // radiance 8 × 8/7, six faces of an eighth each 8 × 8/7.
+  const double cells = double(s.grid.resolution.x) * s.grid.resolution.y * s.grid.resolution.z;
+  s.anisotropic = p.getBool("anisotropic", anisotropicDefault,
+                            "six-direction anisotropic mip chain (front-to-back per axis direction, VCT "
+                            "thesis 3.2); false: isotropic 2x2x2 means");
+  const double gib = cells * (24.0 + 1.15 + 9.15 + (s.anisotropic ? 6.9 : 0.0)) / double(1u << 30);
+  if (gib > 8.0)
+    fail("parameter 'voxels': ", s.grid.resolution.x, "x", s.grid.resolution.y, "x", s.grid.resolution.z,
+         " needs ", gib, " GiB for the cone-tracing volume (at most 8 GiB)");
+  s.absWeights =
+      p.getString("face_weights", absWeightsDefault ? "abs" : "squared",
+                  "anisotropic lookups mix the three faces by abs (|d|, the VCT thesis; an oblique "
+                  "wall stays opaque) or squared (d^2, summing to 1)",
+                  {"abs", "squared"}) == "abs";
+  s.step =
+      p.getFloat("step", stepDefault, "cone march step, in cone diameters (at least a voxel)", 0.05f, 8.0f);
+  readShadowParams(p, s.shadow);
+  return s;
+}
+
+ConeVolumeNeed ConeVolumeSettings::need() const {
+  ConeVolumeNeed n;
+  n.grid = grid;
+  if (radiance == "atlas") n.grid.values = {"radiance"};
+  n.radiance = radiance;
+  n.anisotropic = anisotropic;
+  if (radiance != "none") n.lightMaps = LightMapNeed{shadow.resolution, false};
+  if (radiance == "inject") {
+    n.bias = shadow.bias;
+    n.normalOffset = shadow.normalOffset;
+  }
+  return n;
+}
+
+void ConeVolumeSettings::addDefines(ShaderDefines& defs) const {
+  if (anisotropic) defs["VCT_ANISOTROPIC"] = "1";
+  if (absWeights) defs["VCT_ABS_WEIGHTS"] = "1";
+}
+
+std::vector<ProbeResult> traceConesGl(const ValueTextures& volume, ShaderLibrary& shaders,
+                                      const std::vector<ProbeCone>& cones, float step, bool skipEmpty,
+                                      float mediumAlpha) {
+  ShaderDefines defs;
+  if (volume.mips() == ValueMips::Anisotropic) defs["VCT_ANISOTROPIC"] = "1";
+  if (mediumAlpha >= 0.0f) defs["UNIFORM_MEDIUM"] = "1";
+  const unsigned prog = shaders.program({"illum/vct/probe.comp.glsl"}, defs);
+  glUseProgram(prog);
+  bindConeVolume(volume, shaders, prog, step);
+  if (mediumAlpha >= 0.0f) shaders.setUniform(prog, "uMediumAlpha", mediumAlpha);
+  shaders.setUniform(prog, "uCount", unsigned(cones.size()));
+  shaders.setUniform(prog, "uSkipEmpty", skipEmpty ? 1 : 0);
+  std::vector<glm::vec4> in;
+  for (auto& c : cones) {
+    in.emplace_back(c.apex, c.tanHalf);
+    in.emplace_back(c.dir, c.length);
+  }
+  const size_t n = std::max<size_t>(cones.size(), 1);
+  GlBuffer a = makeBuffer(n * 32), b = makeBuffer(n * 32);
+  if (!in.empty()) glNamedBufferSubData(a.get(), 0, GLsizeiptr(in.size() * 16), in.data());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_RAYS, a.get());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_HITS, b.get());
+  glDispatchCompute(unsigned(n + 63) / 64, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<ProbeResult> out(cones.size());
+  if (!out.empty()) glGetNamedBufferSubData(b.get(), 0, GLsizeiptr(out.size() * 32), out.data());
+  return out;
+}
+
+std::vector<glm::vec4> coneWeights(const std::vector<glm::vec3>& axes) {
+  // Cosine-distributed stratified directions (each of equal weight), each
+  // counted for its nearest axis; 2520 azimuths (a multiple of every ring
+  // count up to 10), so symmetric rings share exactly.
+  constexpr int kRadii = 400, kAzimuths = 2520;
+  std::vector<double> share(axes.size(), 0.0);
+  for (int j = 0; j < kAzimuths; ++j)
+    for (int i = 0; i < kRadii; ++i) {
+      const glm::vec3 d =
+          shared::cosineSampleHemisphere(glm::vec2((i + 0.5f) / kRadii, (j + 0.5f) / kAzimuths));
+      size_t best = 0;
+      float bestDot = -2.0f;
+      for (size_t k = 0; k < axes.size(); ++k) {
+        const float c = glm::dot(d, glm::normalize(axes[k]));
+        if (c > bestDot) bestDot = c, best = k;
+      }
+      share[best] += 1.0;
+    }
+  std::vector<glm::vec4> out;
+  for (size_t k = 0; k < axes.size(); ++k)
+    out.emplace_back(glm::normalize(axes[k]), float(share[k] / (double(kRadii) * kAzimuths)));
+  return out;
+}
+
+std::vector<glm::vec4> ringConstellation(bool centre, int ring, float ringPolarDeg) {
+  std::vector<glm::vec3> axes;
+  if (centre) axes.emplace_back(0.0f, 0.0f, 1.0f);
+  const float th = glm::radians(ringPolarDeg);
+  for (int k = 0; k < ring; ++k) {
+    const float ph = 2.0f * float(M_PI) * float(k) / float(ring);
+    axes.emplace_back(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
+  }
+  return coneWeights(axes);
+}
+
+}  // namespace vgi

@@ -1,0 +1,62 @@
+// The shared layer of the voxel cone-tracing modules (vct, vct_ao; the cone
+// march is shaders/illum/vct/cones.glsl): their volume's parameters (the
+// volume itself is the resource kind "cone_volume",
+// illum/resources/cone_volume.h), and the cone constellations with their weights.
+#pragma once
+#include <glm/glm.hpp>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "illum/kits/shared_params.h"
+#include "illum/resources/cone_volume.h"
+
+namespace vgi {
+
+class ParamSet;
+class ShaderLibrary;
+class ValueTextures;
+
+struct ConeVolumeSettings {
+  BinaryGridNeed grid;
+  std::string radiance = "inject";  // inject | atlas | none
+  bool anisotropic = true;
+  bool absWeights = true;  // the faces mixed by |d| (the thesis) or d²
+  float step = 1.0f;       // the march's step, in cone diameters
+  ShadowParams shadow;     // the light maps' (injection and direct light)
+  // The volume these settings build (radiance none: no light maps).
+  ConeVolumeNeed need() const;
+  // The program defines of cones.glsl for these settings.
+  void addDefines(std::map<std::string, std::string>& defines) const;
+};
+// Reads voxels, voxelizer, anisotropic, face_weights, step and (withRadiance) radiance.
+ConeVolumeSettings readConeVolumeParams(ParamSet& params, bool withRadiance, bool anisotropicDefault,
+                                        bool absWeightsDefault, float stepDefault);
+
+// Cones traced one by one through a volume (tests): apex, unit direction,
+// tan of the half-angle, length; per cone its radiance + opacity and
+// (occlusion, escaped, samples, 0). mediumAlpha ≥ 0: a uniform medium of that
+// opacity per voxel instead of the volume (the closed-form test).
+struct ProbeCone {
+  glm::vec3 apex, dir;
+  float tanHalf, length;
+};
+struct ProbeResult {
+  glm::vec4 radianceOpacity, occlusionEscapedSamples;
+};
+std::vector<ProbeResult> traceConesGl(const ValueTextures& volume, ShaderLibrary& shaders,
+                                      const std::vector<ProbeCone>& cones, float step, bool skipEmpty,
+                                      float mediumAlpha = -1.0f);
+
+// A cone constellation in the tangent frame (z = the normal): axes xyz and, in
+// w, each axis' share of the cosine-weighted hemisphere (the directions
+// nearer to it than to any other axis, by quadrature; Σ w = 1, so the cones'
+// weights W_k = π w sum to π, Dinse 2015 §3.3).
+std::vector<glm::vec4> coneWeights(const std::vector<glm::vec3>& axes);
+// `centre` (one axis along the normal) plus `ring` axes at polar angle
+// ringPolarDeg, the first along the tangent.
+std::vector<glm::vec4> ringConstellation(bool centre, int ring, float ringPolarDeg);
+
+}  // namespace vgi

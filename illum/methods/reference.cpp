@@ -1,0 +1,533 @@
+// Exact reference renderer: CPU path tracing on Embree, with the exact
+// counterparts of the approximate GL modules' integrals.
+//
+//   path       full global illumination (pbrt-style: next-event estimation for
+//              the delta lights and the area lights, BRDF sampling for the
+//              environment and, MIS-weighted, the emitters; Russian roulette
+//              after `rr_depth` bounces)
+//   direct     the path integrator with maxdepth 1: emission + delta and area
+//              lights with exact visibility (+ environment via one BRDF sample)
+//   nearfield  direct light at the visible point plus exactly one indirect
+//              bounce gathered from surfaces within distance `radius`; their
+//              outgoing radiance is their exact direct light; rays
+//              that hit nothing within `radius` read the environment (`env`) —
+//              the exact counterpart of VGI §5.1 (Thiedemann et al. 2011)
+//   ao         ambient occlusion: fraction of cosine-weighted rays that travel
+//              `radius` unoccluded (camera misses are 0)
+//
+// Area lights (emissive meshes, core/emitters.h) are sampled by next-event
+// estimation and by the BRDF, combined by multiple importance sampling with
+// the power heuristic (Veach 1997, §9.2; `emitter_sampling=mis`); `light` and
+// `brdf` keep one strategy each (a noisier estimator of the same integral:
+// what the MIS tests compare against). An emitter met by a nearfield bounce
+// ray is direct light (its MIS share goes to `direct`); the bounce's own direct
+// light is estimated by NEE alone, since no BRDF sample follows it.
+//
+// Determinism: every (pixel, sample) owns a PCG32 stream seeded from (seed,
+// pixel, sample), and the framework's sample loop adds the samples of each
+// pixel in order (double sums), so the image is the same for any thread
+// count. A sample is one pass over the image (tiles in parallel); Ctrl-C
+// drops the sample in flight, so every pixel has the same sample count.
+//
+// Parameters
+// | key        | type   | default            | meaning                                              |
+// |------------|--------|--------------------|------------------------------------------------------|
+// | integrator | string | path               | path, nearfield, ao, direct                          |
+// | maxdepth   | int    | 8                  | path: maximum number of bounces                      |
+// | rr_depth   | int    | 3                  | path: bounces before Russian roulette starts         |
+// | radius     | float  | 0.5 / 0.1 · diag.  | nearfield (as the module) / ao: ray length, world units |
+// | env        | bool   | true               | nearfield: rays leaving `radius` read the environment |
+// | visibility | string | exact              | nearfield/path: exact, or voxels (see below)         |
+// | voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        |
+// | offset     | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diag. |
+// | emitter_sampling | string | mis          | path/direct/nearfield: area lights by mis, light or brdf |
+//
+// path with visibility=voxels does the same for `voxelpath`: every bounce ray
+// (not the camera ray) finds its first hit through the voxel grid, from
+// `offset` diagonals along the normal, and the surface there exactly; NEE,
+// shading and emission stay exact. voxelpath against it is the voxel shading
+// (hit point, mean normal and BRDF) and RSM direct-light error; it against
+// the exact path tracer the voxel-visibility error.
+//
+// nearfield with visibility=voxels isolates the voxel-visibility error of the
+// `nearfield` module: the bounce ray starts `offset` voxel diagonals along the
+// normal (VGI's one diagonal by default; the module starts at ½ and passes
+// its own voxels instead) and the hierarchical tracer decides, on an exact
+// (triangle–box) voxelization, whether and where it stops within `radius`;
+// the surface there is then found and shaded exactly (Embree, within two voxel
+// diagonals of the hit voxel's entry; none there — a voxel the ray grazes
+// without meeting its surface — contributes nothing).
+#include "illum/methods/reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/emitters.h"
+#include "core/error.h"
+#include "core/gpu_scene.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "illum/framework/sample_loop.h"
+#include "illum/kits/shared_params.h"
+#include "illum/resources/bvh.h"
+#include "illum/resources/or_mip_pyramid.h"
+#include "shaders/shared/brdf.glsl"
+#include "shaders/shared/lights.glsl"
+#include "shaders/shared/sampling.glsl"
+#include "traverse/embree_tracer.h"
+#include "traverse/or_mip_pyramid.h"
+#include "traverse/ray_tracers.h"
+
+namespace vgi {
+
+namespace {
+
+using namespace vgi::shared;
+
+// O'Neill's PCG32 (XSH RR), one stream per (pixel, sample).
+struct Pcg32 {
+  uint64_t state = 0, inc = 1;
+  Pcg32(uint64_t seed, uint64_t stream) {
+    inc = (stream << 1u) | 1u;
+    next();
+    state += seed;
+    next();
+  }
+  uint32_t next() {
+    uint64_t old = state;
+    state = old * 6364136223846793005ULL + inc;
+    uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+    uint32_t rot = uint32_t(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+  }
+  float uniform() { return uintToUnitFloat(next()); }
+  vec2 uniform2() {
+    float a = uniform();
+    return vec2(a, uniform());
+  }
+  vec3 uniform3() {
+    vec2 a = uniform2();
+    return vec3(a.x, a.y, uniform());
+  }
+};
+
+enum class Integrator { Path, Direct, NearField, Ao };
+
+struct SurfacePoint {
+  vec3 p, ng, n;  // ng and n face the incoming ray
+  vec3 wo;
+  float t = 0;  // distance from the ray's origin
+  BrdfParams brdf;
+  vec3 emission;     // Le towards wo (0 behind a one-sided emitter)
+  int emitter = -1;  // index in Emitters, or −1
+};
+
+enum class EmitterSampling { Mis, Light, Brdf };
+
+class ReferenceRenderer : public Method {
+ public:
+  ReferenceRenderer(ParamSet& params, const Scene& scene) {
+    std::string name =
+        params.getString("integrator", "path", "what to compute", {"path", "nearfield", "ao", "direct"});
+    integrator_ = name == "path"        ? Integrator::Path
+                  : name == "direct"    ? Integrator::Direct
+                  : name == "nearfield" ? Integrator::NearField
+                                        : Integrator::Ao;
+    const bool usesDepth = integrator_ == Integrator::Path;
+    const bool usesRadius = integrator_ == Integrator::NearField || integrator_ == Integrator::Ao;
+    const bool nearField = integrator_ == Integrator::NearField;  // env, visibility
+    // Every parameter is documented; only the integrator's own are read (and so
+    // appear in the stats); giving another integrator's parameter is an error.
+    auto check = [&](bool uses, const char* key) {
+      if (!uses && params.has(key)) fail("parameter '", key, "' does not apply to integrator=", name);
+      return uses;
+    };
+    const char* depthDoc = "path: maximum number of bounces";
+    const char* rrDoc = "path: bounces before Russian roulette";
+    const char* radiusDoc =
+        "nearfield/ao: ray length in world units (default 0.5 x scene diagonal for nearfield, as the "
+        "nearfield "
+        "module; 0.1 x for ao)";
+    const char* envDoc =
+        "nearfield: rays that leave the radius read the environment (black where the scene has none)";
+    if (check(usesDepth, "maxdepth"))
+      maxDepth_ = params.getInt("maxdepth", 8, depthDoc, 1, 10000);
+    else
+      params.declare("maxdepth", "int", "8", depthDoc);
+    if (check(usesDepth, "rr_depth"))
+      rrDepth_ = params.getInt("rr_depth", 3, rrDoc, 0, 10000);
+    else
+      params.declare("rr_depth", "int", "3", rrDoc);
+    float diag = scene.bounds().diagonal();
+    const float radiusDefault = (nearField ? kDefaultNearFieldRadius : kDefaultAoRadius) * diag;
+    if (check(usesRadius, "radius"))
+      radius_ = params.getFloat("radius", radiusDefault, radiusDoc, 1e-30f, 1e30f);
+    else
+      params.declare("radius", "float", std::to_string(radiusDefault), radiusDoc);
+    if (check(nearField, "env"))
+      env_ = params.getBool("env", true, envDoc);
+    else
+      params.declare("env", "bool", "true", envDoc);
+    const char* visDoc =
+        "nearfield/path: exact, or voxels (bounce rays' first hits through an exact voxelization)";
+    const char* voxDoc = "nearfield/path, visibility=voxels: grid resolution N or WxHxD";
+    const char* offDoc =
+        "nearfield/path, visibility=voxels: ray start offset along the normal, voxel diagonals";
+    if (check(nearField || integrator_ == Integrator::Path, "visibility"))
+      voxelVisibility_ = params.getString("visibility", "exact", visDoc, {"exact", "voxels"}) == "voxels";
+    else
+      params.declare("visibility", "string", "exact", visDoc);
+    if (check(voxelVisibility_, "voxels")) {
+      voxels_ = parseResolution(params.getString("voxels", "128", voxDoc), "parameter 'voxels'");
+      checkGridMemory(voxels_, 2);
+    } else
+      params.declare("voxels", "string", "128", voxDoc);
+    if (check(voxelVisibility_, "offset"))
+      offset_ = params.getFloat("offset", 1.0f, offDoc, 0.0f, 100.0f);
+    else
+      params.declare("offset", "float", "1.0", offDoc);
+    const char* emDoc = "path/direct/nearfield: area lights sampled by mis (light + BRDF), light or brdf";
+    if (check(integrator_ != Integrator::Ao, "emitter_sampling")) {
+      std::string e = params.getString("emitter_sampling", "mis", emDoc, {"mis", "light", "brdf"});
+      emitterSampling_ = e == "mis"     ? EmitterSampling::Mis
+                         : e == "light" ? EmitterSampling::Light
+                                        : EmitterSampling::Brdf;
+    } else
+      params.declare("emitter_sampling", "string", "mis", emDoc);
+    if (integrator_ == Integrator::Direct) maxDepth_ = 1;
+  }
+
+  SceneNeeds needs() const override {
+    SceneNeeds n;
+    n.add(BvhNeed{});
+    if (voxelVisibility_) {
+      BinaryGridNeed grid;
+      grid.resolution = voxels_;
+      grid.voxelizer = "exact";
+      n.add(OrMipPyramidNeed{grid});
+    }
+    return n;
+  }
+  void prepareFrame(Frame& f) override;
+  bool addSample(Frame& f, int k) override;
+  void finishFrame(Frame& f) override;
+  // nearfield splits its estimate into the direct part and the one indirect
+  // bounce, path into the light reaching the first vertex along one segment
+  // and the rest.
+  std::vector<std::string> outputs() const override {
+    return integrator_ == Integrator::NearField || integrator_ == Integrator::Path
+               ? std::vector<std::string>{"direct", "indirect"}
+               : std::vector<std::string>{};
+  }
+
+ private:
+  // Radiance along (o, d); `indirect` receives the indirect part where the integrator separates one.
+  vec3 li(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const;
+  vec3 pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const;
+  vec3 nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const;
+  float aoLi(vec3 o, vec3 d, Pcg32& rng) const;
+  bool intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) const;
+  // Delta lights + area lights by NEE; `followed`: a BRDF sample follows this
+  // vertex (then the NEE share is weighted by emitterSampling_, else it is 1).
+  vec3 directLight(const SurfacePoint& sp, Pcg32& rng, bool followed) const;
+  // The weight of emission met by a BRDF sample of density `pdfBrdf` (solid angle).
+  float emissionWeight(const SurfacePoint& hit, float pdfBrdf) const;
+  vec3 offsetOrigin(const SurfacePoint& sp, vec3 dir) const;
+
+  Integrator integrator_;
+  int maxDepth_ = 8, rrDepth_ = 3;
+  float sceneDiagonal_ = 1;
+  float radius_ = 0;
+  bool env_ = true;
+  bool voxelVisibility_ = false;
+  glm::uvec3 voxels_{128};
+  float offset_ = 1.0f;
+  EmitterSampling emitterSampling_ = EmitterSampling::Mis;
+
+  // Per frame (prepareFrame).
+  const Scene* scene_ = nullptr;
+  const FlatScene* flat_ = nullptr;
+  const EmbreeTracer* tracer_ = nullptr;
+  const Emitters* emitters_ = nullptr;
+  std::unique_ptr<RayTracer> voxelTracer_;  // visibility=voxels, over the resources' exact pyramid
+  float voxelDiagonal_ = 0;
+  std::vector<PackedLight> lights_;
+  float eps_ = 1e-5f;
+  struct View {
+    vec3 position, fwd, right, up;
+    float tanHalf, aspect;
+  } view_{};
+};
+
+bool ReferenceRenderer::intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) const {
+  TriangleHit h = tracer_->firstHit(o, d, 0.0f, tmax);
+  if (!h.hit) return false;
+  const size_t t = size_t(h.triangle);
+  const float w = 1.0f - h.u - h.v;
+  const vec3* P = &flat_->positions[3 * t];
+  const vec3* N = &flat_->normals[3 * t];
+  const vec2* UV = &flat_->uvs[3 * t];
+  sp.p = o + h.t * d;
+  sp.t = h.t;
+  sp.wo = -d;
+  sp.ng = glm::normalize(glm::cross(P[1] - P[0], P[2] - P[0]));
+  sp.emitter = emitters_->emitterOfTriangle(t);
+  sp.emission = sp.emitter >= 0 ? emitters_->radianceToward(sp.emitter, sp.wo) : vec3(0.0f);
+  if (dot(sp.ng, sp.wo) < 0.0f) sp.ng = -sp.ng;  // surfaces are two-sided
+  sp.n = glm::normalize(w * N[0] + h.u * N[1] + h.v * N[2]);
+  if (!std::isfinite(sp.n.x) || dot(sp.n, sp.ng) < 0.0f) sp.n = -sp.n;
+  if (!std::isfinite(sp.n.x)) sp.n = sp.ng;
+  const Material& m = scene_->materials[size_t(flat_->material[t])];
+  sp.brdf.albedo = m.albedo;
+  if (m.albedoTexture >= 0)
+    sp.brdf.albedo *= scene_->textures[size_t(m.albedoTexture)].lookup(w * UV[0] + h.u * UV[1] + h.v * UV[2]);
+  sp.brdf.ks = m.ks;
+  sp.brdf.exponent = m.exponent;
+  return true;
+}
+
+// Offsets the origin off the surface on the side of `dir` (against self-hits);
+// the offset scales with the scene and with the coordinates' float spacing.
+vec3 ReferenceRenderer::offsetOrigin(const SurfacePoint& sp, vec3 dir) const {
+  float scale = eps_ + 1e-6f * std::max({std::abs(sp.p.x), std::abs(sp.p.y), std::abs(sp.p.z)});
+  return sp.p + (dot(dir, sp.ng) >= 0.0f ? scale : -scale) * sp.ng;
+}
+
+vec3 ReferenceRenderer::directLight(const SurfacePoint& sp, Pcg32& rng, bool followed) const {
+  vec3 sum(0.0f);
+  for (const PackedLight& L : lights_) {
+    LightSample ls = sampleDeltaLight(L, sp.p);
+    if (ls.radiance == vec3(0.0f) || dot(ls.wi, sp.n) <= 0.0f || dot(ls.wi, sp.ng) <= 0.0f) continue;
+    vec3 f = evalBrdf(sp.brdf, sp.n, sp.wo, ls.wi);
+    if (f == vec3(0.0f)) continue;
+    vec3 o = offsetOrigin(sp, ls.wi);
+    float tfar = ls.dist >= 1e29f ? 1e30f : glm::length(vec3(L.positionType) - o) * (1.0f - 1e-5f);
+    if (tracer_->occluded(o, ls.wi, 0.0f, tfar)) continue;
+    sum += f * ls.radiance * dot(ls.wi, sp.n);
+  }
+  if (emitters_->empty() || (followed && emitterSampling_ == EmitterSampling::Brdf)) return sum;
+  // One point of the area lights (chosen by power, uniform on its triangle).
+  const EmitterSample es = emitters_->sample(rng.uniform2());
+  const vec3 d = es.p - sp.p;
+  const float dist2 = dot(d, d);
+  if (!(dist2 > 0.0f)) return sum;
+  const vec3 wi = d / std::sqrt(dist2);
+  const float cosS = dot(wi, sp.n), cosL = std::abs(dot(es.normal, wi));
+  if (cosS <= 0.0f || dot(wi, sp.ng) <= 0.0f || !(cosL > 0.0f)) return sum;
+  const vec3 Le = emitters_->radianceToward(es.emitter, -wi);
+  if (Le == vec3(0.0f)) return sum;
+  const vec3 f = evalBrdf(sp.brdf, sp.n, sp.wo, wi);
+  if (f == vec3(0.0f)) return sum;
+  // The shadow ray runs from the offset origin to the point itself: along wi
+  // from there it would meet the emitter's plane before the point, at grazing
+  // angles, and count the emitter as its own occluder.
+  const vec3 o = offsetOrigin(sp, wi), toPoint = es.p - o;
+  const float len = glm::length(toPoint);
+  if (tracer_->occluded(o, toPoint / len, 0.0f, len * (1.0f - 1e-4f))) return sum;
+  const float pdfLight = es.pdfArea * dist2 / cosL;  // solid angle
+  float w = 1.0f;
+  if (followed && emitterSampling_ == EmitterSampling::Mis) {
+    const float pdfBrdf = brdfPdf(sp.brdf, sp.n, sp.wo, wi);
+    w = pdfLight * pdfLight / (pdfLight * pdfLight + pdfBrdf * pdfBrdf);
+  }
+  return sum + f * Le * (cosS * w / pdfLight);
+}
+
+float ReferenceRenderer::emissionWeight(const SurfacePoint& hit, float pdfBrdf) const {
+  if (hit.emitter < 0 || emitterSampling_ == EmitterSampling::Brdf) return 1.0f;
+  if (emitterSampling_ == EmitterSampling::Light) return 0.0f;
+  const float cosL = std::abs(dot(emitters_->triangles()[size_t(hit.emitter)].normal, hit.wo));
+  if (!(cosL > 0.0f)) return 0.0f;
+  const float pdfLight = emitters_->pdfArea(hit.emitter) * hit.t * hit.t / cosL;
+  return pdfBrdf * pdfBrdf / (pdfBrdf * pdfBrdf + pdfLight * pdfLight);
+}
+
+vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
+  vec3 L(0.0f), beta(1.0f);
+  float pdfBrdf = 0;  // of the direction that led to this vertex (none for the camera ray)
+  // Light that reaches the first vertex x0 along one segment (its emission
+  // and NEE, emitters and environment met by its bounce ray) is direct; the
+  // rest, from the second vertex on, is indirect.
+  SurfacePoint prev;  // the vertex the current ray leaves (depth ≥ 1)
+  for (int depth = 0;; ++depth) {
+    SurfacePoint sp;
+    bool found;
+    if (voxelTracer_ && depth >= 1) {
+      // visibility=voxels: the first hit of the bounce ray through the voxel
+      // grid, then the surface there found exactly (within two voxel
+      // diagonals of the hit voxel's entry; none: the path ends).
+      TraceRay ray;
+      ray.origin = prev.p + prev.n * (offset_ * voxelDiagonal_);
+      ray.dir = d;
+      ray.tmax = 4.0f * sceneDiagonal_;
+      const TraceResult h = voxelTracer_->trace(ray);
+      if (h.hit && !intersect(ray.origin, d, h.t + 2.0f * voxelDiagonal_, sp)) break;
+      found = h.hit;
+    } else {
+      found = intersect(o, d, 1e30f, sp);
+    }
+    if (!found) {
+      const vec3 e = beta * scene_->environmentRadiance(d);
+      L += e;
+      if (depth >= 2) indirect += e;
+      break;
+    }
+    if (sp.emission != vec3(0.0f)) {
+      const vec3 e = beta * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
+      L += e;
+      if (depth >= 2) indirect += e;
+    }
+    if (depth == maxDepth_) break;
+    const vec3 nee = beta * directLight(sp, rng, true);
+    L += nee;
+    if (depth >= 1) indirect += nee;
+    vec3 wi = sampleBrdf(sp.brdf, sp.n, sp.wo, rng.uniform3());
+    float pdf = brdfPdf(sp.brdf, sp.n, sp.wo, wi);
+    if (!(pdf > 0.0f) || dot(wi, sp.n) <= 0.0f || dot(wi, sp.ng) <= 0.0f) break;
+    beta *= evalBrdf(sp.brdf, sp.n, sp.wo, wi) * (dot(wi, sp.n) / pdf);
+    pdfBrdf = pdf;
+    if (depth + 1 >= rrDepth_) {
+      float q = std::max(0.05f, 1.0f - std::max({beta.x, beta.y, beta.z}));
+      if (rng.uniform() < q) break;
+      beta /= 1.0f - q;
+    }
+    o = offsetOrigin(sp, wi);
+    d = wi;
+    prev = sp;
+  }
+  return L;
+}
+
+vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
+  SurfacePoint x;
+  if (!intersect(o, d, 1e30f, x)) return scene_->environmentRadiance(d);
+  vec3 L = x.emission + directLight(x, rng, true);
+  vec3 wi = sampleBrdf(x.brdf, x.n, x.wo, rng.uniform3());
+  float pdf = brdfPdf(x.brdf, x.n, x.wo, wi);
+  if (!(pdf > 0.0f) || dot(wi, x.n) <= 0.0f || dot(wi, x.ng) <= 0.0f) return L;
+  vec3 weight = evalBrdf(x.brdf, x.n, x.wo, wi) * (dot(wi, x.n) / pdf);
+  // The bounce surface y: its emission is direct light at x (the MIS share),
+  // its direct light the one indirect bounce.
+  auto bounce = [&](const SurfacePoint& y) {
+    if (y.emission != vec3(0.0f)) L += weight * y.emission * emissionWeight(y, pdf);
+    indirect = weight * directLight(y, rng, false);
+  };
+  SurfacePoint y;
+  if (voxelTracer_) {
+    TraceRay ray;
+    ray.origin = x.p + x.n * (offset_ * voxelDiagonal_);
+    ray.dir = wi;
+    ray.tmax = radius_;
+    TraceResult h = voxelTracer_->trace(ray);
+    if (!h.hit) {
+      if (env_) indirect = weight * scene_->environmentRadiance(wi);
+    } else if (intersect(ray.origin, wi, h.t + 2.0f * voxelDiagonal_, y)) {
+      bounce(y);
+    }
+    return L + indirect;
+  }
+  vec3 yo = offsetOrigin(x, wi);
+  if (intersect(yo, wi, radius_, y))
+    bounce(y);
+  else if (env_)
+    indirect = weight * scene_->environmentRadiance(wi);
+  return L + indirect;
+}
+
+float ReferenceRenderer::aoLi(vec3 o, vec3 d, Pcg32& rng) const {
+  SurfacePoint x;
+  if (!intersect(o, d, 1e30f, x)) return 0.0f;
+  vec3 wi = basisToWorld(makeBasis(x.n), cosineSampleHemisphere(rng.uniform2()));
+  if (dot(wi, x.ng) <= 0.0f) return 0.0f;  // below the true surface: blocked by it
+  return tracer_->occluded(offsetOrigin(x, wi), wi, 0.0f, radius_) ? 0.0f : 1.0f;
+}
+
+vec3 ReferenceRenderer::li(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
+  switch (integrator_) {
+    case Integrator::Path:
+    case Integrator::Direct:
+      return pathLi(o, d, rng, indirect);
+    case Integrator::NearField:
+      return nearFieldLi(o, d, rng, indirect);
+    case Integrator::Ao:
+      return vec3(aoLi(o, d, rng));
+  }
+  return vec3(0.0f);
+}
+
+void ReferenceRenderer::prepareFrame(Frame& f) {
+  scene_ = &f.scene;
+  flat_ = &f.resources.get<FlatScene>();
+  tracer_ = &f.resources.get<EmbreeTracer>();
+  emitters_ = &f.resources.get<Emitters>();
+  voxelTracer_.reset();
+  if (voxelVisibility_) {
+    TracerInputs in;
+    in.pyramid = &f.resources.get<OrMipPyramid>();
+    voxelTracer_ = createTracer("hierarchical", in);
+    voxelDiagonal_ = f.resources.get<GridBox>().voxelDiagonal();
+  }
+  sceneDiagonal_ = f.scene.bounds(f.request.time).diagonal();
+  lights_.clear();
+  for (auto& l : f.scene.lights) lights_.push_back(packLight(l));
+  eps_ = 2e-5f * f.scene.bounds(f.request.time).diagonal();
+  const Camera& cam = f.scene.camera;
+  view_.position = cam.position;
+  view_.fwd = glm::normalize(cam.target - cam.position);
+  view_.right = glm::normalize(glm::cross(view_.fwd, cam.up));
+  view_.up = glm::cross(view_.right, view_.fwd);
+  view_.tanHalf = std::tan(glm::radians(cam.fovYDeg) * 0.5f);
+  view_.aspect = float(f.width()) / float(f.height());
+}
+
+bool ReferenceRenderer::addSample(Frame& f, int k) {
+  const int W = f.width(), H = f.height(), tile = 16;
+  const int tilesX = (W + tile - 1) / tile, tilesY = (H + tile - 1) / tile;
+  vec3* image = f.samplePixels("image");
+  vec3* indirectOut = f.wants("indirect") ? f.samplePixels("indirect") : nullptr;
+  vec3* directOut = f.wants("direct") ? f.samplePixels("direct") : nullptr;
+  const uint32_t seed = f.request.seed;
+  auto s = f.profiler.scope("render");
+  parallelFor(size_t(tilesX) * tilesY, 1, f.request.threads, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      if (interruptRequested()) return;
+      const int x0 = int(t % size_t(tilesX)) * tile, y0 = int(t / size_t(tilesX)) * tile;
+      for (int y = y0; y < std::min(y0 + tile, H); ++y)
+        for (int x = x0; x < std::min(x0 + tile, W); ++x) {
+          const size_t pix = size_t(y) * W + x;
+          // Every (pixel, sample) owns a stream: the image is the same for any thread count.
+          Pcg32 rng(uint64_t(seed) * 0x9E3779B97F4A7C15ULL + pix, uint64_t(k));
+          vec2 j = rng.uniform2();
+          float px = (2.0f * (x + j.x) / W - 1.0f) * view_.tanHalf * view_.aspect;
+          float py = (1.0f - 2.0f * (y + j.y) / H) * view_.tanHalf;
+          vec3 d = glm::normalize(view_.fwd + px * view_.right + py * view_.up);
+          vec3 indirect(0.0f);
+          vec3 L = li(view_.position, d, rng, indirect);
+          if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z))
+            throw std::logic_error("reference: non-finite radiance");
+          image[pix] = L;
+          if (indirectOut) indirectOut[pix] = indirect;
+          if (directOut) directOut[pix] = L - indirect;
+        }
+    }
+  });
+  return !interruptRequested();
+}
+
+void ReferenceRenderer::finishFrame(Frame& f) {
+  f.extra["threads"] = resolveThreads(f.request.threads);
+  if (voxelTracer_) f.extra["voxel_diagonal"] = voxelDiagonal_;
+  f.extra["triangles"] = flat_->triangleCount();
+  f.extra["emitter_triangles"] = emitters_->size();
+}
+
+}  // namespace
+
+MethodInfo referenceMethod() {
+  return {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
+          [](ParamSet& p, const Scene& s) -> std::unique_ptr<Method> {
+            return std::make_unique<ReferenceRenderer>(p, s);
+          }};
+}
+
+}  // namespace vgi

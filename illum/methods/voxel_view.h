@@ -1,0 +1,12 @@
+// `voxels`: a debug view of the binary grid from the camera (see voxel_view.cpp).
+#pragma once
+#include <memory>
+
+#include "illum/framework/method.h"
+
+namespace vgi {
+
+// The registry row: name, description, factory, exact counterpart.
+MethodInfo voxelViewMethod();
+
+}  // namespace vgi

@@ -1,8 +1,0 @@
-#pragma once
-#include <memory>
-
-#include "illum/method.h"
-
-namespace vgi {
-std::unique_ptr<Method> createReferenceMethod(ParamSet& params, const Scene& scene);
-}

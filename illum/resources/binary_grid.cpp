@@ -1,0 +1,128 @@
+#include "illum/resources/binary_grid.h"
+
+#include <optional>
+
+#include "core/params.h"
+#include "core/profiler.h"
+#include "core/scene.h"
+#include "voxelize/atlas.h"
+#include "voxelize/atlas_voxelizer.h"
+#include "voxelize/voxelizer.h"
+
+namespace vgi {
+
+BinaryGridNeed readBinaryGridParams(ParamSet& p, int grids, bool atlasOnly,
+                                    const std::string& defaultVoxelizer) {
+  BinaryGridNeed g;
+  g.resolution = parseResolution(
+      p.getString("voxels", "128", "grid resolution N or WxHxD (D a multiple of 128)"), "parameter 'voxels'");
+  std::vector<std::string> voxelizers;
+  if (atlasOnly)
+    voxelizers.push_back("atlas");
+  else
+    for (auto& v : voxelizerRegistry()) voxelizers.push_back(v.name);
+  g.voxelizer =
+      p.getString("voxelizer", atlasOnly ? "atlas" : defaultVoxelizer,
+                  atlasOnly ? "binary voxelizer: atlas (the multi-valued grids come from its points)"
+                            : "binary voxelizer (see vgi voxelize --help)",
+                  voxelizers);
+  checkGridMemory(g.resolution, grids);
+  return g;
+}
+
+namespace {
+
+class BinaryGridResource : public Resource {
+ public:
+  explicit BinaryGridResource(const BinaryGridNeed& n) : need_(n) {}
+
+  bool update(SceneResources& res, const ResourceNeed&, Profiler& prof) override {
+    if (builtFor_ && (!res.dynamic() || *builtFor_ == res.time())) return false;  // current
+    if (!builtFor_) box_ = fitBox(res);
+    VoxelizeRequest vreq;
+    vreq.scene = &res.scene();
+    vreq.box = box_;
+    vreq.time = res.time();
+    vreq.threads = res.threads();
+    vreq.gl = res.gl();
+    vreq.shaders = res.gl() ? &res.shaders() : nullptr;
+    vreq.atlasCacheDir = defaultAtlasCacheDir();
+    vreq.valueGrids = need_.values;
+    counted_ = false;
+    if (res.gl() && need_.voxelizer == "atlas") {
+      // The atlas voxelizer keeps the static meshes' grid on the GPU and re-inserts the dynamic ones.
+      if (!atlas_) atlas_ = std::make_unique<AtlasVoxelizer>(vreq, prof);
+      atlas_->voxelizeFrame(res.time(), prof);
+    } else {
+      grid_ = std::make_unique<BinaryGrid>(findVoxelizer(need_.voxelizer).run(vreq, prof, voxelizerStats_));
+    }
+    builtFor_ = res.time();
+    return true;
+  }
+
+  nlohmann::json stats() override {
+    if (!counted_) {  // once per build: the atlas grid is read back
+      if (atlas_) voxelizerStats_ = atlas_->stats();
+      voxelsSet_ = atlas_ ? atlas_->readFrame().count() : grid_->count();
+      counted_ = true;
+    }
+    const glm::uvec3 r = need_.resolution;
+    return {{"resolution", {r.x, r.y, r.z}},
+            {"voxelizer", need_.voxelizer},
+            {"voxels_set", voxelsSet_},
+            {"stats", voxelizerStats_}};
+  }
+
+  void* offer(const std::type_info& t) override { return offerOf(t, &box_, atlas_.get(), grid_.get()); }
+
+ private:
+  // One grid box for the whole animation: the union of the frames' bounds.
+  GridBox fitBox(const SceneResources& res) const {
+    Bounds b;
+    for (float t : res.frameTimes().empty() ? std::vector<float>{res.time()} : res.frameTimes()) {
+      Bounds f = res.scene().bounds(t);
+      b.extend(f.lo);
+      b.extend(f.hi);
+      if (!res.dynamic()) break;
+    }
+    GridBox box = fitGridBox(b, need_.resolution);
+    return need_.cubicCells ? cubicCellBox(box) : box;
+  }
+
+  BinaryGridNeed need_;
+  GridBox box_;
+  std::optional<float> builtFor_;  // the animation time it was built for
+  std::unique_ptr<AtlasVoxelizer> atlas_;
+  std::unique_ptr<BinaryGrid> grid_;
+  nlohmann::json voxelizerStats_ = nlohmann::json::object();
+  uint64_t voxelsSet_ = 0;
+  bool counted_ = false;
+};
+
+}  // namespace
+
+ResourceKind binaryGridKind() {
+  return {
+      "binary_grid",
+      "the scene voxelized into bitmask columns over a tight box (any voxelizer; atlas: static + dynamic)",
+      [](const ResourceNeed&) { return std::vector<ResourceNeed>{}; },
+      [](const ResourceNeed& n, const SceneNeeds&, const std::string& method, bool gl) {
+        const BinaryGridNeed& g = n.spec<BinaryGridNeed>();
+        const VoxelizerInfo& v = findVoxelizer(g.voxelizer);
+        if (v.needsGl && !gl)
+          fail("method '", method, "' runs on the CPU but voxelizer '", v.name, "' needs GL");
+        if (!g.values.empty() && !gl)
+          fail("method '", method, "' runs on the CPU but asks for multi-valued grids (GL textures)");
+        if (!g.values.empty() && g.voxelizer != "atlas")
+          fail("method '", method,
+               "' asks for multi-valued grids without the atlas voxelizer's binary grid (",
+               "voxelizer=", g.voxelizer, "): their values come from its atlas points");
+      },
+      [](const ResourceNeed&) { return std::vector<std::string>{"binary_grid"}; },
+      [](const ResourceNeed& n, SceneResources&) -> std::unique_ptr<Resource> {
+        return std::make_unique<BinaryGridResource>(n.spec<BinaryGridNeed>());
+      },
+      "grid"};
+}
+
+}  // namespace vgi

@@ -1,0 +1,48 @@
+// Resource kind "binary_grid": the scene voxelized into a binary grid (bitmask
+// columns, VGI §3) over a tight box that spans the animation's frames, by any
+// voxelizer of voxelizerRegistry(). GL with voxelizer=atlas keeps the
+// AtlasVoxelizer (static meshes once, each frame the dynamic ones inserted
+// into a copy, VGI §3.2; its `values` channels accumulated by the same
+// insertion, the value grids' source); the others give a BinaryGrid on the
+// host. It offers the GridBox, and the AtlasVoxelizer or the BinaryGrid;
+// methods read it through its OR-mip pyramid (illum/resources/or_mip_pyramid.h).
+#pragma once
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "illum/framework/resources.h"
+#include "voxelize/voxel_grid.h"
+
+namespace vgi {
+
+class ParamSet;
+
+struct BinaryGridNeed {
+  static constexpr const char* kKind = "binary_grid";
+  glm::uvec3 resolution{128};
+  std::string voxelizer = "atlas";  // a name of voxelizerRegistry()
+  // Cubic cells (cone tracing: a mip level's texel is a cube of 2^l cells):
+  // the fitted box grows about its centre along the shorter axes.
+  bool cubicCells = false;
+  // Channels of valueChannelNames() the atlas insertion accumulates as well
+  // (normal, albedo, glossy, radiance): what value grids over it can resolve.
+  std::vector<std::string> values;
+  nlohmann::json key() const {
+    return {{"resolution", {resolution.x, resolution.y, resolution.z}},
+            {"voxelizer", voxelizer},
+            {"cubic_cells", cubicCells},
+            {"values", values}};
+  }
+};
+
+// The `voxels` (N or WxHxD) and `voxelizer` parameters of a module that
+// traces a binary grid; `grids`: how many grid-sized buffers it keeps (the
+// memory check).
+BinaryGridNeed readBinaryGridParams(ParamSet& params, int grids, bool atlasOnly = false,
+                                    const std::string& defaultVoxelizer = "atlas");
+
+ResourceKind binaryGridKind();
+
+}  // namespace vgi

@@ -1,0 +1,174 @@
+#include "illum/resources/cone_volume.h"
+
+#include <glad/gl.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "core/gpu_scene.h"
+#include "core/profiler.h"
+#include "core/shader_library.h"
+#include "illum/resources/gpu_scene.h"
+#include "shaders/shared/bindings.glsl"
+#include "traverse/gl_ray_tracer.h"
+#include "voxelize/gpu_grid.h"
+
+namespace vgi {
+
+nlohmann::json ConeVolumeNeed::key() const {
+  return {{"grid", grid.key()}, {"radiance", radiance}, {"anisotropic", anisotropic}};
+}
+
+nlohmann::json ConeVolumeNeed::settings() const {
+  return {{"light_maps", lightMaps ? lightMaps->key() : nlohmann::json(nullptr)},
+          {"bias", bias},
+          {"normal_offset", normalOffset}};
+}
+
+ValueGridNeed ConeVolumeNeed::valueGrids() const {
+  return {grid, anisotropic ? ValueMips::Anisotropic : ValueMips::Isotropic, lightMaps};
+}
+
+bool ConeVolume::update(SceneResources& res, const ResourceNeed& need, Profiler& prof) {
+  need_ = need.spec<ConeVolumeNeed>();
+  const glm::vec3 v = res.get<GridBox>(need_.grid).voxelSize();
+  voxel_ = std::max({v.x, v.y, v.z});
+  if (need_.radiance == "atlas") {  // the value grids are the volume, kept current as a resource
+    volume_ = &res.get<ValueTextures>(need_.valueGrids());
+    return res.changed(need_.valueGrids());
+  }
+  const bool lit = need_.radiance == "inject";
+  const bool fresh = !own_;
+  if (fresh) allocate(res);
+  // With area lights the light maps follow the sample's lights: beginSample relights (injects).
+  if (lit && res.sampleLights()) return false;
+  if (!fresh && !res.changed(need_.pyramid()) && !(lit && res.changed(*need_.lightMaps)) &&
+      filledFor_ == need_.settings().dump())
+    return false;
+  fill(res, prof);
+  return true;
+}
+
+bool ConeVolume::relight(SceneResources& res, const ResourceNeed&, Profiler& prof) {
+  if (need_.radiance != "inject") return false;
+  fill(res, prof);
+  return true;
+}
+
+void ConeVolume::allocate(SceneResources& res) {
+  ShaderLibrary& shaders = res.shaders();
+  const GridBox& box = res.get<GridBox>(need_.grid);
+  own_ = std::make_unique<ValueTextures>(box, std::vector<std::string>{"radiance"},
+                                         need_.anisotropic ? ValueMips::Anisotropic : ValueMips::Isotropic);
+  volume_ = own_.get();
+  counts_ = makeBuffer(size_t(box.cellCount()) * 4);
+  sums_ = makeBuffer(size_t(box.cellCount()) * 16);
+  max_ = makeBuffer(4);
+  const std::vector<std::string> files = {"voxelize/conservative.vert.glsl",
+                                          "voxelize/conservative.geom.glsl", "illum/vct/inject.frag.glsl"};
+  prog_ = shaders.program(files, {{"CONSERVATIVE_VALUES", "1"}});
+  maxProg_ = shaders.program(files, {{"CONSERVATIVE_VALUES", "1"}, {"INJECT_MAX", "1"}});
+}
+
+void ConeVolume::fill(SceneResources& res, Profiler& prof) {
+  ShaderLibrary& shaders = res.shaders();
+  filledFor_ = need_.settings().dump();
+  const uint32_t zero = 0;
+  glClearNamedBufferData(counts_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  if (need_.radiance == "inject") inject(res, prof);
+  ValueSumBuffers b;
+  b.counts = counts_.get();
+  b.sums[3] = sums_.get();
+  b.radianceMax = radianceMax_;
+  own_->resolve(b, shaders, prof, res.get<GlPyramid>(need_.pyramid()).words());
+}
+
+void ConeVolume::inject(SceneResources& res, Profiler& prof) {
+  ShaderLibrary& shaders = res.shaders();
+  const GridBox& box = res.get<GridBox>(need_.grid);
+  const int side = int(std::max({box.resolution.x, box.resolution.y, box.resolution.z}));
+  const GpuScene& gpu = res.get<GpuScene>();
+  const LightMaps& maps = res.get<LightMaps>(*need_.lightMaps);
+  auto draw = [&](unsigned prog) {
+    setGridUniforms(shaders, prog, box);
+    shaders.setUniform(prog, "uViewport", float(side));
+    shaders.setUniform(prog, "uShadowBias", need_.bias);
+    shaders.setUniform(prog, "uNormalOffset", need_.normalOffset);
+    drawWithoutAttachments(side, side, [&] {
+      glUseProgram(prog);
+      gpu.bind(shaders, prog);
+      maps.bind();
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, max_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, counts_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, sums_.get());
+      gpu.draw();
+    });
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  };
+  {
+    // Pass 1: the largest radiance of any (triangle, cell) pair: the fixed-point range.
+    auto s = prof.scope("vct_inject_max");
+    const uint32_t zero = 0;
+    glClearNamedBufferData(max_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    draw(maxProg_);
+    uint32_t bits = 0;
+    glGetNamedBufferSubData(max_.get(), 0, 4, &bits);
+    std::memcpy(&radianceMax_, &bits, 4);
+    if (!(radianceMax_ > 0.0f) || !std::isfinite(radianceMax_)) radianceMax_ = 1.0f;  // unlit: sums stay 0
+  }
+  auto s = prof.scope("vct_inject");
+  shaders.setUniform(prog_, "uRadianceMax", radianceMax_);
+  draw(prog_);
+}
+
+nlohmann::json ConeVolume::stats() {
+  nlohmann::json j = volume_->describe();
+  j["radiance_source"] = need_.radiance;
+  if (need_.radiance == "inject") j["radiance_max"] = radianceMax_;
+  return j;
+}
+
+void bindConeVolume(const ValueTextures& t, ShaderLibrary& shaders, unsigned prog, float step) {
+  t.bind();
+  if (t.mips() == ValueMips::Anisotropic) t.bindAniso("radiance");
+  setGridUniforms(shaders, prog, t.box());
+  const glm::vec3 v = t.box().voxelSize();
+  shaders.setUniform(prog, "uVoxelSize", std::max({v.x, v.y, v.z}));
+  shaders.setUniform(prog, "uMaxLod", float(t.levels() - 1));
+  shaders.setUniform(prog, "uConeStep", step);
+}
+
+void ConeVolume::bind(ShaderLibrary& shaders, unsigned prog, float step) const {
+  bindConeVolume(*volume_, shaders, prog, step);
+}
+
+ResourceKind coneVolumeKind() {
+  return {"cone_volume",
+          "the cone tracers' pre-integrated radiance/opacity volume with its (anisotropic) mips",
+          [](const ResourceNeed& n) {
+            const ConeVolumeNeed& c = n.spec<ConeVolumeNeed>();
+            std::vector<ResourceNeed> d{c.pyramid()};
+            if (c.radiance == "inject") d.push_back(*c.lightMaps);
+            if (c.radiance == "atlas") d.push_back(c.valueGrids());
+            return d;
+          },
+          [](const ResourceNeed& n, const SceneNeeds&, const std::string& method, bool gl) {
+            const ConeVolumeNeed& c = n.spec<ConeVolumeNeed>();
+            requireGl(n, method, gl);
+            if (c.radiance != "none" && !c.lightMaps)
+              fail("method '", method, "' asks for a cone volume with radiance=", c.radiance,
+                   " without light maps");
+          },
+          [](const ResourceNeed& n) {
+            // With radiance=atlas the value grids are the volume: nothing of its own.
+            return n.spec<ConeVolumeNeed>().radiance == "atlas" ? std::vector<std::string>{}
+                                                                : std::vector<std::string>{"cone_volume"};
+          },
+          [](const ResourceNeed& n, SceneResources&) -> std::unique_ptr<Resource> {
+            return std::make_unique<ConeVolume>(n.spec<ConeVolumeNeed>());
+          },
+          "volume"};
+}
+
+}  // namespace vgi

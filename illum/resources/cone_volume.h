@@ -1,0 +1,74 @@
+// Resource kind "cone_volume": the pre-integrated radiance / opacity volume
+// that the voxel cone tracers march (vct, vct_ao; shaders/illum/vct/cones.glsl):
+// the radiance channel of voxelize/value_textures, premultiplied (L·α, α),
+// with an isotropic or six-direction anisotropic mip chain. Filled in one of
+// three ways (`radiance`):
+//   inject  the three-axis conservative rasterization lights each (triangle,
+//           cell) pair with the light maps' shadow-tested diffuse light
+//           (shaders/illum/vct/inject.frag; Dinse 2015 §3.1), the opacity
+//           the binary grid of any voxelizer (through its pyramid's words);
+//           injected again whenever the light maps are drawn again;
+//   atlas   the atlas voxelizer's radiance channel (VGI §3): the value grids
+//           are the volume (nothing of its own is allocated);
+//   none    opacity only (vct_ao), from the binary grid.
+#pragma once
+#include <glm/glm.hpp>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "core/gl_handles.h"
+#include "illum/resources/light_maps.h"
+#include "illum/resources/or_mip_pyramid.h"
+#include "illum/resources/value_grids.h"
+
+namespace vgi {
+
+class ShaderLibrary;
+
+struct ConeVolumeNeed {
+  static constexpr const char* kKind = "cone_volume";
+  BinaryGridNeed grid;              // cubic cells; with radiance=atlas its values hold "radiance"
+  std::string radiance = "inject";  // inject | atlas | none
+  bool anisotropic = true;
+  std::optional<LightMapNeed> lightMaps;   // inject, atlas: the direct light's maps
+  float bias = 1.0f, normalOffset = 0.0f;  // inject: the maps' shadow test (texels, voxels)
+  nlohmann::json key() const;              // grid, radiance, anisotropic: what is allocated
+  nlohmann::json settings() const;         // the light maps and their shadow test: what injection reads
+  OrMipPyramidNeed pyramid() const { return {grid}; }
+  ValueGridNeed valueGrids() const;  // radiance=atlas: the volume
+};
+
+class ConeVolume : public Resource {
+ public:
+  explicit ConeVolume(const ConeVolumeNeed& need) : need_(need) {}
+  bool update(SceneResources& res, const ResourceNeed& need, Profiler& profiler) override;
+  bool relight(SceneResources& res, const ResourceNeed& need, Profiler& profiler) override;
+  nlohmann::json stats() override;
+  void* offer(const std::type_info& t) override { return offerOf(t, this); }
+
+  // Binds the textures and sets cones.glsl's uniforms on `program` (in use), marching `step` cone diameters.
+  void bind(ShaderLibrary& shaders, unsigned program, float step) const;
+  const ValueTextures& textures() const { return *volume_; }
+  float voxelSize() const { return voxel_; }
+
+ private:
+  void allocate(SceneResources& res);                  // the volume of its own, its buffers, programs
+  void fill(SceneResources& res, Profiler& profiler);  // (re)fills it: injection, resolve
+  void inject(SceneResources& res, Profiler& profiler);
+  ConeVolumeNeed need_;
+  std::string filledFor_;                  // the settings of the last fill (an adopted volume may get others)
+  const ValueTextures* volume_ = nullptr;  // own_, or the value grids' (radiance=atlas)
+  std::unique_ptr<ValueTextures> own_;
+  GlBuffer counts_, sums_, max_;
+  unsigned prog_ = 0, maxProg_ = 0;
+  float radianceMax_ = 1.0f, voxel_ = 0.0f;
+};
+
+// Binds `volume` for cones.glsl on `program` (in use): textures and uniforms.
+void bindConeVolume(const ValueTextures& volume, ShaderLibrary& shaders, unsigned program, float step);
+
+ResourceKind coneVolumeKind();
+
+}  // namespace vgi

@@ -1,0 +1,22 @@
+// Resource kind "gpu_scene": the scene's triangles, materials and the GL
+// lights on the GPU (core/gpu_scene.h), kept current for the animation time
+// and the lights SceneResources places. What the G-buffer, the light maps and
+// every rasterizing pass draw.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include "illum/framework/resources.h"
+
+namespace vgi {
+
+struct GpuSceneNeed {
+  static constexpr const char* kKind = "gpu_scene";
+  nlohmann::json key() const { return nlohmann::json::object(); }
+};
+
+ResourceKind gpuSceneKind();
+
+// Throws, naming `method`, when a GL resource is asked for by a method that runs on the CPU.
+void requireGl(const ResourceNeed& need, const std::string& method, bool gl);
+
+}  // namespace vgi
