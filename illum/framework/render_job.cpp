@@ -363,56 +363,57 @@ void RenderJob::checkGl() const {
 
 void RenderJob::checkFiniteResult(const RenderResult& r) const { checkFinite(r, info_->name); }
 
-RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
-                       const CheckpointSink& onCheckpoint) {
-  RenderJob job(opt);
-  const MethodInfo& info = job.info();
-  const Scene& scene = job.scene();
-  Method* method = &job.method();
-  SceneResources& resources = job.resources();
-  SampleTargets& targets = job.targets();
-  ShaderLibrary* shaders = job.shaders();
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// A still: one frame, with checkpoints at the sample counts asked for.
+RenderOutput renderStillJob(RenderJob& job, const RenderOptions& opt, const CheckpointSink& onCheckpoint,
+                            Clock::time_point t0) {
+  const std::string& name = job.info().name;
+  GlContext* gl = job.gl();
+  RenderRequest req = job.request();
+  const nlohmann::json run = job.describe();
+  req.time = opt.time;
+  Profiler profiler(gl != nullptr);
+  if (onCheckpoint)
+    req.onCheckpoint = [&](const RenderResult& sofar, Profiler& p) {
+      checkFinite(sofar, name);
+      RenderOutput c;
+      c.result = sofar;
+      c.stats = run;
+      p.resolve(true);
+      c.stats.update(renderStats(sofar, p));
+      c.stats["checkpoint"] = true;
+      c.stats["wall_ms"] = msSince(t0);
+      onCheckpoint(sofar.sppCompleted, c);
+    };
+  RenderOutput out;
+  out.result = renderFrame(job.method(), req, job.resources(), job.targets(), job.shaders(), profiler);
+  profiler.resolve(true);
+  checkFinite(out.result, name);
+  nlohmann::json& s = out.stats;
+  s = run;
+  s.update(renderStats(out.result, profiler));
+  s["interrupted"] = out.result.interrupted;
+  s["time_limit_s"] = opt.timeLimitS;
+  s["time_limited"] = out.result.timeLimited;
+  s["gl_errors"] = gl ? gl->errorCount() : 0;
+  s["wall_ms"] = msSince(t0);
+  job.checkGl();
+  return out;
+}
+
+// An animation: one Profiler per frame; the run's timings are their sums.
+RenderOutput renderAnimationJob(RenderJob& job, const RenderOptions& opt, const FrameSink& onFrame,
+                                Clock::time_point t0) {
   GlContext* gl = job.gl();
   RenderRequest req = job.request();
   nlohmann::json run = job.describe();
-  auto checkGl = [&] { job.checkGl(); };
-
-  RenderOutput out;
-  const auto t0 = std::chrono::steady_clock::now();
-  if (opt.frames == 1) {
-    req.time = opt.time;
-    Profiler profiler(gl != nullptr);
-    if (onCheckpoint)
-      req.onCheckpoint = [&](const RenderResult& sofar, Profiler& p) {
-        checkFinite(sofar, info.name);
-        RenderOutput c;
-        c.result = sofar;
-        c.stats = run;
-        p.resolve(true);
-        c.stats.update(renderStats(sofar, p));
-        c.stats["checkpoint"] = true;
-        c.stats["wall_ms"] =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        onCheckpoint(sofar.sppCompleted, c);
-      };
-    out.result = renderFrame(*method, req, resources, targets, shaders, profiler);
-    profiler.resolve(true);
-    checkFinite(out.result, info.name);
-    nlohmann::json& s = out.stats;
-    s = run;
-    s.update(renderStats(out.result, profiler));
-    s["interrupted"] = out.result.interrupted;
-    s["time_limit_s"] = opt.timeLimitS;
-    s["time_limited"] = out.result.timeLimited;
-    s["gl_errors"] = gl ? gl->errorCount() : 0;
-    out.stats["wall_ms"] =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    checkGl();
-    return out;
-  }
-
-  // An animation: one Profiler per frame; the run's timings are their sums.
-  if (!scene.hasDynamicMeshes())
+  if (!job.scene().hasDynamicMeshes())
     run["warnings"].push_back("--frames " + std::to_string(opt.frames) +
                               ": the scene has no dynamic meshes, so every frame shows the same instant");
   nlohmann::json frames = nlohmann::json::array(), timings = nlohmann::json::object(),
@@ -421,17 +422,18 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
     for (auto& [k, v] : part.items())
       sum[k] = (sum.contains(k) ? sum[k].get<double>() : 0.0) + v.get<double>();
   };
+  RenderOutput out;
   ProgressBar bar("frames", opt.frames);
   bool interrupted = false;
   for (int f = 0; f < opt.frames && !interrupted; ++f) {
     req.frame = f;
     req.time = req.frameTimes[size_t(f)];
-    const auto tf = std::chrono::steady_clock::now();
+    const auto tf = Clock::now();
     Profiler profiler(gl != nullptr);
-    out.result = renderFrame(*method, req, resources, targets, shaders, profiler);
+    out.result = renderFrame(job.method(), req, job.resources(), job.targets(), job.shaders(), profiler);
     profiler.resolve(true);
-    checkGl();
-    checkFinite(out.result, info.name);
+    job.checkGl();
+    checkFinite(out.result, job.info().name);
     interrupted = out.result.interrupted || interruptRequested();
     // Stopped before every pixel of this frame had a sample: the frames so far stand, this one is not
     // written.
@@ -439,7 +441,7 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
     nlohmann::json fs = renderStats(out.result, profiler);
     fs["frame"] = f;
     fs["time"] = req.time;
-    fs["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tf).count();
+    fs["wall_ms"] = msSince(tf);
     addInto(timings, fs["timings_ms"]);
     addInto(cpuTimings, fs["cpu_timings_ms"]);
     addInto(calls, fs["pass_calls"]);
@@ -465,8 +467,18 @@ RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
   s["total_ms"] = total;
   s["built"] = out.result.built;
   s["frames"] = frames;
-  s["wall_ms"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  s["wall_ms"] = msSince(t0);
   return out;
+}
+
+}  // namespace
+
+RenderOutput runRender(const RenderOptions& opt, const FrameSink& onFrame,
+                       const CheckpointSink& onCheckpoint) {
+  RenderJob job(opt);
+  const auto t0 = Clock::now();
+  return opt.frames == 1 ? renderStillJob(job, opt, onCheckpoint, t0)
+                         : renderAnimationJob(job, opt, onFrame, t0);
 }
 
 namespace {
