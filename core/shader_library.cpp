@@ -142,7 +142,7 @@ ShaderLibrary::Source ShaderLibrary::preprocess(const std::string& file, const S
   e.root = fs::weakly_canonical(root_).string();
   e.out << "#version 450 core\n#define SHARED_BEGIN\n#define SHARED_END\n#define SHARED_FN\n"
            "#define SHARED_PRECISE precise\n#define SHARED_IN(T) T\n#define PYRAMID_PARAM\n#define "
-           "PYRAMID_ARG\n";
+           "PYRAMID_ARG\n#define BVH_PARAM\n#define BVH_ARG\n";
   for (auto& [k, v] : defines) e.out << "#define " << k << " " << v << "\n";
   e.expand(fs::weakly_canonical(fs::path(root_) / file).string(), "");
   return {e.out.str(), e.files};

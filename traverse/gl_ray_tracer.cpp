@@ -9,6 +9,7 @@
 #include "core/params.h"
 #include "core/profiler.h"
 #include "shaders/shared/or_mip.glsl"
+#include "traverse/gpu_bvh.h"
 #include "traverse/or_mip_pyramid.h"
 #include "voxelize/gpu_grid.h"
 
@@ -100,20 +101,29 @@ void GlPyramid::bind(ShaderLibrary& shaders, unsigned program) const {
   shaders.setUniform(program, "uMarchStep", marchStep_);
 }
 
-std::string readTracerParam(ParamSet& p) {
-  return p.getString("tracer", "hierarchical", "voxel tracer (GLSL define)",
-                     {"hierarchical", "dda", "march"});
+std::string readTracerParam(ParamSet& p, bool triangles) {
+  if (!triangles)
+    return p.getString("tracer", "hierarchical", "voxel tracer (GLSL define)",
+                       {"hierarchical", "dda", "march"});
+  return p.getString(
+      "tracer", "hierarchical",
+      "ray tracer (GLSL define): hierarchical, dda, march through the voxels, or bvh: the scene's "
+      "triangles (exact visibility, hits reported in the grid's cells)",
+      {"hierarchical", "dda", "march", "bvh"});
 }
 
 void addTracerDefine(ShaderDefines& defines, const std::string& tracer) {
   const TracerInfo& info = findTracer(tracer);
-  if (!info.glsl) fail("tracer '", tracer, "' has no GLSL version (GLSL tracers: hierarchical, dda, march)");
+  if (!info.glsl)
+    fail("tracer '", tracer, "' has no GLSL version (GLSL tracers: hierarchical, dda, march, bvh)");
   defines["VGI_TRACER"] = std::to_string(info.define);
 }
 
 std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& shaders,
                                      const std::string& tracer, const std::vector<TraceRay>& rays,
-                                     Profiler& profiler, uint32_t level) {
+                                     Profiler& profiler, uint32_t level, const GpuBvh* bvh) {
+  if (tracer == "bvh" && !bvh) fail("tracer 'bvh' needs the scene's BVH on the GPU");
+  if (tracer == "bvh" && level > 0) fail("tracer 'bvh' traces triangles: it has no pyramid levels");
   if (level >= pyramid.levels())
     fail("tracer '", tracer, "': level ", level, " is not a level of the pyramid (0 … ", pyramid.levels() - 1,
          ")");
@@ -132,6 +142,7 @@ std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& sh
   glNamedBufferStorage(bufs[1], GLsizeiptr(std::min(batch, rays.size()) * 32), nullptr, 0);
   glUseProgram(prog);
   pyramid.bind(shaders, prog);
+  if (bvh) bvh->bind();
   if (level > 0) shaders.setUniform(prog, "uLevel", level);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_RAYS, bufs[0]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_TRACE_HITS, bufs[1]);

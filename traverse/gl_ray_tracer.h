@@ -15,6 +15,7 @@ class ParamSet;
 class Profiler;
 
 class GpuGridBuffer;
+class GpuBvh;
 
 class GlPyramid {
  public:
@@ -54,16 +55,18 @@ class GlPyramid {
 // with OrMipPyramid's).
 std::vector<uint32_t> buildOrMipGl(const BinaryGrid& grid, ShaderLibrary& shaders);
 
-// The `tracer` parameter of a GL module: hierarchical (default), dda or march.
-std::string readTracerParam(ParamSet& params);
+// The `tracer` parameter of a GL module: hierarchical (default), dda, march
+// or, where triangles make sense, bvh.
+std::string readTracerParam(ParamSet& params, bool triangles = true);
 // Adds the define that selects a GLSL tracer; throws for tracers GLSL lacks.
 void addTracerDefine(ShaderDefines& defines, const std::string& tracer);
 
 // Traces the rays on the GPU with a GLSL tracer ("hierarchical", "dda",
-// "march"), from pyramid level `level` up (TracerInputs::level). The pass is
-// timed as "trace_<tracer>" in `profiler`.
+// "march"), from pyramid level `level` up (TracerInputs::level), or "bvh"
+// through `bvh` (hits reported in the pyramid's grid). The pass is timed as
+// "trace_<tracer>" in `profiler`.
 std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& shaders,
                                      const std::string& tracer, const std::vector<TraceRay>& rays,
-                                     Profiler& profiler, uint32_t level = 0);
+                                     Profiler& profiler, uint32_t level = 0, const GpuBvh* bvh = nullptr);
 
 }  // namespace vgi

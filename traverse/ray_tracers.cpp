@@ -11,6 +11,7 @@
 #include "shaders/shared/trace_march.glsl"
 #include "shaders/shared/tracer_ids.glsl"
 #include "traverse/embree_tracer.h"
+#include "traverse/gpu_bvh.h"
 #include "traverse/or_mip_pyramid.h"
 
 namespace vgi {
@@ -22,6 +23,11 @@ const std::vector<TracerInfo>& tracerRegistry() {
        VGI_TRACER_DDA},
       {"march", "fixed-step ray marching (AVG paper); step = half the smallest voxel edge", true,
        VGI_TRACER_MARCH},
+      {"bvh",
+       "exact first hit on the triangles through a BVH built by Embree's builder (watertight, Woop et al. "
+       "2013); "
+       "GLSL and C++",
+       true, VGI_TRACER_BVH},
       {"embree", "exact first hit on the triangles (Embree, CPU only)", false, -1},
   };
   return registry;
@@ -103,38 +109,70 @@ class VoxelTracer : public RayTracer {
   float marchStep_;
 };
 
-class EmbreeRayTracer : public RayTracer {
+// A tracer of the triangles: the hit's distance to the surface, and the grid
+// cell that holds the hit point (when a grid is given).
+class TriangleRayTracer : public RayTracer {
  public:
-  EmbreeRayTracer(const EmbreeTracer& embree, const OrMipPyramid* pyramid) : embree_(embree) {
+  explicit TriangleRayTracer(const OrMipPyramid* pyramid) {
     if (pyramid) {
       grid_ = pyramid->box().params();
       hasGrid_ = true;
     }
   }
-  TraceResult trace(const TraceRay& ray) const override {
+
+ protected:
+  TraceResult hitAt(const TraceRay& ray, float t, uint32_t steps) const {
     TraceResult r;
-    if (!(ray.tmax >= 0.0f)) return r;
-    TriangleHit h = embree_.firstHit(ray.origin, ray.dir, 0.0f, ray.tmax);
-    if (!h.hit) return r;
     r.hit = true;
-    r.t = h.t;
-    if (hasGrid_) {
-      glm::vec3 q = shared::worldToGrid(grid_, ray.origin + h.t * ray.dir);
-      r.voxel = shared::gridCell(grid_, q);
-    }
+    r.t = t;
+    r.steps = steps;
+    if (hasGrid_) r.voxel = shared::gridCell(grid_, shared::worldToGrid(grid_, ray.origin + t * ray.dir));
     return r;
   }
 
  private:
-  const EmbreeTracer& embree_;
   shared::GridParams grid_{};
   bool hasGrid_ = false;
+};
+
+class EmbreeRayTracer : public TriangleRayTracer {
+ public:
+  EmbreeRayTracer(const EmbreeTracer& embree, const OrMipPyramid* pyramid)
+      : TriangleRayTracer(pyramid), embree_(embree) {}
+  TraceResult trace(const TraceRay& ray) const override {
+    if (!(ray.tmax >= 0.0f)) return {};
+    TriangleHit h = embree_.firstHit(ray.origin, ray.dir, 0.0f, ray.tmax);
+    return h.hit ? hitAt(ray, h.t, 0) : TraceResult{};
+  }
+
+ private:
+  const EmbreeTracer& embree_;
+};
+
+// The shared BVH kernel, as tracer=bvh runs it in GLSL (traverse/tracer.glsl).
+class BvhRayTracer : public TriangleRayTracer {
+ public:
+  BvhRayTracer(const BvhArrays& bvh, const OrMipPyramid* pyramid) : TriangleRayTracer(pyramid), bvh_(bvh) {}
+  TraceResult trace(const TraceRay& ray) const override {
+    const shared::BvhHit h = traceBvhCpu(bvh_, ray.origin, ray.dir, ray.tmax, false);
+    if (h.hit) return hitAt(ray, h.t, h.steps);
+    TraceResult miss;
+    miss.steps = h.steps;
+    return miss;
+  }
+
+ private:
+  const BvhArrays& bvh_;
 };
 
 }  // namespace
 
 std::unique_ptr<RayTracer> createTracer(const std::string& name, const TracerInputs& in) {
   const TracerInfo& info = findTracer(name);
+  if (info.name == "bvh") {
+    if (!in.bvh) fail("tracer 'bvh' needs the scene's BVH");
+    return std::make_unique<BvhRayTracer>(*in.bvh, in.pyramid);
+  }
   if (info.name == "embree") {
     if (!in.embree) fail("tracer 'embree' needs the scene's triangles");
     return std::make_unique<EmbreeRayTracer>(*in.embree, in.pyramid);

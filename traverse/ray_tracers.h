@@ -2,6 +2,8 @@
 //   hierarchical  first hit over the OR-mip pyramid (shaders/shared/trace_hierarchical.glsl)
 //   dda           3D DDA over level 0, the oracle on the grid (trace_dda.glsl)
 //   march         fixed-step ray marching as in the AVG paper (trace_march.glsl)
+//   bvh           exact first hit on the triangles through our BVH (shaders/shared/trace_bvh.glsl:
+//                 GLSL and C++ from one source; traverse/gpu_bvh.h)
 //   embree        exact first hit on the triangles (C++ only)
 // The voxel tracers run the same shared kernels the GLSL passes compile (the
 // tracer is chosen there by a define, see gl_ray_tracer.h), so what the tests
@@ -21,6 +23,7 @@ namespace vgi {
 class OrMipPyramid;
 struct GridBox;
 class EmbreeTracer;
+struct BvhArrays;
 
 // std430-compatible: { vec3 origin; float tmax; vec3 dir; float pad; }.
 struct TraceRay {
@@ -33,8 +36,8 @@ static_assert(sizeof(TraceRay) == 32, "TraceRay must match the std430 layout");
 
 struct TraceResult {
   bool hit = false;
-  float t = 0.0f;        // distance to the entry of the hit voxel (embree: to the surface)
-  glm::uvec3 voxel{0u};  // the hit voxel (embree: the voxel holding the hit point)
+  float t = 0.0f;        // distance to the entry of the hit voxel (bvh, embree: to the surface)
+  glm::uvec3 voxel{0u};  // the hit voxel (bvh, embree: the voxel holding the hit point)
   uint32_t steps = 0;    // loop iterations (0 for embree)
 };
 
@@ -48,10 +51,12 @@ const std::vector<TracerInfo>& tracerRegistry();
 // Throws naming `what` (e.g. "tracer" or "--tracers") and the value, listing the choices.
 const TracerInfo& findTracer(const std::string& name, const std::string& what = "tracer");
 
-// What a tracer may need; the voxel tracers need `pyramid`, embree needs `embree`.
+// What a tracer may need; the voxel tracers need `pyramid`, embree needs
+// `embree`, bvh needs `bvh` (and the pyramid's grid, if given, names the hit voxels).
 struct TracerInputs {
   const OrMipPyramid* pyramid = nullptr;
   const EmbreeTracer* embree = nullptr;
+  const BvhArrays* bvh = nullptr;
   float marchStep = 0.0f;  // world units; 0: half the smallest voxel edge
   // Voxel tracers: trace the pyramid from this level up, its columns as the
   // voxels (shared pyramidFromLevel; results name level-`level` cells).

@@ -61,6 +61,7 @@
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/gather_kit.h"
 #include "illum/kits/shared_params.h"
+#include "illum/kits/tracer_kit.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "shaders/shared/bindings.glsl"
@@ -122,7 +123,7 @@ class NearFieldMethod : public Method {
     SceneNeeds n;
     n.gbuffer = true;
     n.add(LightMapNeed{p_.shadow.resolution, true});
-    n.add(OrMipPyramidNeed{p_.grid});
+    addTracerNeeds(n, p_.grid, p_.tracer);
     return n;
   }
   void prepareFrame(Frame& f) override;
@@ -168,7 +169,7 @@ bool NearFieldMethod::addSample(Frame& f, int k) {
     glUseProgram(indirectProg_);
     f.resources.get<GpuScene>().bind(f.shaders(), indirectProg_);
     f.resources.get<LightMaps>().bind();
-    f.resources.get<GlPyramid>().bind(f.shaders(), indirectProg_);
+    bindTracer(f.resources, f.shaders(), indirectProg_);
     f.gbuffer().bind();
     kit_.setSampleUniforms(f.shaders(), indirectProg_, k);
     kit_.dispatchGather(f.shaders(), indirectProg_, kit_.settings().rays, GatherKit::kRaysPerDispatch);

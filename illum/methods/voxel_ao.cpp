@@ -39,6 +39,7 @@
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/gather_kit.h"
 #include "illum/kits/shared_params.h"
+#include "illum/kits/tracer_kit.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "traverse/gl_ray_tracer.h"
 
@@ -66,7 +67,7 @@ class VoxelAoMethod : public Method {
   SceneNeeds needs() const override {
     SceneNeeds n;
     n.gbuffer = true;
-    n.add(OrMipPyramidNeed{grid_});
+    addTracerNeeds(n, grid_, tracer_);
     return n;
   }
   void prepareFrame(Frame& f) override {
@@ -86,7 +87,7 @@ class VoxelAoMethod : public Method {
     {
       auto s = f.profiler.scope("ao");
       glUseProgram(prog_);
-      f.resources.get<GlPyramid>().bind(f.shaders(), prog_);
+      bindTracer(f.resources, f.shaders(), prog_);
       f.gbuffer().bind();
       kit_.setSampleUniforms(f.shaders(), prog_, k);
       kit_.dispatchGather(f.shaders(), prog_, kit_.settings().rays, GatherKit::kRaysPerDispatch);

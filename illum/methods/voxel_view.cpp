@@ -42,8 +42,8 @@ namespace {
 class VoxelViewMethod : public Method {
  public:
   VoxelViewMethod(ParamSet& p, const Scene&) {
-    tracer_ = readTracerParam(p);
-    grid_ = readBinaryGridParams(p, 4);  // static + frame grid (atlas), the pyramid
+    tracer_ = readTracerParam(p, false);  // (a view of the voxels: bvh would show triangles)
+    grid_ = readBinaryGridParams(p, 4);   // static + frame grid (atlas), the pyramid
     level_ = p.getInt("level", 0, "OR-mip level shown: 0 = the grid, l = columns of 2^l x 2^l voxels", 0,
                       int(shared::kMaxPyramidLevels) - 1);
   }

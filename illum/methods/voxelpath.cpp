@@ -48,6 +48,7 @@
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/shared_params.h"
+#include "illum/kits/tracer_kit.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "illum/resources/value_grids.h"
@@ -100,7 +101,7 @@ class VoxelPathMethod : public Method {
     n.add(LightMapNeed{shadow_.resolution, true});
     BinaryGridNeed grid = grid_;
     grid.values = {"normal", "albedo", "glossy"};
-    n.add(OrMipPyramidNeed{grid});
+    addTracerNeeds(n, grid, tracer_);
     n.add(ValueGridNeed{grid, ValueMips::None, std::nullopt});
     return n;
   }
@@ -141,7 +142,7 @@ class VoxelPathMethod : public Method {
       glUseProgram(prog_);
       f.resources.get<GpuScene>().bind(shaders, prog_);
       f.resources.get<LightMaps>().bind();
-      f.resources.get<GlPyramid>().bind(shaders, prog_);
+      bindTracer(f.resources, shaders, prog_);
       f.resources.get<ValueTextures>().bind();
       f.gbuffer().bind();
       shaders.setUniform(prog_, "uCameraPosition", f.camera.position);

@@ -62,6 +62,7 @@
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/shared_params.h"
+#include "illum/kits/tracer_kit.h"
 #include "illum/kits/vpl_kit.h"
 #include "illum/resources/bvh.h"
 #include "illum/resources/light_maps.h"
@@ -113,7 +114,7 @@ class VplMethod : public Method {
     n.add(LightMapNeed{shadow_.resolution, true});
     BinaryGridNeed grid = grid_;
     if (s_.bounces > 1) grid.values = {"normal", "albedo"};
-    if (s_.visibility == VplVisibility::Voxels || s_.bounces > 1) n.add(OrMipPyramidNeed{grid});
+    if (s_.visibility == VplVisibility::Voxels || s_.bounces > 1) addTracerNeeds(n, grid, tracer_);
     if (s_.bounces > 1) n.add(ValueGridNeed{grid, ValueMips::None, std::nullopt});
     if (s_.visibility == VplVisibility::Exact) n.add(BvhNeed{});
     return n;
@@ -170,7 +171,7 @@ class VplMethod : public Method {
     {
       auto s = f.profiler.scope("gather");
       kit_.gather(f, [&](unsigned prog) {
-        if (s_.visibility == VplVisibility::Voxels) f.resources.get<GlPyramid>().bind(shaders, prog);
+        if (s_.visibility == VplVisibility::Voxels) bindTracer(f.resources, shaders, prog);
       });
     }
     kit_.resolve(f);
@@ -185,7 +186,7 @@ class VplMethod : public Method {
   void bindGrid(Frame& f, unsigned prog) const {
     f.resources.get<GpuScene>().bind(f.shaders(), prog);
     f.resources.get<LightMaps>().bind();
-    if (const GlPyramid* pyramid = f.resources.tryGet<GlPyramid>()) pyramid->bind(f.shaders(), prog);
+    if (f.resources.tryGet<GlPyramid>()) bindTracer(f.resources, f.shaders(), prog);
     if (const ValueTextures* values = f.resources.tryGet<ValueTextures>()) values->bind();
   }
 

@@ -4,6 +4,7 @@
 #include "illum/resources/binary_grid.h"
 #include "illum/resources/bvh.h"
 #include "illum/resources/cone_volume.h"
+#include "illum/resources/gpu_bvh.h"
 #include "illum/resources/gpu_scene.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/occluders.h"
@@ -14,8 +15,8 @@ namespace vgi {
 
 const std::vector<ResourceKind>& resourceKinds() {
   static const std::vector<ResourceKind> kinds = {
-      gpuSceneKind(),   lightMapsKind(), binaryGridKind(), orMipPyramidKind(),
-      valueGridsKind(), bvhKind(),       occludersKind(),  coneVolumeKind(),
+      gpuSceneKind(), lightMapsKind(), binaryGridKind(), orMipPyramidKind(), valueGridsKind(),
+      bvhKind(),      occludersKind(), coneVolumeKind(), gpuBvhKind(),
   };
   return kinds;
 }

@@ -28,6 +28,8 @@
 #define BINDING_VPL_FLUX 17        // SSBO float[]: the RSM flux tree (shared/vpl.glsl)
 #define BINDING_VPLS 18            // SSBO Vpl[] (shared/vpl.glsl): bounce-major, chain-minor
 #define BINDING_AVG 19             // SSBO uint[]: the approximate visibility grid's cells (shared/avg.glsl)
+#define BINDING_BVH_NODES 20       // SSBO vec4[]: the BVH's nodes (shared/trace_bvh.glsl, traverse/gpu_bvh.h)
+#define BINDING_BVH_TRIS 21        // SSBO vec4[]: its triangles, in leaf order
 
 // ---- textures (samplers)
 #define TEXUNIT_GBUFFER_POSITION 0          // world position, w = 1 where a surface was seen

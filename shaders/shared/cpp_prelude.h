@@ -27,3 +27,6 @@
 // GLSL they read a buffer named pyramidWords declared by the including shader.
 #define PYRAMID_PARAM , const uint* pyramidWords
 #define PYRAMID_ARG , pyramidWords
+// Likewise the BVH's nodes and triangles (shared/trace_bvh.glsl): buffers bvhNodes and bvhTris in GLSL.
+#define BVH_PARAM , const vec4 *bvhNodes, const vec4 *bvhTris
+#define BVH_ARG , bvhNodes, bvhTris

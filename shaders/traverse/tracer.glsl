@@ -5,7 +5,10 @@
 //   TraceHit tracePyramid(PyramidParams p, …)  the same over p (pyramidFromLevel: a mip level)
 //   bool visibleBetween(vec3 a, vec3 b)
 //   ResumableRay: nextHit / passHit (rays that go on past voxels a module passes)
-// The pyramid and its parameters are bound by GlPyramid::bind (traverse/gl_ray_tracer.cpp).
+// The pyramid and its parameters are bound by GlPyramid::bind (traverse/gl_ray_tracer.cpp);
+// with VGI_TRACER_BVH the rays meet the scene's triangles (exact visibility,
+// shared/trace_bvh.glsl; GpuBvh::bind) and the pyramid gives the grid their
+// hits are reported in.
 #include "../shared/tracer_ids.glsl"
 #ifndef VGI_TRACER
 #define VGI_TRACER VGI_TRACER_HIERARCHICAL
@@ -17,6 +20,25 @@ layout(std430, binding = BINDING_PYRAMID) readonly buffer PyramidWords { uint py
 #include "../shared/trace_hierarchical.glsl"
 #include "../shared/trace_dda.glsl"
 #include "../shared/trace_march.glsl"
+#if VGI_TRACER == VGI_TRACER_BVH
+layout(std430, binding = BINDING_BVH_NODES) readonly buffer BvhNodes { vec4 bvhNodes[]; };
+layout(std430, binding = BINDING_BVH_TRIS) readonly buffer BvhTris { vec4 bvhTris[]; };
+#include "../shared/trace_bvh.glsl"
+// The exact first hit on the triangles, reported as the voxel tracers report
+// theirs: t is the distance to the surface, `voxel` the grid cell that holds
+// the hit point (so value-grid lookups and passHit work unchanged).
+TraceHit traceBvhAsVoxels(GridParams g, vec3 origin, vec3 dir, float tmax) {
+  BvhHit b = traceBvh(origin, dir, tmax, false);
+  if (b.hit == 0u) return traceMiss(b.steps);
+  TraceHit h;
+  h.hit = 1u;
+  h.t = b.t;
+  precise vec3 p = origin + b.t * dir;
+  h.voxel = gridCell(g, worldToGrid(g, p));
+  h.steps = b.steps;
+  return h;
+}
+#endif
 #include "../voxelize/grid_uniforms.glsl"
 uniform uint uPyramidLevels;
 uniform uint uPyramidOffsets[16];
@@ -37,6 +59,8 @@ TraceHit tracePyramid(PyramidParams p, vec3 origin, vec3 dir, float tmax) {
   return traceDda(p, origin, dir, tmax);
 #elif VGI_TRACER == VGI_TRACER_MARCH
   return traceMarch(p, origin, dir, tmax, uMarchStep);
+#elif VGI_TRACER == VGI_TRACER_BVH
+  return traceBvhAsVoxels(p.grid, origin, dir, tmax);  // (the triangles have no levels)
 #else
 #error "unknown VGI_TRACER (ids: shaders/shared/tracer_ids.glsl)"
 #endif
@@ -44,10 +68,15 @@ TraceHit tracePyramid(PyramidParams p, vec3 origin, vec3 dir, float tmax) {
 
 TraceHit traceRay(vec3 origin, vec3 dir, float tmax) { return tracePyramid(pyramidFromUniforms(), origin, dir, tmax); }
 
-// No voxel set on the segment a–b (the tracers take a unit direction and a length).
+// No voxel set on the segment a–b (the tracers take a unit direction and a
+// length); bvh: no triangle on it (any hit ends the search).
 bool visibleBetween(vec3 a, vec3 b) {
   float len = length(b - a);
+#if VGI_TRACER == VGI_TRACER_BVH
+  return len <= 0.0f || traceBvh(a, (b - a) / len, len, true).hit == 0u;
+#else
   return len <= 0.0f || traceRay(a, (b - a) / len, len).hit == 0u;
+#endif
 }
 
 // A ray that may go on past voxels its module judges empty (a voxel a light
