@@ -23,6 +23,7 @@
 #include "core/shader_library.h"
 #include "traverse/embree_tracer.h"
 #include "traverse/gl_ray_tracer.h"
+#include "traverse/gpu_bvh.h"
 #include "traverse/or_mip_pyramid.h"
 #include "traverse/ray_population.h"
 #include "traverse/ray_tracers.h"
@@ -86,26 +87,213 @@ Agreement agreement(const std::vector<TraceResult>& r, const std::vector<TraceRe
   return a;
 }
 
+struct TraverseOptions {
+  std::string scene = "builtin:cornell", voxels = "256", voxelizer = "atlas",
+              tracers = "hierarchical,dda,march,bvh,embree", maxDist = "0.1", gl = "auto", stats;
+  size_t rays = 1000000;
+  int threads = 0, repeat = 3;
+  uint32_t seed = 1;
+  float offset = 1.0f;
+  bool json = false, noGl = false;
+};
+
+// What every ray length traces: the grid and its pyramid, and the triangles (Embree, our BVH), on
+// the CPU and, unless --no-gl, on the GPU.
+struct TraverseSetup {
+  Scene scene;
+  FlatScene flat;
+  GridBox box;
+  std::unique_ptr<OrMipPyramid> pyramid;
+  std::unique_ptr<EmbreeTracer> embree;
+  BvhArrays bvh;
+  std::unique_ptr<GlContext> gl;
+  std::unique_ptr<ShaderLibrary> shaders;
+  std::unique_ptr<GlPyramid> gpuPyramid;
+  std::unique_ptr<GpuBvh> gpuBvh;
+  nlohmann::json build = nlohmann::json::object();  // the structures' sizes and build times
+};
+
+TraverseSetup setupTraverse(const TraverseOptions& o, const VoxelizerInfo& vox, glm::uvec3 res) {
+  TraverseSetup t;
+  t.scene = loadScene(o.scene);
+  t.flat = flatten(t.scene);
+  if (vox.needsGl || !o.noGl) {
+    t.gl = GlContext::create(parseGlBackend(o.gl));
+    t.shaders = std::make_unique<ShaderLibrary>();
+  }
+  VoxelizeRequest req;
+  req.scene = &t.scene;
+  req.box = t.box = fitGridBox(t.scene, res);
+  req.threads = o.threads;
+  req.atlasCacheDir = defaultAtlasCacheDir();
+  req.gl = t.gl.get();
+  req.shaders = t.shaders.get();
+  Profiler buildProf(t.gl != nullptr);
+  nlohmann::json voxStats;
+  BinaryGrid grid = vox.run(req, buildProf, voxStats);
+  auto t0 = std::chrono::steady_clock::now();
+  t.pyramid = std::make_unique<OrMipPyramid>(grid);
+  t.build["pyramid_build_cpu_ms"] = msSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  t.embree = std::make_unique<EmbreeTracer>(t.flat);
+  t.build["embree_build_ms"] = msSince(t0);
+  t0 = std::chrono::steady_clock::now();
+  t.bvh = buildBvh(t.flat);
+  t.build["bvh_build_ms"] = msSince(t0);
+  t.build["bvh"] = t.bvh.describe();
+  buildProf.resolve(true);
+  t.build["voxelizer_stats"] = {{"voxels_set", grid.count()}, {"timings_ms", buildProf.timingsMs()}};
+  t.build["pyramid_levels"] = t.pyramid->levels();
+  if (!o.noGl) {
+    t.gpuPyramid = std::make_unique<GlPyramid>(*t.pyramid);
+    t.gpuBvh = std::make_unique<GpuBvh>(t.bvh);
+  }
+  return t;
+}
+
+// One ray length: every tracer on the CPU (the fastest of --repeat runs) and in GLSL, each against
+// the DDA oracle and Embree's exact hits.
+nlohmann::json benchRayLength(TraverseSetup& t, const TraverseOptions& o, std::vector<std::string> tracers,
+                              float maxDist, int threads) {
+  const glm::vec3 vs = t.box.voxelSize();
+  const float voxelSize = (vs.x + vs.y + vs.z) / 3.0f;  // "voxel sizes" in the error columns
+  RayPopulation pop;
+  pop.count = o.rays;
+  pop.seed = o.seed;
+  pop.tmax = std::isinf(maxDist) ? INFINITY : maxDist * glm::length(t.box.extent);
+  pop.offset = o.offset * glm::length(vs);
+  pop.viewpoint = t.scene.camera.position;
+  const std::vector<TraceRay> rays = surfaceRays(t.flat, pop);
+  TracerInputs in;
+  in.pyramid = t.pyramid.get();
+  in.embree = t.embree.get();
+  in.bvh = &t.bvh;
+  std::map<std::string, std::vector<TraceResult>> results;
+  std::map<std::string, double> cpuMs, glMs;
+  std::map<std::string, bool> glMatchesCpu;
+  for (const std::string& name : {std::string("dda"), std::string("embree")})  // the references, always run
+    if (std::find(tracers.begin(), tracers.end(), name) == tracers.end()) tracers.push_back(name);
+  for (const std::string& name : tracers) {
+    auto tracer = createTracer(name, in);
+    double best = 1e300;
+    for (int i = 0; i < o.repeat; ++i) {
+      auto t1 = std::chrono::steady_clock::now();
+      tracer->traceBatch(rays, results[name], threads);
+      best = std::min(best, msSince(t1));
+    }
+    cpuMs[name] = best;
+    if (o.noGl || !findTracer(name).glsl) continue;
+    Profiler warm(true), prof(true);
+    traceRaysGl(*t.gpuPyramid, *t.shaders, name, std::vector<TraceRay>(rays.begin(), rays.begin() + 1), warm,
+                0, t.gpuBvh.get());
+    std::vector<TraceResult> r = traceRaysGl(*t.gpuPyramid, *t.shaders, name, rays, prof, 0, t.gpuBvh.get());
+    prof.resolve(true);
+    glMs[name] = prof.timingsMs()["trace_" + name].get<double>();
+    bool same = true;
+    const auto& c = results[name];
+    for (size_t i = 0; i < r.size() && same; ++i)
+      same = r[i].hit == c[i].hit && r[i].steps == c[i].steps &&
+             (!r[i].hit || (r[i].t == c[i].t && r[i].voxel == c[i].voxel));
+    glMatchesCpu[name] = same;
+  }
+  if (t.gl && t.gl->errorCount() > 0) fail("bench traverse: ", t.gl->errorCount(), " GL error(s)");
+  nlohmann::json per = nlohmann::json::object();
+  for (const std::string& name : tracers) {
+    const auto& r = results[name];
+    Agreement dda = agreement(r, results["dda"], voxelSize);
+    Agreement emb = agreement(r, results["embree"], voxelSize);
+    size_t hits = 0;
+    uint64_t steps = 0;
+    for (auto& x : r) {
+      hits += x.hit;
+      steps += x.steps;
+    }
+    nlohmann::json j;
+    j["mrays_per_s"] = double(rays.size()) / (cpuMs[name] * 1e3);
+    j["cpu_ms"] = cpuMs[name];
+    if (glMs.count(name)) {
+      j["gl_mrays_per_s"] = double(rays.size()) / (glMs[name] * 1e3);
+      j["gl_ms"] = glMs[name];
+      j["gl_equals_cpu"] = glMatchesCpu[name];
+    }
+    j["hit_rate"] = double(hits) / double(rays.size());
+    j["mean_steps"] = double(steps) / double(rays.size());
+    j["agree_dda"] = dda.sameVoxel;
+    j["agree_dda_hit"] = dda.sameHit;
+    j["agree_embree_hit"] = emb.sameHit;
+    j["dist_err_mean_voxels"] = emb.errMean;
+    j["dist_err_p95_voxels"] = emb.errP95;
+    j["dist_err_max_voxels"] = emb.errMax;
+    per[name] = j;
+  }
+  return {{"max_dist", std::isinf(maxDist) ? nlohmann::json("inf") : nlohmann::json(maxDist)},
+          {"max_dist_world", std::isinf(pop.tmax) ? nlohmann::json("inf") : nlohmann::json(pop.tmax)},
+          {"offset_world", pop.offset},
+          {"voxel_size", voxelSize},
+          {"rays", rays.size()},
+          {"tracers", per}};
+}
+
+// Where the GLSL hierarchical tracer stops being faster than the GLSL BVH as the rays grow: the
+// ratio of their rays per second interpolated in log(length) between the lengths around 1; null
+// when it does not cross 1 inside the lengths measured (or a tracer did not run in GLSL).
+nlohmann::json crossover(const nlohmann::json& lengths) {
+  double prevL = 0, prevR = 0;
+  bool have = false;
+  for (auto& l : lengths) {
+    const auto& tr = l["tracers"];
+    if (!l["max_dist"].is_number() || !tr.contains("hierarchical") || !tr.contains("bvh") ||
+        !tr["hierarchical"].contains("gl_mrays_per_s") || !tr["bvh"].contains("gl_mrays_per_s"))
+      continue;
+    const double len = l["max_dist"].get<double>();
+    const double r =
+        tr["hierarchical"]["gl_mrays_per_s"].get<double>() / tr["bvh"]["gl_mrays_per_s"].get<double>();
+    if (have && (prevR - 1.0) * (r - 1.0) <= 0.0 && prevR != r) {
+      const double f = (1.0 - prevR) / (r - prevR);
+      return std::exp(std::log(prevL) + f * (std::log(len) - std::log(prevL)));
+    }
+    prevL = len, prevR = r, have = true;
+  }
+  return nullptr;
+}
+
+void printTraverse(const nlohmann::json& s, const TraverseOptions& o) {
+  const auto& r = s["resolution"];
+  std::printf("%s, %dx%dx%d (%s), %zu rays per length, %d threads, %s\n", o.scene.c_str(), r[0].get<int>(),
+              r[1].get<int>(), r[2].get<int>(), s["voxelizer"].get<std::string>().c_str(), o.rays,
+              s["threads"].get<int>(), s["gl_renderer"].get<std::string>().c_str());
+  for (auto& l : s["lengths"]) {
+    std::printf("max-dist %s x diagonal (%s world)\n", l["max_dist"].dump().c_str(),
+                l["max_dist_world"].dump().c_str());
+    std::printf("%-13s %10s %10s %8s %9s %10s %10s %10s\n", "tracer", "Mrays/s", "GL Mrays/s", "hits",
+                "agree_dda", "agree_emb", "err_mean", "err_p95");
+    for (auto& [name, j] : l["tracers"].items()) {
+      char glRate[32] = "-";
+      if (j.contains("gl_mrays_per_s"))
+        std::snprintf(glRate, sizeof glRate, "%.3f", j["gl_mrays_per_s"].get<double>());
+      std::printf("%-13s %10.3f %10s %8.4f %9.5f %10.5f %10.3f %10.3f\n", name.c_str(),
+                  j["mrays_per_s"].get<double>(), glRate, j["hit_rate"].get<double>(),
+                  j["agree_dda"].get<double>(), j["agree_embree_hit"].get<double>(),
+                  j["dist_err_mean_voxels"].get<double>(), j["dist_err_p95_voxels"].get<double>());
+    }
+  }
+  if (s.contains("crossover_max_dist"))
+    std::printf("GLSL hierarchical / bvh crossover: %s x diagonal\n", s["crossover_max_dist"].dump().c_str());
+}
+
 void addTraverseBench(CLI::App& bench) {
   auto* cmd =
       bench.add_subcommand("traverse", "Tracers on the near-field ray population: speed against agreement");
-  struct Options {
-    std::string scene = "builtin:cornell", voxels = "256", voxelizer = "atlas",
-                tracers = "hierarchical,dda,march,embree", maxDist = "0.1", gl = "auto", stats;
-    size_t rays = 1000000;
-    int threads = 0, repeat = 3;
-    uint32_t seed = 1;
-    float offset = 1.0f;
-    bool json = false, noGl = false;
-  };
-  auto o = std::make_shared<Options>();
+  auto o = std::make_shared<TraverseOptions>();
   cmd->add_option("--scene", o->scene, "builtin:cornell, a scene .json, or a model file")
       ->capture_default_str();
   cmd->add_option("--voxels", o->voxels, "N (N×N×N) or WxHxD")->capture_default_str();
   cmd->add_option("--voxelizer", o->voxelizer, "which voxelizer builds the grid")->capture_default_str();
   cmd->add_option("--tracers", o->tracers, "comma-separated tracers to run")->capture_default_str();
-  cmd->add_option("--rays", o->rays, "number of rays")->capture_default_str();
-  cmd->add_option("--max-dist", o->maxDist, "ray length as a fraction of the scene diagonal, or 'inf'")
+  cmd->add_option("--rays", o->rays, "number of rays (per ray length)")->capture_default_str();
+  cmd->add_option("--max-dist", o->maxDist,
+                  "ray length as a fraction of the scene diagonal, or 'inf'; a comma-separated list sweeps "
+                  "the lengths and reports where GLSL hierarchical and bvh cross")
       ->capture_default_str();
   cmd->add_option("--offset", o->offset, "ray start offset along the normal, in voxel diagonals")
       ->capture_default_str();
@@ -123,161 +311,41 @@ void addTraverseBench(CLI::App& bench) {
     if (o->rays < 1 || o->rays > 100000000) fail("--rays ", o->rays, ": must be in [1, 100000000]");
     if (o->repeat < 1 || o->repeat > 100) fail("--repeat ", o->repeat, ": must be in [1, 100]");
     if (!(o->offset >= 0.0f && o->offset <= 100.0f)) fail("--offset ", o->offset, ": must be in [0, 100]");
-    const float maxDist = parseMaxDist(o->maxDist);
-    std::vector<std::string> tracers = splitList(o->tracers);
+    std::vector<float> lengths;
+    for (auto& l : splitList(o->maxDist)) lengths.push_back(parseMaxDist(l));
+    if (lengths.empty()) fail("--max-dist '", o->maxDist, "': empty list");
+    const std::vector<std::string> tracers = splitList(o->tracers);
     if (tracers.empty()) fail("--tracers '", o->tracers, "': empty list");
     for (auto& t : tracers) findTracer(t, "--tracers");
     const VoxelizerInfo& vox = findVoxelizer(o->voxelizer);
     const glm::uvec3 res = parseResolution(o->voxels);
     checkGridMemory(res, 2);
-    Scene scene = loadScene(o->scene);
-    FlatScene flat = flatten(scene);
-
-    std::unique_ptr<GlContext> gl;
-    std::unique_ptr<ShaderLibrary> shaders;
-    if (vox.needsGl || !o->noGl) {
-      gl = GlContext::create(parseGlBackend(o->gl));
-      shaders = std::make_unique<ShaderLibrary>();
-    }
-    nlohmann::json s;
-    VoxelizeRequest req;
-    req.scene = &scene;
-    req.box = fitGridBox(scene, res);
-    req.threads = o->threads;
-    req.atlasCacheDir = defaultAtlasCacheDir();
-    req.gl = gl.get();
-    req.shaders = shaders.get();
-    Profiler buildProf(gl != nullptr);
-    nlohmann::json voxStats;
-    BinaryGrid grid = vox.run(req, buildProf, voxStats);
-    auto t0 = std::chrono::steady_clock::now();
-    OrMipPyramid pyramid(grid);
-    const double pyramidMs = msSince(t0);
-    t0 = std::chrono::steady_clock::now();
-    EmbreeTracer embree(flat);
-    const double embreeBuildMs = msSince(t0);
-    buildProf.resolve(true);
-
-    const glm::vec3 vs = req.box.voxelSize();
-    const float voxelSize = (vs.x + vs.y + vs.z) / 3.0f;  // "voxel sizes" in the error columns
-    const float diag = glm::length(req.box.extent);
-    RayPopulation pop;
-    pop.count = o->rays;
-    pop.seed = o->seed;
-    pop.tmax = std::isinf(maxDist) ? INFINITY : maxDist * diag;
-    pop.offset = o->offset * glm::length(vs);
-    pop.viewpoint = scene.camera.position;
-    std::vector<TraceRay> rays = surfaceRays(flat, pop);
-
-    TracerInputs in;
-    in.pyramid = &pyramid;
-    in.embree = &embree;
+    TraverseSetup setup = setupTraverse(*o, vox, res);
     const int threads = resolveThreads(o->threads);
-    std::map<std::string, std::vector<TraceResult>> results;
-    std::map<std::string, double> cpuMs, glMs;
-    for (const std::string& name : {std::string("dda"), std::string("embree")})  // the references, always run
-      if (std::find(tracers.begin(), tracers.end(), name) == tracers.end()) tracers.push_back(name);
-    for (const std::string& name : tracers) {
-      auto tracer = createTracer(name, in);
-      double best = 1e300;
-      for (int i = 0; i < o->repeat; ++i) {
-        auto t1 = std::chrono::steady_clock::now();
-        tracer->traceBatch(rays, results[name], threads);
-        best = std::min(best, msSince(t1));
-      }
-      cpuMs[name] = best;
-    }
-    std::map<std::string, bool> glMatchesCpu;
-    if (!o->noGl) {
-      GlPyramid gpuPyramid(pyramid);
-      for (const std::string& name : tracers) {
-        if (!findTracer(name).glsl) continue;
-        Profiler warm(true), prof(true);
-        traceRaysGl(gpuPyramid, *shaders, name, std::vector<TraceRay>(rays.begin(), rays.begin() + 1), warm);
-        std::vector<TraceResult> r = traceRaysGl(gpuPyramid, *shaders, name, rays, prof);
-        prof.resolve(true);
-        glMs[name] = prof.timingsMs()["trace_" + name].get<double>();
-        bool same = true;
-        const auto& c = results[name];
-        for (size_t i = 0; i < r.size() && same; ++i)
-          same = r[i].hit == c[i].hit && r[i].steps == c[i].steps &&
-                 (!r[i].hit || (r[i].t == c[i].t && r[i].voxel == c[i].voxel));
-        glMatchesCpu[name] = same;
-      }
-      if (gl->errorCount() > 0) fail("bench traverse: ", gl->errorCount(), " GL error(s)");
-    }
-
+    nlohmann::json s;
     s["bench"] = "traverse";
     s["scene"] = o->scene;
     s["resolution"] = {res.x, res.y, res.z};
     s["voxelizer"] = vox.name;
-    s["voxelizer_stats"] = {{"voxels_set", grid.count()}, {"timings_ms", buildProf.timingsMs()}};
-    s["pyramid_levels"] = pyramid.levels();
-    s["pyramid_build_cpu_ms"] = pyramidMs;
-    s["embree_build_ms"] = embreeBuildMs;
-    s["rays"] = rays.size();
-    s["max_dist"] = o->maxDist;
-    s["max_dist_world"] = std::isinf(pop.tmax) ? nlohmann::json("inf") : nlohmann::json(pop.tmax);
-    s["offset_world"] = pop.offset;
-    s["voxel_size"] = voxelSize;
+    s.update(setup.build);
     s["threads"] = threads;
     s["seed"] = o->seed;
-    s["gl_renderer"] = gl ? gl->renderer() : "none";
+    s["gl_renderer"] = setup.gl ? setup.gl->renderer() : "none";
     s["cpu_threads_available"] = std::thread::hardware_concurrency();
     s["git_revision"] = gitRevision();
-    nlohmann::json per = nlohmann::json::object();
-    for (const std::string& name : tracers) {
-      const auto& r = results[name];
-      Agreement dda = agreement(r, results["dda"], voxelSize);
-      Agreement emb = agreement(r, results["embree"], voxelSize);
-      size_t hits = 0;
-      uint64_t steps = 0;
-      for (auto& x : r) {
-        hits += x.hit;
-        steps += x.steps;
-      }
-      nlohmann::json j;
-      j["mrays_per_s"] = double(rays.size()) / (cpuMs[name] * 1e3);
-      j["cpu_ms"] = cpuMs[name];
-      if (glMs.count(name)) {
-        j["gl_mrays_per_s"] = double(rays.size()) / (glMs[name] * 1e3);
-        j["gl_ms"] = glMs[name];
-        j["gl_equals_cpu"] = glMatchesCpu[name];
-      }
-      j["hit_rate"] = double(hits) / double(rays.size());
-      j["mean_steps"] = double(steps) / double(rays.size());
-      j["agree_dda"] = dda.sameVoxel;
-      j["agree_dda_hit"] = dda.sameHit;
-      j["agree_embree_hit"] = emb.sameHit;
-      j["dist_err_mean_voxels"] = emb.errMean;
-      j["dist_err_p95_voxels"] = emb.errP95;
-      j["dist_err_max_voxels"] = emb.errMax;
-      per[name] = j;
+    s["lengths"] = nlohmann::json::array();
+    for (float len : lengths) s["lengths"].push_back(benchRayLength(setup, *o, tracers, len, threads));
+    if (lengths.size() == 1) {  // one length: its fields at the top, as before the sweep
+      for (auto& [k, v] : s["lengths"][0].items()) s[k] = v;
+      s["max_dist"] = o->maxDist;
+    } else {
+      s["crossover_max_dist"] = crossover(s["lengths"]);
     }
-    s["tracers"] = per;
-    if (!o->stats.empty()) {
-      writeJsonFile(s, o->stats);
-    }
-    if (o->json) {
+    if (!o->stats.empty()) writeJsonFile(s, o->stats);
+    if (o->json)
       std::printf("%s\n", jsonText(s, 2).c_str());
-      return;
-    }
-    std::printf("%s, %ux%ux%u (%s), %zu rays, max-dist %s (%.4g world), %d threads, %s\n", o->scene.c_str(),
-                res.x, res.y, res.z, vox.name.c_str(), rays.size(), o->maxDist.c_str(), double(pop.tmax),
-                threads, gl ? gl->renderer().c_str() : "no GL");
-    std::printf("%-13s %10s %10s %8s %9s %10s %10s %10s\n", "tracer", "Mrays/s", "GL Mrays/s", "hits",
-                "agree_dda", "agree_emb", "err_mean", "err_p95");
-    for (const std::string& name : tracers) {
-      const auto& j = per[name];
-      std::printf("%-13s %10.3f %10s %8.4f %9.5f %10.5f %10.3f %10.3f\n", name.c_str(),
-                  j["mrays_per_s"].get<double>(),
-                  j.contains("gl_mrays_per_s")
-                      ? std::to_string(j["gl_mrays_per_s"].get<double>()).substr(0, 8).c_str()
-                      : "-",
-                  j["hit_rate"].get<double>(), j["agree_dda"].get<double>(),
-                  j["agree_embree_hit"].get<double>(), j["dist_err_mean_voxels"].get<double>(),
-                  j["dist_err_p95_voxels"].get<double>());
-    }
+    else
+      printTraverse(s, *o);
   });
 }
 

@@ -213,6 +213,21 @@ TEST(Cli, BenchTraverseReportsEveryTracer) {
   EXPECT_EQ(s["tracers"]["embree"]["agree_embree_hit"], 1.0);
   EXPECT_EQ(s["tracers"]["hierarchical"]["gl_equals_cpu"], true);
   EXPECT_EQ(s["resolution"], nlohmann::json({128, 128, 128}));
+  // The exact BVH (tracer=bvh): Embree's hits, and GLSL == C++.
+  EXPECT_EQ(s["tracers"]["bvh"]["agree_embree_hit"], 1.0);
+  EXPECT_EQ(s["tracers"]["bvh"]["gl_equals_cpu"], true);
+  EXPECT_EQ(s["bvh"]["triangles"], 30);
+  // A sweep of ray lengths: one entry each, and where the GLSL hierarchical and bvh tracers cross.
+  CliRun w =
+      vgi("bench traverse --voxels 128 --rays 2000 --repeat 1 --tracers hierarchical,bvh --max-dist "
+          "0.01,0.3,inf --json --stats " +
+          tmp("btw.json"));
+  ASSERT_EQ(w.code, 0) << w.output;
+  nlohmann::json sw = nlohmann::json::parse(std::ifstream(tmp("btw.json")));
+  ASSERT_EQ(sw["lengths"].size(), 3u);
+  EXPECT_EQ(sw["lengths"][2]["max_dist"], "inf");
+  EXPECT_TRUE(sw["lengths"][1]["tracers"]["bvh"].contains("gl_mrays_per_s"));
+  EXPECT_TRUE(sw.contains("crossover_max_dist"));
   CliRun a = vgi("bench traverse --max-dist -1");
   EXPECT_EQ(a.code, 2);
   EXPECT_NE(a.output.find("--max-dist -1"), std::string::npos) << a.output;
