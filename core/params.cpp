@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <type_traits>
 
 #include "core/error.h"
@@ -61,6 +62,16 @@ T parseNumber(const std::string& key, const std::string& origin, const std::stri
   if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(x))
     fail("parameter '", key, "' (", origin, "): '", text, "' is not ",
          integral ? "an integer" : "a finite number");
+  if constexpr (!std::is_integral_v<T>) {
+    // In the parameter's own precision: finite as a double is not enough, and a bound compared in
+    // double would refuse itself (0.05 parses to a double just below the float 0.05f).
+    if (!(std::abs(x) <= double(std::numeric_limits<T>::max())))
+      fail("parameter '", key, "' (", origin, "): '", text, "' (", x, ") is not a finite 32-bit float");
+    const T v = T(x);
+    if (v < lo || v > hi)
+      fail("parameter '", key, "' (", origin, "): ", v, " is out of range [", lo, ", ", hi, "]");
+    return v;
+  }
   if (x < double(lo) || x > double(hi))
     fail("parameter '", key, "' (", origin, "): ", x, " is out of range [", lo, ", ", hi, "]");
   return T(x);

@@ -23,6 +23,38 @@ using nlohmann::json;
 
 namespace vgi {
 
+// Where a scene's numbers must lie so that every method computes finite
+// values with them: coordinates well inside Embree's valid ray range (|x| <
+// 1.8e18) and far from float overflow in squared distances; light and
+// emitted power such that sums over 10⁶ samples stay finite in float.
+constexpr float kMaxCoordinate = 1e12f, kMaxRadiometric = 1e20f;
+
+void checkSceneRanges(const Scene& scene, const std::string& origin) {
+  auto coordinate = [&](glm::vec3 v, const std::string& what) {
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(v[k]) <= kMaxCoordinate))
+        fail(origin, ": ", what, " (", v.x, ", ", v.y, ", ", v.z, ") lies beyond ±", kMaxCoordinate,
+             " scene units (coordinates that large lose all precision in float)");
+  };
+  auto power = [&](glm::vec3 v, const std::string& what) {
+    for (int k = 0; k < 3; ++k)
+      if (!(v[k] <= kMaxRadiometric))
+        fail(origin, ": ", what, " (", v.x, ", ", v.y, ", ", v.z, ") exceeds ", kMaxRadiometric);
+  };
+  Bounds b = scene.bounds();
+  coordinate(b.lo, "the geometry's bounding-box corner");
+  coordinate(b.hi, "the geometry's bounding-box corner");
+  coordinate(scene.camera.position, "camera.position");
+  coordinate(scene.camera.target, "camera.target");
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const std::string where = "lights[" + std::to_string(i) + "]";
+    coordinate(scene.lights[i].position, where + ".position");
+    power(scene.lights[i].intensity, where + " intensity");
+  }
+  for (auto& m : scene.materials) power(m.emission, "material '" + m.name + "' emission");
+  power(scene.environment.color * scene.environment.scale, "environment colour x scale");
+}
+
 namespace {
 
 bool finite3(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -216,38 +248,6 @@ Camera defaultCamera(const Bounds& b) {
   cam.target = c;
   cam.position = c + glm::vec3(0.0f, 0.25f * r, r / std::tan(glm::radians(22.5f)) * 1.05f);
   return cam;
-}
-
-// Where a scene's numbers must lie so that every method computes finite
-// values with them: coordinates well inside Embree's valid ray range (|x| <
-// 1.8e18) and far from float overflow in squared distances; light and
-// emitted power such that sums over 10⁶ samples stay finite in float.
-constexpr float kMaxCoordinate = 1e12f, kMaxRadiometric = 1e20f;
-
-void checkSceneRanges(const Scene& scene, const std::string& origin) {
-  auto coordinate = [&](glm::vec3 v, const std::string& what) {
-    for (int k = 0; k < 3; ++k)
-      if (!(std::abs(v[k]) <= kMaxCoordinate))
-        fail(origin, ": ", what, " (", v.x, ", ", v.y, ", ", v.z, ") lies beyond ±", kMaxCoordinate,
-             " scene units (coordinates that large lose all precision in float)");
-  };
-  auto power = [&](glm::vec3 v, const std::string& what) {
-    for (int k = 0; k < 3; ++k)
-      if (!(v[k] <= kMaxRadiometric))
-        fail(origin, ": ", what, " (", v.x, ", ", v.y, ", ", v.z, ") exceeds ", kMaxRadiometric);
-  };
-  Bounds b = scene.bounds();
-  coordinate(b.lo, "the geometry's bounding-box corner");
-  coordinate(b.hi, "the geometry's bounding-box corner");
-  coordinate(scene.camera.position, "camera.position");
-  coordinate(scene.camera.target, "camera.target");
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    const std::string where = "lights[" + std::to_string(i) + "]";
-    coordinate(scene.lights[i].position, where + ".position");
-    power(scene.lights[i].intensity, where + " intensity");
-  }
-  for (auto& m : scene.materials) power(m.emission, "material '" + m.name + "' emission");
-  power(scene.environment.color * scene.environment.scale, "environment colour x scale");
 }
 
 void finishScene(Scene& scene, const std::string& origin, bool haveLights, bool haveCamera) {

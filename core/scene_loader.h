@@ -34,6 +34,10 @@
 namespace vgi {
 
 Scene loadScene(const std::string& spec);
+// Throws, naming `origin`, if a coordinate (geometry bounds, camera, light) or a power (lights,
+// emission, environment) lies outside what every method computes finitely with — the checks a
+// scene file gets, for whatever changes a loaded scene (--camera, --light).
+void checkSceneRanges(const Scene& scene, const std::string& origin);
 
 // Reads one model file through assimp and appends its meshes/materials.
 // Returns the number of meshes appended.

@@ -220,10 +220,14 @@ RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options
   checkRenderOptions(opt_);
   findMethod(opt_.method);  // a misspelt --method is named before the scene is loaded
   scene_ = loadScene(opt_.scene);
-  if (opt_.camera) scene_.camera = *opt_.camera;
+  if (opt_.camera) {
+    scene_.camera = *opt_.camera;
+    checkSceneRanges(scene_, "--camera '" + cameraText(*opt_.camera) + "'");
+  }
   for (auto& [index, position] : opt_.lightPositions) {
     try {
       placeLight(scene_.lights, index, position);
+      checkSceneRanges(scene_, "the moved light");
     } catch (const Error& e) {
       fail("--light ", lightPositionText(index, position), ": ", e.what(), " in '", opt_.scene, "'");
     }

@@ -78,6 +78,20 @@ TEST(BadInputCli, NumbersBeyondFloatOrSceneRangeAreRefusedWithTheKey) {
   // The reference (Embree asserts on rays that start that far out) says the same.
   expectRefused(renderBad("huge_camera.json", "--method reference"), {"camera.position[0]"});
   expectRefused(vgi("render --set radius=1e39 --size 8x8 -o " + tmp("r.exr")), {"radius", "1e+39"});
+  // --camera and --light get the scene file's range checks (a camera 1e20 out aborted inside Embree).
+  for (const char* camera : {"1e20,0.27,-0.8,0.278,0.273,0,0,1,0", "0,-2e12,0,0.278,0.273,0,0,0,1",
+                             "0.278,0.273,-0.8,3e12,0.273,0,0,1,0"})
+    for (const char* method : {"reference --set integrator=direct", "direct"})
+      expectRefused(vgi(std::string("render --method ") + method + " --camera " + camera +
+                        " --size 8x8 --spp 1 --quiet -o " + tmp("c.exr")),
+                    {"--camera", "lies beyond"});
+  for (const char* light : {"0=1e15,0,0", "0=0,-3e13,0.2"})
+    expectRefused(vgi(std::string("render --method direct --light ") + light +
+                      " --size 8x8 --spp 1 --quiet -o " + tmp("l.exr")),
+                  {"--light", "lies beyond"});
+  // A float parameter finite as a double but not as a float is refused by name.
+  expectRefused(vgi("render --method vct --set step=1e300 --size 8x8 -o " + tmp("v.exr")),
+                {"step", "not a finite 32-bit float"});
 }
 
 TEST(BadInputCli, NamesAndPathsThatAreNotUtf8KeepTheStatsValid) {

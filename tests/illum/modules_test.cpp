@@ -342,3 +342,46 @@ TEST(Modules, TracerBvhIsExactVisibilityForEveryVoxelTracingMethod) {
 }
 
 }  // namespace vgi
+
+namespace vgi {
+
+// Every int and float parameter of every method accepts both ends of its
+// documented range (a float bound compared in double refused itself: vct's
+// step=0.05), and a float beyond 32 bits is refused by name, not read as ∞.
+TEST(Modules, EveryNumberParameterAcceptsBothEndsOfItsRange) {
+  const Scene scene = loadScene("builtin:cornell");
+  int checked = 0;
+  for (const MethodInfo& info : methodRegistry()) {
+    ParamSet defaults;
+    info.create(defaults, scene);
+    for (const ParamDoc& d : defaults.docs()) {
+      if ((d.type != "float" && d.type != "int") || !(d.lo < d.hi)) continue;
+      for (double bound : {d.lo, d.hi}) {
+        char text[64];
+        if (d.type == "float")
+          std::snprintf(text, sizeof text, "%.9g", double(float(bound)));
+        else
+          std::snprintf(text, sizeof text, "%lld", (long long)bound);
+        ParamSet p;
+        p.setFromString(d.key + "=" + text);
+        try {
+          info.create(p, scene);
+        } catch (const Error& e) {
+          // Another check may refuse an extreme (memory, a combination): never the range itself.
+          const std::string m = e.what();
+          EXPECT_EQ(m.find("out of range"), std::string::npos)
+              << info.name << " " << d.key << "=" << text << ": " << m;
+        }
+        ++checked;
+      }
+      if (d.type == "float") {
+        ParamSet p;
+        p.setFromString(d.key + "=1e300");
+        test::expectError([&] { info.create(p, scene); }, {d.key, "1e300"});
+      }
+    }
+  }
+  EXPECT_GT(checked, 100);
+}
+
+}  // namespace vgi
