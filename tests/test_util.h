@@ -67,6 +67,23 @@ inline void meanAndVariance(const std::vector<double>& v, double& mean, double& 
   var /= double(v.size() - 1);
 }
 
+// Appends to out[b] the mean (over pixels and colour channels) of each block×block block b of img
+// (row-major blocks; out sized to the block count) — one sample per seed for the block-mean t-tests.
+inline void addBlockMeans(const Image& img, int block, std::vector<std::vector<double>>& out) {
+  const int nx = img.width / block, ny = img.height / block;
+  out.resize(size_t(nx * ny));
+  for (int by = 0; by < ny; ++by)
+    for (int bx = 0; bx < nx; ++bx) {
+      double s = 0;
+      for (int y = by * block; y < (by + 1) * block; ++y)
+        for (int x = bx * block; x < (bx + 1) * block; ++x) {
+          const glm::vec3 p = img.at(x, y);
+          s += (p.x + p.y + p.z) / 3.0;
+        }
+      out[size_t(by * nx + bx)].push_back(s / (block * block));
+    }
+}
+
 inline int addMaterial(Scene& s, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
   Material m;
   m.name = "m" + std::to_string(s.materials.size());

@@ -110,6 +110,12 @@ BvhArrays buildBvh(const FlatScene& scene, const BvhBuildOptions& o) {
     fail("the BVH addresses at most ", std::numeric_limits<uint32_t>::max() / 3, " triangles; the scene has ",
          n);
   BvhArrays out;
+  out.normals.reserve(3 * n);
+  for (size_t t = 0; t < n; ++t) {
+    const glm::vec3* P = &scene.positions[3 * t];
+    const glm::vec3 ng = glm::normalize(glm::cross(P[1] - P[0], P[2] - P[0]));  // as the CPU reference
+    for (int k = 0; k < 3; ++k) out.normals.emplace_back(scene.normals[3 * t + size_t(k)], ng[k]);
+  }
   std::vector<RTCBuildPrimitive> prims;
   prims.reserve(n);
   for (size_t t = 0; t < n; ++t) {
@@ -197,12 +203,12 @@ shared::BvhHit traceBvhCpu(const BvhArrays& bvh, glm::vec3 origin, glm::vec3 dir
 
 GpuBvh::GpuBvh(const BvhArrays& bvh) { upload(bvh); }
 
-GpuBvh::~GpuBvh() { glDeleteBuffers(2, buffers_); }
+GpuBvh::~GpuBvh() { glDeleteBuffers(3, buffers_); }
 
 void GpuBvh::upload(const BvhArrays& bvh) {
-  const std::vector<glm::vec4>* arrays[2] = {&bvh.nodes, &bvh.tris};
+  const std::vector<glm::vec4>* arrays[3] = {&bvh.nodes, &bvh.tris, &bvh.normals};
   bytes_ = 0;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < 3; ++i) {
     // An empty scene has no triangles: a buffer of one vec4 keeps the binding valid.
     const size_t bytes = std::max<size_t>(arrays[i]->size(), 1) * sizeof(glm::vec4);
     if (bytes != sizes_[i]) {
@@ -221,6 +227,7 @@ void GpuBvh::upload(const BvhArrays& bvh) {
 void GpuBvh::bind() const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_BVH_NODES, buffers_[0]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_BVH_TRIS, buffers_[1]);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_BVH_NORMALS, buffers_[2]);
 }
 
 }  // namespace vgi

@@ -24,10 +24,13 @@ struct BvhBuildOptions {
 struct BvhArrays {
   std::vector<glm::vec4> nodes;  // 4 per node (trace_bvh.glsl)
   std::vector<glm::vec4> tris;   // 3 per triangle, in leaf order
+  // 3 per triangle, in the flattened scene's order (BvhHit::triangle): the corners' shading
+  // normals in xyz, the unit geometric normal (corner 0 → 1 × 0 → 2) in the three w.
+  std::vector<glm::vec4> normals;
   size_t leaves = 0;
   size_t dropped = 0;  // triangles of zero area, left out
   unsigned depth = 0;  // of the deepest leaf (root = 1)
-  size_t bytes() const { return (nodes.size() + tris.size()) * sizeof(glm::vec4); }
+  size_t bytes() const { return (nodes.size() + tris.size() + normals.size()) * sizeof(glm::vec4); }
   nlohmann::json describe() const;  // nodes, leaves, triangles, depth, bytes
 };
 
@@ -37,7 +40,7 @@ BvhArrays buildBvh(const FlatScene& scene, const BvhBuildOptions& options = {});
 // The shared kernel on the CPU (what the GLSL pass runs).
 shared::BvhHit traceBvhCpu(const BvhArrays& bvh, glm::vec3 origin, glm::vec3 dir, float tmax, bool anyHit);
 
-// The arrays on the GPU, bound at BINDING_BVH_NODES / BINDING_BVH_TRIS.
+// The arrays on the GPU, bound at BINDING_BVH_NODES / BINDING_BVH_TRIS / BINDING_BVH_NORMALS.
 class GpuBvh {
  public:
   explicit GpuBvh(const BvhArrays& bvh);
@@ -49,8 +52,8 @@ class GpuBvh {
   size_t bytes() const { return bytes_; }
 
  private:
-  unsigned buffers_[2] = {0, 0};
-  size_t sizes_[2] = {0, 0}, bytes_ = 0;
+  unsigned buffers_[3] = {0, 0, 0};
+  size_t sizes_[3] = {0, 0, 0}, bytes_ = 0;
 };
 
 }  // namespace vgi

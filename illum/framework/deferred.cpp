@@ -52,6 +52,17 @@ FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int fr
   return c;
 }
 
+PinholeView pinholeView(const Camera& cam, int W, int H) {
+  PinholeView v;
+  v.position = cam.position;
+  v.fwd = glm::normalize(cam.target - cam.position);
+  v.right = glm::normalize(glm::cross(v.fwd, cam.up));
+  v.up = glm::cross(v.right, v.fwd);
+  v.tanHalf = std::tan(glm::radians(cam.fovYDeg) * 0.5f);
+  v.aspect = float(W) / float(H);
+  return v;
+}
+
 GBuffer::GBuffer(int W, int H, ShaderLibrary& shaders) : w_(W), h_(H), shaders_(shaders) {
   GLint maxTex = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);

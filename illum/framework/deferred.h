@@ -27,6 +27,17 @@ struct FrameCamera {
 // same k samples (the viewer's screenshot after k frames is `vgi render --spp k`).
 FrameCamera frameCamera(const Camera& camera, const Bounds& bounds, int width, int height, int frame);
 
+// The exact methods' pinhole camera (reference, reference_gl): the ray through
+// image point (x, y) (pixels, rows top-down) is normalize(fwd + px·right + py·up)
+// with px = (2x/W − 1)·tanHalf·aspect, py = (1 − 2y/H)·tanHalf. Built from the
+// camera's own vectors, not by inverting a projection (whose near-plane points
+// lose the direction's precision: a pixel's worth at 128²).
+struct PinholeView {
+  glm::vec3 position, fwd, right, up;
+  float tanHalf, aspect;
+};
+PinholeView pinholeView(const Camera& camera, int width, int height);
+
 // Position (w = 1 where a surface was seen), normal facing the viewer (w =
 // material index), albedo and the geometric normal, at the texture units of
 // shaders/shared/gbuffer.glsl when bound.

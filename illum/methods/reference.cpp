@@ -253,10 +253,7 @@ class ReferenceRenderer : public Method {
   float voxelDiagonal_ = 0;
   std::vector<PackedLight> lights_;
   float eps_ = 1e-5f;
-  struct View {
-    vec3 position, fwd, right, up;
-    float tanHalf, aspect;
-  } view_{};
+  PinholeView view_{};
 };
 
 bool ReferenceRenderer::intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) const {
@@ -472,12 +469,7 @@ void ReferenceRenderer::prepareFrame(Frame& f) {
   for (auto& l : f.scene.lights) lights_.push_back(packLight(l));
   eps_ = 2e-5f * f.scene.bounds(f.request.time).diagonal();
   const Camera& cam = f.scene.camera;
-  view_.position = cam.position;
-  view_.fwd = glm::normalize(cam.target - cam.position);
-  view_.right = glm::normalize(glm::cross(view_.fwd, cam.up));
-  view_.up = glm::cross(view_.right, view_.fwd);
-  view_.tanHalf = std::tan(glm::radians(cam.fovYDeg) * 0.5f);
-  view_.aspect = float(f.width()) / float(f.height());
+  view_ = pinholeView(cam, f.width(), f.height());
 }
 
 bool ReferenceRenderer::addSample(Frame& f, int k) {

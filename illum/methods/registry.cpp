@@ -8,6 +8,7 @@
 #include "illum/methods/direct.h"
 #include "illum/methods/nearfield.h"
 #include "illum/methods/reference.h"
+#include "illum/methods/reference_gl.h"
 #include "illum/methods/vct.h"
 #include "illum/methods/vct_ao.h"
 #include "illum/methods/voxel_ao.h"
@@ -25,8 +26,9 @@ std::string counterpartText(const nlohmann::json& v) {
 
 const std::vector<MethodInfo>& methodRegistry() {
   static const std::vector<MethodInfo> table = {
-      directMethod(), nearFieldMethod(), voxelAoMethod(), voxelPathMethod(), vplMethod(),
-      avgMethod(),    vctMethod(),       vctAoMethod(),   voxelViewMethod(), referenceMethod(),
+      directMethod(),    nearFieldMethod(), voxelAoMethod(),     voxelPathMethod(),
+      vplMethod(),       avgMethod(),       vctMethod(),         vctAoMethod(),
+      voxelViewMethod(), referenceMethod(), referenceGlMethod(),
   };
   return table;
 }

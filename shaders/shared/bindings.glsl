@@ -30,6 +30,7 @@
 #define BINDING_AVG 19             // SSBO uint[]: the approximate visibility grid's cells (shared/avg.glsl)
 #define BINDING_BVH_NODES 20       // SSBO vec4[]: the BVH's nodes (shared/trace_bvh.glsl, traverse/gpu_bvh.h)
 #define BINDING_BVH_TRIS 21        // SSBO vec4[]: its triangles, in leaf order
+#define BINDING_BVH_NORMALS 22     // SSBO vec4[]: per triangle (scene order) its normals (traverse/gpu_bvh.h)
 
 // ---- textures (samplers)
 #define TEXUNIT_GBUFFER_POSITION 0          // world position, w = 1 where a surface was seen

@@ -153,18 +153,7 @@ TEST(VoxelPath, ClosedRoomAgreesWithTheReferenceWithinNoise) {
   const std::string scene = writeRoomScene();
   const int size = 32, block = 8, nb = size / block, seeds = 6;
   std::vector<std::vector<double>> vp(nb * nb), ref(nb * nb);
-  auto blocks = [&](const Image& img, std::vector<std::vector<double>>& out) {
-    for (int by = 0; by < nb; ++by)
-      for (int bx = 0; bx < nb; ++bx) {
-        double s = 0;
-        for (int y = by * block; y < (by + 1) * block; ++y)
-          for (int x = bx * block; x < (bx + 1) * block; ++x) {
-            const glm::vec3 p = img.at(x, y);
-            s += (p.x + p.y + p.z) / 3.0;
-          }
-        out[size_t(by * nb + bx)].push_back(s / (block * block));
-      }
-  };
+
   for (int seed = 1; seed <= seeds; ++seed) {
     const std::string sd = "--seed";
     RenderOptions o;
@@ -176,11 +165,11 @@ TEST(VoxelPath, ClosedRoomAgreesWithTheReferenceWithinNoise) {
     o.method = "voxelpath";
     o.set = {"maxdepth=3", "rr_depth=10", "shadow_res=512"};
     o.spp = 64;
-    blocks(runRender(o).result.aovs.at("indirect"), vp);
+    test::addBlockMeans(runRender(o).result.aovs.at("indirect"), block, vp);
     o.method = "reference";
     o.set = {"integrator=path", "maxdepth=3", "rr_depth=10"};
     o.spp = 64;
-    blocks(runRender(o).result.aovs.at("indirect"), ref);
+    test::addBlockMeans(runRender(o).result.aovs.at("indirect"), block, ref);
   }
   double worstT = 0, worstRel = 0;
   for (size_t b = 0; b < vp.size(); ++b) {

@@ -1,0 +1,12 @@
+// `reference_gl`: exact integrals on the GL device through the scene's BVH (see reference_gl.cpp).
+#pragma once
+#include <memory>
+
+#include "illum/framework/method.h"
+
+namespace vgi {
+
+// The registry row: name, description, factory (an exact method: no counterpart).
+MethodInfo referenceGlMethod();
+
+}  // namespace vgi
