@@ -205,6 +205,12 @@ void checkRenderOptions(const RenderOptions& opt) {
   if (opt.frames < 1 || opt.frames > 100000) fail("--frames ", opt.frames, ": must be in [1, 100000]");
   if (!std::isfinite(opt.time) || !std::isfinite(opt.timeStep))
     fail("--time ", opt.time, " / --time-step ", opt.timeStep, ": must be finite numbers");
+  // Each frame's time, as frameTimes() computes it in float, must be finite too.
+  const float last = opt.time + float(opt.frames - 1) * opt.timeStep;
+  if (!std::isfinite(last))
+    fail("--time ", opt.time, " / --time-step ", opt.timeStep, " / --frames ", opt.frames,
+         ": the last frame's time (", double(opt.time) + double(opt.frames - 1) * double(opt.timeStep),
+         ") is beyond a 32-bit float");
   if (!(opt.timeLimitS >= 0) || !std::isfinite(opt.timeLimitS))
     fail("--time-limit ", opt.timeLimitS, ": must be a finite number of seconds >= 0 (0 = no limit)");
   if (opt.timeLimitS > 0 && opt.frames > 1)

@@ -89,6 +89,13 @@ TEST(BadInputCli, NumbersBeyondFloatOrSceneRangeAreRefusedWithTheKey) {
     expectRefused(vgi(std::string("render --method direct --light ") + light +
                       " --size 8x8 --spp 1 --quiet -o " + tmp("l.exr")),
                   {"--light", "lies beyond"});
+  // Frame times finite as doubles but not as floats (a frame once wrote "time": null).
+  expectRefused(
+      vgi("render --frames 2 --time 3e38 --time-step 3e38 --size 8x8 --spp 1 --quiet -o " + tmp("t.exr")),
+      {"--time-step", "beyond a 32-bit float"});
+  expectRefused(
+      vgi("render --frames 3 --time -2e38 --time-step -1e38 --size 8x8 --spp 1 --quiet -o " + tmp("t.exr")),
+      {"--frames 3", "beyond a 32-bit float"});
   // A float parameter finite as a double but not as a float is refused by name.
   expectRefused(vgi("render --method vct --set step=1e300 --size 8x8 -o " + tmp("v.exr")),
                 {"step", "not a finite 32-bit float"});
