@@ -99,8 +99,8 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
     auto numbers = [&](size_t n) {
       if (!v.is_array() || v.size() != n) fail(where, ": '", kind, "' needs ", n, " numbers, not ", v.dump());
       for (auto& x : v)
-        if (!x.is_number() || !std::isfinite(x.get<double>()))
-          fail(where, ": '", kind, "' = ", v.dump(), " has a value that is not a finite number");
+        if (!x.is_number() || !finiteAsFloat(x.get<double>()))
+          fail(where, ": '", kind, "' = ", v.dump(), " has a value that is not a finite 32-bit float");
     };
     if (kind == "frames" && (!v.is_number_integer() || v.get<long>() < 1 || v.get<long>() > 1000000))
       fail(where, ": 'frames' = ", v.dump(), " must be an integer in [1, 1000000]");
@@ -114,8 +114,8 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
       fail(where, ": '", kind, "' = ", v.dump(), " must be a string");
     if (kind == "set" && !v.is_object())
       fail(where, ": 'set' = ", v.dump(), " must be an object of parameters");
-    if (kind == "time" && (!v.is_number() || !std::isfinite(v.get<double>())))
-      fail(where, ": 'time' = ", v.dump(), " must be a finite number");
+    if (kind == "time" && (!v.is_number() || !finiteAsFloat(v.get<double>())))
+      fail(where, ": 'time' = ", v.dump(), " must be a finite 32-bit float");
     if (kind == "screenshot") checkOutputPath(v.get<std::string>());
     if (kind == "light") {
       try {

@@ -65,7 +65,7 @@ T parseNumber(const std::string& key, const std::string& origin, const std::stri
   if constexpr (!std::is_integral_v<T>) {
     // In the parameter's own precision: finite as a double is not enough, and a bound compared in
     // double would refuse itself (0.05 parses to a double just below the float 0.05f).
-    if (!(std::abs(x) <= double(std::numeric_limits<T>::max())))
+    if (!finiteAsFloat(x))
       fail("parameter '", key, "' (", origin, "): '", text, "' (", x, ") is not a finite 32-bit float");
     const T v = T(x);
     if (v < lo || v > hi)

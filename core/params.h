@@ -2,6 +2,8 @@
 // read by modules with a documented default. As in pbrt-v4, a key that no one
 // reads is an error, so a typo never silently falls back to a default.
 #pragma once
+#include <cmath>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -14,6 +16,10 @@ struct ParamDoc {
   double lo = 0, hi = 0;             // int and float: the accepted range
   std::vector<std::string> allowed;  // a string of these values only (empty: any)
 };
+
+// Whether x (parsed as a double: JSON, strtod) is a finite 32-bit float, as every number the
+// renderer computes with is: 1e300 is finite as a double and +inf as a float.
+inline bool finiteAsFloat(double x) { return std::abs(x) <= double(std::numeric_limits<float>::max()); }
 
 // A JSON scalar as `--set` text (64 → "64", 0.5 → "0.5", true → "true",
 // strings as they are); false for anything else (an array, an object, null).

@@ -166,6 +166,13 @@ TEST(View, BadInputIsRefusedWithItsName) {
   script = underXvfb("--script " + bad);
   EXPECT_EQ(script.code, 2) << script.output;
   EXPECT_NE(script.output.find("orbit"), std::string::npos) << script.output;
+  // Finite as doubles but not as floats (once a black image and a '-nan' camera, or '--time inf').
+  for (const char* e : {R"({"orbit": [1e300, 1e300]})", R"({"move": [0, 1e39, 0]})", R"({"time": 1e300})"}) {
+    std::ofstream(bad) << "[" << e << "]";
+    script = underXvfb("--script " + bad);
+    EXPECT_EQ(script.code, 2) << e << ": " << script.output;
+    EXPECT_NE(script.output.find("finite 32-bit float"), std::string::npos) << script.output;
+  }
   CliRun shot = underXvfb("--frames 1 --screenshot " + tmp("v.txt"));
   EXPECT_EQ(shot.code, 2) << shot.output;
   EXPECT_NE(shot.output.find("v.txt"), std::string::npos) << shot.output;
