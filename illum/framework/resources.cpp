@@ -15,15 +15,13 @@ const ResourceKind& findResourceKind(const std::string& name) {
   fail("internal: no resource kind '", name, "' in the kinds table");
 }
 
+void requireGl(const ResourceNeed& need, const std::string& method, bool gl) {
+  if (!gl) fail("method '", method, "' runs on the CPU but asks for the GL resource '", need.kind(), "'");
+}
+
 SceneNeeds& SceneNeeds::add(const ResourceNeed& need) {
   if (std::find(declared_.begin(), declared_.end(), need) == declared_.end()) declared_.push_back(need);
   return *this;
-}
-
-bool SceneNeeds::has(const std::string& kind) const {
-  for (auto& n : closure())
-    if (n.kind() == kind) return true;
-  return false;
 }
 
 namespace {
@@ -99,7 +97,8 @@ bool SceneResources::update(float time, Profiler& prof) {
   first_ = false;
   lightsChanged_ = false;
   // The GL lights: the scene's delta lights, and with area lights a spot light per emitter point.
-  const bool glLights = needs_.has("gpu_scene");
+  const bool glLights = std::any_of(entries_.begin(), entries_.end(),
+                                    [](const Entry& e) { return e.need.kind() == "gpu_scene"; });
   emitters_ = std::make_unique<Emitters>(Emitters::ofScene(scene_, time));
   sampleLights_ = glLights && !emitters_->empty();
   placeLights();

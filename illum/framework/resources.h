@@ -128,6 +128,8 @@ struct ResourceKind {
 
 const std::vector<ResourceKind>& resourceKinds();
 const ResourceKind& findResourceKind(const std::string& name);
+// The check of a GL-only kind: throws, naming `method`, when one that runs on the CPU asks for it.
+void requireGl(const ResourceNeed& need, const std::string& method, bool gl);
 
 // The resources one render of a method uses, and whether it draws the
 // G-buffer (the sample loop's render target of the image size, which reads
@@ -138,7 +140,6 @@ class SceneNeeds {
   // Adds a need (and, in the cache, its dependencies); a need already present is kept once.
   SceneNeeds& add(const ResourceNeed& need);
   const std::vector<ResourceNeed>& declared() const { return declared_; }
-  bool has(const std::string& kind) const;
   // The first declared need of this spec type, or null.
   template <class Spec>
   const Spec* find() const {

@@ -72,6 +72,7 @@
 #include "illum/resources/bvh.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "shaders/shared/brdf.glsl"
+#include "shaders/shared/exact_surface.glsl"
 #include "shaders/shared/lights.glsl"
 #include "shaders/shared/sampling.glsl"
 #include "traverse/embree_tracer.h"
@@ -270,10 +271,9 @@ bool ReferenceRenderer::intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) 
   sp.ng = glm::normalize(glm::cross(P[1] - P[0], P[2] - P[0]));
   sp.emitter = emitters_->emitterOfTriangle(t);
   sp.emission = sp.emitter >= 0 ? emitters_->radianceToward(sp.emitter, sp.wo) : vec3(0.0f);
-  if (dot(sp.ng, sp.wo) < 0.0f) sp.ng = -sp.ng;  // surfaces are two-sided
-  sp.n = glm::normalize(w * N[0] + h.u * N[1] + h.v * N[2]);
-  if (!std::isfinite(sp.n.x) || dot(sp.n, sp.ng) < 0.0f) sp.n = -sp.n;
-  if (!std::isfinite(sp.n.x)) sp.n = sp.ng;
+  const SurfaceNormals normals = orientNormals(sp.ng, w * N[0] + h.u * N[1] + h.v * N[2], sp.wo);
+  sp.n = normals.n;
+  sp.ng = normals.ng;
   const Material& m = scene_->materials[size_t(flat_->material[t])];
   sp.brdf.albedo = m.albedo;
   if (m.albedoTexture >= 0)
@@ -283,11 +283,8 @@ bool ReferenceRenderer::intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) 
   return true;
 }
 
-// Offsets the origin off the surface on the side of `dir` (against self-hits);
-// the offset scales with the scene and with the coordinates' float spacing.
 vec3 ReferenceRenderer::offsetOrigin(const SurfacePoint& sp, vec3 dir) const {
-  float scale = eps_ + 1e-6f * std::max({std::abs(sp.p.x), std::abs(sp.p.y), std::abs(sp.p.z)});
-  return sp.p + (dot(dir, sp.ng) >= 0.0f ? scale : -scale) * sp.ng;
+  return offsetOffSurface(sp.p, sp.ng, dir, eps_);
 }
 
 vec3 ReferenceRenderer::directLight(const SurfacePoint& sp, Pcg32& rng, bool followed) const {

@@ -1,7 +1,5 @@
 // `reference_gl`: exact integrals on the GL device through the scene's BVH (see reference_gl.cpp).
 #pragma once
-#include <memory>
-
 #include "illum/framework/method.h"
 
 namespace vgi {

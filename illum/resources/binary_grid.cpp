@@ -73,7 +73,9 @@ class BinaryGridResource : public Resource {
             {"stats", voxelizerStats_}};
   }
 
-  void* offer(const std::type_info& t) override { return offerOf(t, &box_, atlas_.get(), grid_.get()); }
+  void* offer(const std::type_info& t) override {
+    return offerOf(t, builtFor_ ? &box_ : nullptr, atlas_.get(), grid_.get());
+  }
 
  private:
   // One grid box for the whole animation: the union of the frames' bounds.

@@ -8,7 +8,6 @@
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
-#include "illum/resources/gpu_scene.h"
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gl_ray_tracer.h"
 #include "voxelize/gpu_grid.h"

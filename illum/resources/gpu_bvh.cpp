@@ -5,7 +5,6 @@
 
 #include "core/profiler.h"
 #include "core/scene.h"
-#include "illum/resources/gpu_scene.h"
 #include "traverse/gpu_bvh.h"
 
 namespace vgi {

@@ -5,10 +5,6 @@
 
 namespace vgi {
 
-void requireGl(const ResourceNeed& need, const std::string& method, bool gl) {
-  if (!gl) fail("method '", method, "' runs on the CPU but asks for the GL resource '", need.kind(), "'");
-}
-
 namespace {
 class GpuSceneResource : public Resource {
  public:

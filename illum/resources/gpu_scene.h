@@ -16,7 +16,4 @@ struct GpuSceneNeed {
 
 ResourceKind gpuSceneKind();
 
-// Throws, naming `method`, when a GL resource is asked for by a method that runs on the CPU.
-void requireGl(const ResourceNeed& need, const std::string& method, bool gl);
-
 }  // namespace vgi

@@ -6,7 +6,6 @@
 #include <memory>
 
 #include "core/profiler.h"
-#include "illum/resources/gpu_scene.h"
 #include "traverse/embree_tracer.h"
 
 namespace vgi {

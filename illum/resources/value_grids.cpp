@@ -4,7 +4,6 @@
 
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
-#include "illum/resources/gpu_scene.h"
 #include "shaders/shared/value_grid.glsl"
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/value_grids.h"

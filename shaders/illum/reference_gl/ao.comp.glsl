@@ -10,6 +10,7 @@
 #include "../../shared/constants.glsl"
 #include "../../shared/sampling.glsl"
 #include "../../shared/ray_grid.glsl"
+#include "../../shared/exact_surface.glsl"
 layout(std430, binding = BINDING_BVH_NODES) readonly buffer BvhNodes { vec4 bvhNodes[]; };
 layout(std430, binding = BINDING_BVH_TRIS) readonly buffer BvhTris { vec4 bvhTris[]; };
 layout(std430, binding = BINDING_BVH_NORMALS) readonly buffer BvhNormals { vec4 bvhNormals[]; };
@@ -25,19 +26,14 @@ uniform float uEps;     // the start offset's scene part (2e-5 of the diagonal)
 uniform uint uSample;
 uniform uint uSeed;
 
-float nextUniform(inout uint state) {
-  state = pcgAdvance(state);
-  return uintToUnitFloat(pcgOutput(state));
-}
-
 void main() {
   const ivec2 q = ivec2(gl_GlobalInvocationID.xy);
   const ivec2 size = imageSize(uImage);
   if (q.x >= size.x || q.y >= size.y) return;
   uint state = rngSeed(uint(q.y * size.x + q.x), uSample, uSeed);
   vec2 jitter;
-  jitter.x = nextUniform(state);
-  jitter.y = nextUniform(state);
+  jitter.x = rngNext(state);
+  jitter.y = rngNext(state);
   // GL rows run bottom-up: row q.y is the reference's row H − 1 − q.y.
   const vec2 ndc = (vec2(q) + jitter) / vec2(size) * 2.0f - 1.0f;
   const vec3 dir = normalize(uFwd + ndc.x * uRight + ndc.y * uUp);
@@ -46,23 +42,14 @@ void main() {
   if (h.hit != 0u) {
     const uint t = h.triangle;
     const vec4 n0 = bvhNormals[3u * t], n1 = bvhNormals[3u * t + 1u], n2 = bvhNormals[3u * t + 2u];
-    vec3 ng = vec3(n0.w, n1.w, n2.w);
-    const vec3 wo = -dir;
-    if (dot(ng, wo) < 0.0f) ng = -ng;  // surfaces are two-sided
     const float w = 1.0f - h.u - h.v;
-    vec3 n = normalize(w * n0.xyz + h.u * n1.xyz + h.v * n2.xyz);
-    if (!isFiniteFloat(n.x) || dot(n, ng) < 0.0f) n = -n;
-    if (!isFiniteFloat(n.x)) n = ng;
+    const SurfaceNormals s = orientNormals(vec3(n0.w, n1.w, n2.w), w * n0.xyz + h.u * n1.xyz + h.v * n2.xyz, -dir);
     const vec3 p = uEye + h.t * dir;
     vec2 u;
-    u.x = nextUniform(state);
-    u.y = nextUniform(state);
-    const vec3 wi = basisToWorld(makeBasis(n), cosineSampleHemisphere(u));
-    if (dot(wi, ng) > 0.0f) {
-      const float scale = uEps + 1e-6f * max(max(abs(p.x), abs(p.y)), abs(p.z));
-      const vec3 origin = p + scale * ng;
-      ao = traceBvh(origin, wi, uRadius, true).hit != 0u ? 0.0f : 1.0f;
-    }
+    u.x = rngNext(state);
+    u.y = rngNext(state);
+    const vec3 wi = basisToWorld(makeBasis(s.n), cosineSampleHemisphere(u));
+    if (dot(wi, s.ng) > 0.0f) ao = traceBvh(offsetOffSurface(p, s.ng, wi, uEps), wi, uRadius, true).hit != 0u ? 0.0f : 1.0f;
   }
   imageStore(uImage, q, vec4(vec3(ao), 1.0f));
 }
