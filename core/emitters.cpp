@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "shaders/shared/emitters.glsl"
 #include "shaders/shared/sampling.glsl"
 
 namespace vgi {
@@ -68,14 +69,9 @@ EmitterSample Emitters::sample(glm::vec2 u) const {
   const size_t i = size_t(std::lower_bound(cdf_.begin(), cdf_.end(), u.x) - cdf_.begin());
   const size_t e = std::min(i, triangles_.size() - 1);
   const float lo = e == 0 ? 0.0f : cdf_[e - 1], width = cdf_[e] - lo;
-  float ux = width > 0.0f ? std::clamp((u.x - lo) / width, 0.0f, 1.0f - 1e-7f) : 0.5f;
-  // Uniform on the triangle: p0·(1 − √u) + p1·√u(1 − v) + p2·√u·v (Shirley
-  // and Chiu's square-root map), as barycentrics of e1 and e2.
-  const float su = std::sqrt(ux);
-  const float b1 = su * (1.0f - u.y), b2 = su * u.y;
   const EmitterTriangle& t = triangles_[e];
   EmitterSample s;
-  s.p = t.p0 + b1 * t.e1 + b2 * t.e2;
+  s.p = shared::uniformTrianglePoint(t.p0, t.e1, t.e2, shared::emitterRescale(u.x, lo, width), u.y);
   s.normal = t.normal;
   s.radiance = t.radiance;
   s.pdfArea = width / t.area;
@@ -85,8 +81,22 @@ EmitterSample Emitters::sample(glm::vec2 u) const {
 
 glm::vec3 Emitters::radianceToward(int e, glm::vec3 w) const {
   const EmitterTriangle& t = triangles_[size_t(e)];
-  const float c = glm::dot(t.normal, w);
-  return (c > 0.0f || (twoSided_ && c < 0.0f)) ? t.radiance : glm::vec3(0.0f);
+  return shared::emitterRadianceToward(t.normal, t.radiance, twoSided_, w);
+}
+
+std::vector<shared::PackedEmitter> Emitters::packed() const {
+  std::vector<shared::PackedEmitter> rows;
+  for (size_t i = 0; i < triangles_.size(); ++i) {
+    const EmitterTriangle& t = triangles_[i];
+    shared::PackedEmitter r;
+    r.p0Cdf = glm::vec4(t.p0, cdf_[i]);
+    r.e1CdfLo = glm::vec4(t.e1, i == 0 ? 0.0f : cdf_[i - 1]);
+    r.e2Area = glm::vec4(t.e2, t.area);
+    r.normalSides = glm::vec4(t.normal, twoSided_ ? 1.0f : 0.0f);
+    r.radiance = glm::vec4(t.radiance, 0.0f);
+    rows.push_back(r);
+  }
+  return rows;
 }
 
 glm::vec3 Emitters::power(size_t e) const {

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "shaders/shared/emitters.glsl"
 
 namespace vgi {
 
@@ -55,6 +56,10 @@ class Emitters {
   float pdfArea(int e) const;
   // Emitter index of flat triangle t, or −1.
   int emitterOfTriangle(size_t t) const { return t < emitterOf_.size() ? emitterOf_[t] : -1; }
+  // The same for every triangle of the flattening it was made from.
+  const std::vector<int>& emitterOfTriangles() const { return emitterOf_; }
+  // The rows the GL device samples (shaders/shared/emitters.glsl), in emitter order.
+  std::vector<shared::PackedEmitter> packed() const;
   // Le leaving emitter `e` along `w` (unit, pointing away from it): 0 behind a one-sided emitter.
   glm::vec3 radianceToward(int e, glm::vec3 w) const;
   // Power radiated by emitter `e`, π·Le·A per emitting side (W per RGB channel).

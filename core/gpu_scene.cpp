@@ -33,7 +33,8 @@ static_assert(sizeof(shared::PackedMaterial) == 48, "std430 layout of PackedMate
 
 namespace {
 // Interleaved position, shading normal, uv, geometric (face) normal: 11 floats per vertex.
-constexpr int kVertexFloats = 11;
+constexpr int kVertexFloats = int(shared::SCENE_VERTEX_FLOATS);
+static_assert(shared::SCENE_VERTEX_UV == 6u, "interleave() writes the uv after position and normal");
 void interleave(const FlatScene& f, std::vector<float>& verts) {
   verts.clear();
   verts.reserve(f.positions.size() * kVertexFloats);
@@ -178,6 +179,10 @@ void GpuScene::bind(ShaderLibrary& shaders, unsigned program) const {
   glBindTextureUnit(TEXUNIT_ENV_MAP, envMap_);
   shaders.setUniform(program, "uEnvColorScale", envColorScale_);
   shaders.setUniform(program, "uEnvHasMap", envHasMap_ ? 1 : 0);
+}
+
+void GpuScene::bindVertices() const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_SCENE_VERTICES, vbo_);
 }
 
 void GpuScene::draw() const {

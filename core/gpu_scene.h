@@ -30,6 +30,8 @@ class GpuScene {
 
   // Binds SSBOs, textures and the environment uniforms of `program`.
   void bind(ShaderLibrary& shaders, unsigned program) const;
+  // The vertex buffer as an SSBO at BINDING_SCENE_VERTICES (SCENE_VERTEX_FLOATS per corner).
+  void bindVertices() const;
   void draw() const;                        // all triangles; gl_PrimitiveID = triangle index
   void drawInstanced(int instances) const;  // the same, `instances` times (gl_InstanceID)
 

@@ -108,6 +108,10 @@ struct MethodInfo {
   std::function<std::unique_ptr<Method>(ParamSet& params, const Scene& scene)> create;
   // From the method's resolved parameters; empty for a method that is exact itself.
   std::function<Counterpart(const nlohmann::json& params)> counterpart = {};
+  // An exact method on the CPU: its twin on the GL device, computing the same
+  // integrals with the same parameters (reference → reference_gl), so that a
+  // GL method's speed is measured against its counterpart on the same device.
+  std::string glTwin = {};
 };
 
 // The registry (illum/methods/registry.cpp): each method's row is defined in its own file.

@@ -68,7 +68,7 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "illum/framework/sample_loop.h"
-#include "illum/kits/shared_params.h"
+#include "illum/kits/exact_params.h"
 #include "illum/resources/bvh.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "shaders/shared/brdf.glsl"
@@ -112,8 +112,6 @@ struct Pcg32 {
   }
 };
 
-enum class Integrator { Path, Direct, NearField, Ao };
-
 struct SurfacePoint {
   vec3 p, ng, n;  // ng and n face the incoming ray
   vec3 wo;
@@ -123,87 +121,17 @@ struct SurfacePoint {
   int emitter = -1;  // index in Emitters, or −1
 };
 
-enum class EmitterSampling { Mis, Light, Brdf };
-
 class ReferenceRenderer : public Method {
  public:
-  ReferenceRenderer(ParamSet& params, const Scene& scene) {
-    std::string name =
-        params.getString("integrator", "path", "what to compute", {"path", "nearfield", "ao", "direct"});
-    integrator_ = name == "path"        ? Integrator::Path
-                  : name == "direct"    ? Integrator::Direct
-                  : name == "nearfield" ? Integrator::NearField
-                                        : Integrator::Ao;
-    const bool usesDepth = integrator_ == Integrator::Path;
-    const bool usesRadius = integrator_ == Integrator::NearField || integrator_ == Integrator::Ao;
-    const bool nearField = integrator_ == Integrator::NearField;  // env, visibility
-    // Every parameter is documented; only the integrator's own are read (and so
-    // appear in the stats); giving another integrator's parameter is an error.
-    auto check = [&](bool uses, const char* key) {
-      if (!uses && params.has(key)) fail("parameter '", key, "' does not apply to integrator=", name);
-      return uses;
-    };
-    const char* depthDoc = "path: maximum number of bounces";
-    const char* rrDoc = "path: bounces before Russian roulette";
-    const char* radiusDoc =
-        "nearfield/ao: ray length in world units (default 0.5 x scene diagonal for nearfield, as the "
-        "nearfield "
-        "module; 0.1 x for ao)";
-    const char* envDoc =
-        "nearfield: rays that leave the radius read the environment (black where the scene has none)";
-    if (check(usesDepth, "maxdepth"))
-      maxDepth_ = params.getInt("maxdepth", 8, depthDoc, 1, 10000);
-    else
-      params.declare("maxdepth", "int", "8", depthDoc);
-    if (check(usesDepth, "rr_depth"))
-      rrDepth_ = params.getInt("rr_depth", 3, rrDoc, 0, 10000);
-    else
-      params.declare("rr_depth", "int", "3", rrDoc);
-    float diag = scene.bounds().diagonal();
-    const float radiusDefault = (nearField ? kDefaultNearFieldRadius : kDefaultAoRadius) * diag;
-    if (check(usesRadius, "radius"))
-      radius_ = params.getFloat("radius", radiusDefault, radiusDoc, 1e-30f, 1e30f);
-    else
-      params.declare("radius", "float", std::to_string(radiusDefault), radiusDoc);
-    if (check(nearField, "env"))
-      env_ = params.getBool("env", true, envDoc);
-    else
-      params.declare("env", "bool", "true", envDoc);
-    const char* visDoc =
-        "nearfield/path: exact, or voxels (bounce rays' first hits through an exact voxelization)";
-    const char* voxDoc = "nearfield/path, visibility=voxels: grid resolution N or WxHxD";
-    const char* offDoc =
-        "nearfield/path, visibility=voxels: ray start offset along the normal, voxel diagonals";
-    if (check(nearField || integrator_ == Integrator::Path, "visibility"))
-      voxelVisibility_ = params.getString("visibility", "exact", visDoc, {"exact", "voxels"}) == "voxels";
-    else
-      params.declare("visibility", "string", "exact", visDoc);
-    if (check(voxelVisibility_, "voxels")) {
-      voxels_ = parseResolution(params.getString("voxels", "128", voxDoc), "parameter 'voxels'");
-      checkGridMemory(voxels_, 2);
-    } else
-      params.declare("voxels", "string", "128", voxDoc);
-    if (check(voxelVisibility_, "offset"))
-      offset_ = params.getFloat("offset", 1.0f, offDoc, 0.0f, 100.0f);
-    else
-      params.declare("offset", "float", "1.0", offDoc);
-    const char* emDoc = "path/direct/nearfield: area lights sampled by mis (light + BRDF), light or brdf";
-    if (check(integrator_ != Integrator::Ao, "emitter_sampling")) {
-      std::string e = params.getString("emitter_sampling", "mis", emDoc, {"mis", "light", "brdf"});
-      emitterSampling_ = e == "mis"     ? EmitterSampling::Mis
-                         : e == "light" ? EmitterSampling::Light
-                                        : EmitterSampling::Brdf;
-    } else
-      params.declare("emitter_sampling", "string", "mis", emDoc);
-    if (integrator_ == Integrator::Direct) maxDepth_ = 1;
-  }
+  ReferenceRenderer(ParamSet& params, const Scene& scene)
+      : p_(readExactParams(params, scene, "reference", true)) {}
 
   SceneNeeds needs() const override {
     SceneNeeds n;
     n.add(BvhNeed{});
-    if (voxelVisibility_) {
+    if (p_.voxelVisibility) {
       BinaryGridNeed grid;
-      grid.resolution = voxels_;
+      grid.resolution = p_.voxels;
       grid.voxelizer = "exact";
       n.add(OrMipPyramidNeed{grid});
     }
@@ -216,9 +144,8 @@ class ReferenceRenderer : public Method {
   // bounce, path into the light reaching the first vertex along one segment
   // and the rest.
   std::vector<std::string> outputs() const override {
-    return integrator_ == Integrator::NearField || integrator_ == Integrator::Path
-               ? std::vector<std::string>{"direct", "indirect"}
-               : std::vector<std::string>{};
+    return p_.splitsDirectIndirect() ? std::vector<std::string>{"direct", "indirect"}
+                                     : std::vector<std::string>{};
   }
 
  private:
@@ -229,21 +156,14 @@ class ReferenceRenderer : public Method {
   float aoLi(vec3 o, vec3 d, Pcg32& rng) const;
   bool intersect(vec3 o, vec3 d, float tmax, SurfacePoint& sp) const;
   // Delta lights + area lights by NEE; `followed`: a BRDF sample follows this
-  // vertex (then the NEE share is weighted by emitterSampling_, else it is 1).
+  // vertex (then the NEE share is weighted by p_.emitterSampling, else it is 1).
   vec3 directLight(const SurfacePoint& sp, Pcg32& rng, bool followed) const;
   // The weight of emission met by a BRDF sample of density `pdfBrdf` (solid angle).
   float emissionWeight(const SurfacePoint& hit, float pdfBrdf) const;
   vec3 offsetOrigin(const SurfacePoint& sp, vec3 dir) const;
 
-  Integrator integrator_;
-  int maxDepth_ = 8, rrDepth_ = 3;
+  ExactParams p_;
   float sceneDiagonal_ = 1;
-  float radius_ = 0;
-  bool env_ = true;
-  bool voxelVisibility_ = false;
-  glm::uvec3 voxels_{128};
-  float offset_ = 1.0f;
-  EmitterSampling emitterSampling_ = EmitterSampling::Mis;
 
   // Per frame (prepareFrame).
   const Scene* scene_ = nullptr;
@@ -299,7 +219,7 @@ vec3 ReferenceRenderer::directLight(const SurfacePoint& sp, Pcg32& rng, bool fol
     if (tracer_->occluded(o, ls.wi, 0.0f, tfar)) continue;
     sum += f * ls.radiance * dot(ls.wi, sp.n);
   }
-  if (emitters_->empty() || (followed && emitterSampling_ == EmitterSampling::Brdf)) return sum;
+  if (emitters_->empty() || (followed && p_.emitterSampling == EmitterSampling::Brdf)) return sum;
   // One point of the area lights (chosen by power, uniform on its triangle).
   const EmitterSample es = emitters_->sample(rng.uniform2());
   const vec3 d = es.p - sp.p;
@@ -320,20 +240,20 @@ vec3 ReferenceRenderer::directLight(const SurfacePoint& sp, Pcg32& rng, bool fol
   if (tracer_->occluded(o, toPoint / len, 0.0f, len * (1.0f - 1e-4f))) return sum;
   const float pdfLight = es.pdfArea * dist2 / cosL;  // solid angle
   float w = 1.0f;
-  if (followed && emitterSampling_ == EmitterSampling::Mis) {
+  if (followed && p_.emitterSampling == EmitterSampling::Mis) {
     const float pdfBrdf = brdfPdf(sp.brdf, sp.n, sp.wo, wi);
-    w = pdfLight * pdfLight / (pdfLight * pdfLight + pdfBrdf * pdfBrdf);
+    w = powerHeuristic(pdfLight, pdfBrdf);
   }
   return sum + f * Le * (cosS * w / pdfLight);
 }
 
 float ReferenceRenderer::emissionWeight(const SurfacePoint& hit, float pdfBrdf) const {
-  if (hit.emitter < 0 || emitterSampling_ == EmitterSampling::Brdf) return 1.0f;
-  if (emitterSampling_ == EmitterSampling::Light) return 0.0f;
+  if (hit.emitter < 0 || p_.emitterSampling == EmitterSampling::Brdf) return 1.0f;
+  if (p_.emitterSampling == EmitterSampling::Light) return 0.0f;
   const float cosL = std::abs(dot(emitters_->triangles()[size_t(hit.emitter)].normal, hit.wo));
   if (!(cosL > 0.0f)) return 0.0f;
   const float pdfLight = emitters_->pdfArea(hit.emitter) * hit.t * hit.t / cosL;
-  return pdfBrdf * pdfBrdf / (pdfBrdf * pdfBrdf + pdfLight * pdfLight);
+  return powerHeuristic(pdfBrdf, pdfLight);
 }
 
 vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
@@ -351,7 +271,7 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const
       // grid, then the surface there found exactly (within two voxel
       // diagonals of the hit voxel's entry; none: the path ends).
       TraceRay ray;
-      ray.origin = prev.p + prev.n * (offset_ * voxelDiagonal_);
+      ray.origin = prev.p + prev.n * (p_.offset * voxelDiagonal_);
       ray.dir = d;
       ray.tmax = 4.0f * sceneDiagonal_;
       const TraceResult h = voxelTracer_->trace(ray);
@@ -371,7 +291,7 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const
       L += e;
       if (depth >= 2) indirect += e;
     }
-    if (depth == maxDepth_) break;
+    if (depth == p_.maxDepth) break;
     const vec3 nee = beta * directLight(sp, rng, true);
     L += nee;
     if (depth >= 1) indirect += nee;
@@ -380,8 +300,8 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const
     if (!(pdf > 0.0f) || dot(wi, sp.n) <= 0.0f || dot(wi, sp.ng) <= 0.0f) break;
     beta *= evalBrdf(sp.brdf, sp.n, sp.wo, wi) * (dot(wi, sp.n) / pdf);
     pdfBrdf = pdf;
-    if (depth + 1 >= rrDepth_) {
-      float q = std::max(0.05f, 1.0f - std::max({beta.x, beta.y, beta.z}));
+    if (depth + 1 >= p_.rrDepth) {
+      const float q = russianRouletteQ(beta);
       if (rng.uniform() < q) break;
       beta /= 1.0f - q;
     }
@@ -409,21 +329,21 @@ vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) 
   SurfacePoint y;
   if (voxelTracer_) {
     TraceRay ray;
-    ray.origin = x.p + x.n * (offset_ * voxelDiagonal_);
+    ray.origin = x.p + x.n * (p_.offset * voxelDiagonal_);
     ray.dir = wi;
-    ray.tmax = radius_;
+    ray.tmax = p_.radius;
     TraceResult h = voxelTracer_->trace(ray);
     if (!h.hit) {
-      if (env_) indirect = weight * scene_->environmentRadiance(wi);
+      if (p_.env) indirect = weight * scene_->environmentRadiance(wi);
     } else if (intersect(ray.origin, wi, h.t + 2.0f * voxelDiagonal_, y)) {
       bounce(y);
     }
     return L + indirect;
   }
   vec3 yo = offsetOrigin(x, wi);
-  if (intersect(yo, wi, radius_, y))
+  if (intersect(yo, wi, p_.radius, y))
     bounce(y);
-  else if (env_)
+  else if (p_.env)
     indirect = weight * scene_->environmentRadiance(wi);
   return L + indirect;
 }
@@ -433,17 +353,17 @@ float ReferenceRenderer::aoLi(vec3 o, vec3 d, Pcg32& rng) const {
   if (!intersect(o, d, 1e30f, x)) return 0.0f;
   vec3 wi = basisToWorld(makeBasis(x.n), cosineSampleHemisphere(rng.uniform2()));
   if (dot(wi, x.ng) <= 0.0f) return 0.0f;  // below the true surface: blocked by it
-  return tracer_->occluded(offsetOrigin(x, wi), wi, 0.0f, radius_) ? 0.0f : 1.0f;
+  return tracer_->occluded(offsetOrigin(x, wi), wi, 0.0f, p_.radius) ? 0.0f : 1.0f;
 }
 
 vec3 ReferenceRenderer::li(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
-  switch (integrator_) {
-    case Integrator::Path:
-    case Integrator::Direct:
+  switch (p_.integrator) {
+    case ExactIntegrator::Path:
+    case ExactIntegrator::Direct:
       return pathLi(o, d, rng, indirect);
-    case Integrator::NearField:
+    case ExactIntegrator::NearField:
       return nearFieldLi(o, d, rng, indirect);
-    case Integrator::Ao:
+    case ExactIntegrator::Ao:
       return vec3(aoLi(o, d, rng));
   }
   return vec3(0.0f);
@@ -455,7 +375,7 @@ void ReferenceRenderer::prepareFrame(Frame& f) {
   tracer_ = &f.resources.get<EmbreeTracer>();
   emitters_ = &f.resources.get<Emitters>();
   voxelTracer_.reset();
-  if (voxelVisibility_) {
+  if (p_.voxelVisibility) {
     TracerInputs in;
     in.pyramid = &f.resources.get<OrMipPyramid>();
     voxelTracer_ = createTracer("hierarchical", in);
@@ -516,7 +436,9 @@ MethodInfo referenceMethod() {
   return {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
           [](ParamSet& p, const Scene& s) -> std::unique_ptr<Method> {
             return std::make_unique<ReferenceRenderer>(p, s);
-          }};
+          },
+          {},
+          "reference_gl"};
 }
 
 }  // namespace vgi

@@ -3,30 +3,37 @@
 // kind gpu_bvh; shaders/shared/trace_bvh.glsl), so that an approximate GL
 // method and its exact counterpart run on the same device and the
 // equal-error time ratio compares algorithms, not a GPU with a CPU (DESIGN.md,
-// "Exact counterparts"). A second implementation of the same estimators: its
-// tests compare it with `reference` statistically (block means over seeds).
+// "Exact counterparts"). A second implementation of the same estimators, with
+// the same parameters (illum/kits/exact_params.h): its tests compare it with
+// `reference` statistically (block means over seeds).
 //
-// Implemented so far: integrator=ao (reference's aoLi: the camera ray's first
-// hit, one cosine-distributed direction about the shading normal per sample,
-// visibility within the radius). path, direct and nearfield (materials,
-// delta and area lights with NEE + MIS, Russian roulette, AOVs) are the next
-// step; until then they are refused by name.
+//   path, direct, nearfield  shaders/illum/reference_gl/path.comp.glsl: materials
+//              and textures of the GPU scene, delta lights, area lights
+//              (resource kind gpu_emitters) by NEE + BRDF sampling with MIS,
+//              Russian roulette, the "direct" / "indirect" outputs
+//   ao         shaders/illum/reference_gl/ao.comp.glsl
 //
-// | key        | type   | default       | meaning                                     |
-// |------------|--------|---------------|---------------------------------------------|
-// | integrator | string | ao            | what to compute: ao                          |
-// | radius     | float  | 0.1 · diag.   | AO ray length, world units (as `reference`) |
+// Not on the GL device: visibility=voxels (the voxel-visibility stage of the
+// error split runs in `reference`, CPU), refused by name.
+//
+// Random numbers: one 32-bit PCG stream per (pixel, sample, seed)
+// (shared/sampling.glsl), not the CPU reference's 64-bit PCG32, so the two
+// agree in expectation, not per pixel.
 #include "illum/methods/reference_gl.h"
 
 #include <glad/gl.h>
 
+#include "core/emitters.h"
 #include "core/error.h"
+#include "core/gpu_scene.h"
 #include "core/params.h"
 #include "core/shader_library.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
-#include "illum/kits/shared_params.h"
+#include "illum/kits/exact_params.h"
 #include "illum/resources/gpu_bvh.h"
+#include "illum/resources/gpu_emitters.h"
+#include "illum/resources/gpu_scene.h"
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gpu_bvh.h"
 
@@ -36,26 +43,44 @@ namespace {
 
 class ReferenceGlMethod : public Method {
  public:
-  ReferenceGlMethod(ParamSet& p, const Scene& scene) {
-    p.getString("integrator", "ao",
-                "what to compute: ao (the exact AO of reference integrator=ao; path, direct and nearfield "
-                "are not implemented on the GL device yet)",
-                {"ao"});
-    const float diag = scene.bounds().diagonal();
-    radius_ = p.getFloat("radius", kDefaultAoRadius * diag,
-                         "AO ray length in world units (default 0.1 x scene diagonal, as reference)", 1e-30f,
-                         1e30f);
-    diagonal_ = diag;
-  }
+  ReferenceGlMethod(ParamSet& p, const Scene& scene)
+      : p_(readExactParams(p, scene, "reference_gl", false)), diagonal_(scene.bounds().diagonal()) {}
   SceneNeeds needs() const override {
     SceneNeeds n;
     n.add(GpuBvhNeed{});
+    if (p_.integrator != ExactIntegrator::Ao) {
+      n.add(GpuSceneNeed{});
+      n.add(GpuEmittersNeed{});
+    }
     return n;
   }
+  std::vector<std::string> outputs() const override {
+    return p_.splitsDirectIndirect() ? std::vector<std::string>{"direct", "indirect"}
+                                     : std::vector<std::string>{};
+  }
   void prepareFrame(Frame& f) override {
-    prog_ = f.shaders().program({"illum/reference_gl/ao.comp.glsl"});
     ShaderLibrary& s = f.shaders();
-    s.setUniform(prog_, "uRadius", radius_);
+    if (p_.integrator == ExactIntegrator::Ao) {
+      prog_ = s.program({"illum/reference_gl/ao.comp.glsl"});
+      s.setUniform(prog_, "uRadius", p_.radius);
+    } else {
+      ShaderDefines defs;
+      if (p_.integrator == ExactIntegrator::NearField) defs["REFERENCE_NEARFIELD"] = "1";
+      prog_ = s.program({"illum/reference_gl/path.comp.glsl"}, defs);
+      s.setUniform(prog_, "uMaxDepth", p_.maxDepth);
+      s.setUniform(prog_, "uRrDepth", p_.rrDepth);
+      s.setUniform(prog_, "uRadius", p_.radius);
+      s.setUniform(prog_, "uEnv", p_.env ? 1 : 0);
+      // The scene's own delta lights are the first entries of the GPU scene's lights.
+      s.setUniform(prog_, "uDeltaLights", int(f.scene.lights.size()));
+      s.setUniform(prog_, "uEmitterCount", int(f.resources.get<GpuEmitters>().count()));
+      s.setUniform(prog_, "uEmitterSampling",
+                   p_.emitterSampling == EmitterSampling::Mis     ? shared::EMITTER_SAMPLING_MIS
+                   : p_.emitterSampling == EmitterSampling::Light ? shared::EMITTER_SAMPLING_LIGHT
+                                                                  : shared::EMITTER_SAMPLING_BRDF);
+      s.setUniform(prog_, "uWriteIndirect", f.wants("indirect") ? 1 : 0);
+      s.setUniform(prog_, "uWriteDirect", f.wants("direct") ? 1 : 0);
+    }
     // The reference's start offset: 2e-5 of the scene's diagonal at this time (plus the coordinates' part).
     s.setUniform(prog_, "uEps", 2e-5f * f.scene.bounds(f.request.time).diagonal());
     s.setUniform(prog_, "uSeed", f.request.seed);
@@ -68,30 +93,41 @@ class ReferenceGlMethod : public Method {
     s.setUniform(prog_, "uUp", v.up * v.tanHalf);
   }
   bool addSample(Frame& f, int k) override {
-    auto scope = f.profiler.scope("ao");
+    auto scope = f.profiler.scope(p_.integratorName);
     ShaderLibrary& s = f.shaders();
     glUseProgram(prog_);
     f.resources.get<GpuBvh>().bind();
+    if (p_.integrator != ExactIntegrator::Ao) {
+      f.resources.get<GpuScene>().bind(s, prog_);
+      f.resources.get<GpuScene>().bindVertices();
+      f.resources.get<GpuEmitters>().bind();
+    }
     s.setUniform(prog_, "uSample", uint32_t(k));
-    glBindImageTexture(IMAGE_SAMPLE, f.sampleImage("image"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    bindSampleAndSplitImages(f);
     glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     return true;
   }
   void finishFrame(Frame& f) override {
-    f.extra["radius"] = radius_;
+    if (p_.integrator == ExactIntegrator::Ao || p_.integrator == ExactIntegrator::NearField)
+      f.extra["radius"] = p_.radius;
     f.extra["scene_diagonal"] = diagonal_;
+    if (p_.integrator != ExactIntegrator::Ao)
+      f.extra["emitter_triangles"] = f.resources.get<GpuEmitters>().count();
   }
 
  private:
-  float radius_ = 0, diagonal_ = 0;
+  ExactParams p_;
+  float diagonal_ = 0;
   unsigned prog_ = 0;
 };
 
 }  // namespace
 
 MethodInfo referenceGlMethod() {
-  return {"reference_gl", "GL exact integrals through the scene's BVH on the GPU: integrator=ao (so far)",
+  return {"reference_gl",
+          "GL exact integrals through the scene's BVH on the GPU (reference on the GL device): "
+          "integrator=path|nearfield|ao|direct",
           true, [](ParamSet& p, const Scene& s) -> std::unique_ptr<Method> {
             return std::make_unique<ReferenceGlMethod>(p, s);
           }};

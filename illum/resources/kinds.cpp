@@ -5,6 +5,7 @@
 #include "illum/resources/bvh.h"
 #include "illum/resources/cone_volume.h"
 #include "illum/resources/gpu_bvh.h"
+#include "illum/resources/gpu_emitters.h"
 #include "illum/resources/gpu_scene.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/occluders.h"
@@ -16,7 +17,7 @@ namespace vgi {
 const std::vector<ResourceKind>& resourceKinds() {
   static const std::vector<ResourceKind> kinds = {
       gpuSceneKind(), lightMapsKind(), binaryGridKind(), orMipPyramidKind(), valueGridsKind(),
-      bvhKind(),      occludersKind(), coneVolumeKind(), gpuBvhKind(),
+      bvhKind(),      occludersKind(), coneVolumeKind(), gpuBvhKind(),       gpuEmittersKind(),
   };
   return kinds;
 }

@@ -31,6 +31,9 @@
 #define BINDING_BVH_NODES 20       // SSBO vec4[]: the BVH's nodes (shared/trace_bvh.glsl, traverse/gpu_bvh.h)
 #define BINDING_BVH_TRIS 21        // SSBO vec4[]: its triangles, in leaf order
 #define BINDING_BVH_NORMALS 22     // SSBO vec4[]: per triangle (scene order) its normals (traverse/gpu_bvh.h)
+#define BINDING_EMITTERS 23        // SSBO PackedEmitter[] (shared/emitters.glsl; illum/resources/gpu_emitters.h)
+#define BINDING_EMITTER_OF 24      // SSBO int[]: per triangle (scene order) its emitter, or -1
+#define BINDING_SCENE_VERTICES 25  // SSBO float[]: the GPU scene's vertex buffer (core/gpu_scene.h, per corner)
 
 // ---- textures (samplers)
 #define TEXUNIT_GBUFFER_POSITION 0          // world position, w = 1 where a surface was seen

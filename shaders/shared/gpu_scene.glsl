@@ -9,6 +9,11 @@
 #include "bindings.glsl"
 
 SHARED_BEGIN
+// The vertex buffer: per corner (3 per triangle, the flattened scene's order)
+// position, shading normal, uv, the triangle's unit geometric normal.
+const uint SCENE_VERTEX_FLOATS = 11u;
+const uint SCENE_VERTEX_UV = 6u;  // the uv's first float
+
 struct PackedMaterial {
   vec4 albedoLayer;     // rgb albedo, w = texture layer or −1
   vec4 ksExponent;      // rgb ks, w = Phong exponent

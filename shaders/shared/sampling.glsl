@@ -50,6 +50,14 @@ SHARED_FN vec3 cosineSampleHemisphere(vec2 u) {
   return vec3(r * cos(phi), r * sin(phi), sqrt(max(0.0f, 1.0f - u.x)));
 }
 
+// Veach's power heuristic (Veach 1997, §9.2.4, β = 2): the MIS weight of a
+// sample drawn with density pa when density pb could have drawn it too.
+SHARED_FN float powerHeuristic(float pa, float pb) { return pa * pa / (pa * pa + pb * pb); }
+
+// The probability that Russian roulette ends a path whose throughput is beta:
+// 1 − its largest channel, at least 0.05 (the survivors are divided by 1 − q).
+SHARED_FN float russianRouletteQ(vec3 beta) { return max(0.05f, 1.0f - max(beta.x, max(beta.y, beta.z))); }
+
 // Direction in the cone of half-angle acos(cosMax) around +z, density ∝ cos^e.
 SHARED_FN vec3 samplePowerCosine(vec2 u, float e) {
   float cosT = pow(max(u.x, 1e-30f), 1.0f / (e + 1.0f));

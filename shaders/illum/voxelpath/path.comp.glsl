@@ -92,7 +92,7 @@ void main() {
       if (!(pdf > 0.0f) || cosI <= 0.0f) break;
       beta *= evalBrdf(x.brdf, x.n, wo, wi) * (cosI / pdf);
       if (depth + 1 >= uRrDepth) {
-        float q = max(0.05f, 1.0f - max(beta.x, max(beta.y, beta.z)));
+        float q = russianRouletteQ(beta);
         if (rngNext(rng) < q) break;
         beta /= 1.0f - q;
       }

@@ -1,0 +1,39 @@
+// The parameters of the exact integrators, read and documented once for the
+// two implementations of the same estimators: `reference` (CPU, Embree) and
+// `reference_gl` (GL, the GPU BVH). Both take the same keys with the same
+// defaults, so a counterpart's `set` runs unchanged on either device.
+#pragma once
+#include <glm/glm.hpp>
+
+namespace vgi {
+
+class ParamSet;
+struct Scene;
+
+enum class ExactIntegrator { Path, Direct, NearField, Ao };
+enum class EmitterSampling { Mis, Light, Brdf };
+
+struct ExactParams {
+  ExactIntegrator integrator = ExactIntegrator::Path;
+  const char* integratorName = "path";
+  int maxDepth = 8, rrDepth = 3;  // direct: maxDepth 1
+  float radius = 0;               // nearfield / ao, world units
+  bool env = true;                // nearfield
+  bool voxelVisibility = false;   // nearfield / path: bounce rays' first hits through voxels
+  glm::uvec3 voxels{128};
+  float offset = 1.0f;
+  EmitterSampling emitterSampling = EmitterSampling::Mis;
+  // The integrators that split their estimate into "direct" and "indirect" outputs.
+  bool splitsDirectIndirect() const {
+    return integrator == ExactIntegrator::NearField || integrator == ExactIntegrator::Path;
+  }
+};
+
+// Reads and documents integrator, maxdepth, rr_depth, radius, env, visibility,
+// voxels, offset and emitter_sampling; only the integrator's own are read (a
+// key of another integrator is an error naming both). `method`: the module
+// name in messages; `voxelsSupported`: whether visibility=voxels is offered
+// (it runs on the CPU only).
+ExactParams readExactParams(ParamSet& params, const Scene& scene, const char* method, bool voxelsSupported);
+
+}  // namespace vgi
