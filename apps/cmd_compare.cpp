@@ -29,6 +29,7 @@ void addCompareCommand(CLI::App& app) {
   auto refSpp = std::make_shared<int>(256);
   auto reference = std::make_shared<std::string>();
   auto diffOptions = std::make_shared<DiffOptions>();
+  auto exactDevice = std::make_shared<std::string>("same");
   opt->method = "nearfield";
   args->size = "256x256";
   // (--spp and --set are the method's; the counterpart gets --ref-spp and the
@@ -38,6 +39,12 @@ void addCompareCommand(CLI::App& app) {
   cmd->add_option("--reference", *reference,
                   "an existing image of the exact counterpart (e.g. an earlier stem.exact.exr; its AOVs and "
                   "stats beside it) instead of rendering it");
+  cmd->add_option(
+         "--exact-device", *exactDevice,
+         "where the exact counterpart runs: same (the method's device: reference_gl for a GL method, "
+         "so the times compare algorithms on one device) or cpu (reference, Embree)")
+      ->check(CLI::IsMember({"same", "cpu"}))
+      ->capture_default_str();
   addDiffOptions(cmd, *diffOptions);
   cmd->add_option("-o,--output", *out,
                   "stem.exr: writes stem.<method>.*, stem.exact.* (images, AOVs, stats) and stem.json (the "
@@ -48,7 +55,8 @@ void addCompareCommand(CLI::App& app) {
     opt->methodGiven = true;  // compare is about this method: a preset written for another one is an error
     checkOutputPath(*out);
     installInterruptHandler();
-    const Comparison c = compareWithCounterpart(*opt, *refSpp, *diffOptions, *reference);
+    const Comparison c = compareWithCounterpart(*opt, *refSpp, *diffOptions, *reference,
+                                                *exactDevice == "cpu" ? ExactDevice::Cpu : ExactDevice::Same);
     if (!c.complete) {
       std::fprintf(stderr, "interrupted before both renders had a full sample: nothing written\n");
       throw Interrupted{};
@@ -61,9 +69,11 @@ void addCompareCommand(CLI::App& app) {
     const double perFrame = c.msPerFrame, setup = c.setupMs;
     const int frames = c.frames;
 
-    std::printf("%s vs exact (%s %s, %d spp) on %s, %dx%d\n", opt->method.c_str(),
-                c.counterpart.method.c_str(), joined(c.counterpart.set).c_str(), c.refSpp, opt->scene.c_str(),
-                opt->width, opt->height);
+    std::printf("%s vs exact (%s %s, %d spp, on the %s: %s device) on %s, %dx%d\n", opt->method.c_str(),
+                c.counterpart.method.c_str(), joined(c.counterpart.set).c_str(), c.refSpp,
+                c.choice.device == "gl" ? "GL device" : "CPU", c.choice.sameDevice ? "the same" : "another",
+                opt->scene.c_str(), opt->width, opt->height);
+    if (!c.choice.note.empty()) std::printf("  note: %s\n", c.choice.note.c_str());
     std::printf("  %-10s%s\n", "channel", diffHeader());
     std::vector<std::string> channels = {"image"};
     channels.insert(channels.end(), c.counterpart.aovs.begin(), c.counterpart.aovs.end());

@@ -10,8 +10,43 @@
 
 namespace vgi {
 
+nlohmann::json CounterpartChoice::toJson() const {
+  nlohmann::json j = {{"method", counterpart.method},
+                      {"set", counterpart.set},
+                      {"device", device},
+                      {"same_device", sameDevice}};
+  if (!note.empty()) j["note"] = note;
+  return j;
+}
+
+CounterpartChoice counterpartOnDevice(const RenderOptions& method, const Counterpart& registry,
+                                      ExactDevice device) {
+  const bool gl = findMethod(method.method).needsGl;
+  CounterpartChoice c;
+  c.counterpart = registry;
+  const MethodInfo& exact = findMethod(registry.method);
+  c.device = exact.needsGl ? "gl" : "cpu";
+  if (gl && !exact.needsGl && !exact.glTwin.empty() && device == ExactDevice::Same) {
+    RenderOptions twin = method;
+    twin.method = exact.glTwin;
+    twin.set = registry.set;
+    twin.preset.clear();
+    try {
+      resolveParameters(twin);
+      c.counterpart.method = exact.glTwin;
+      c.device = "gl";
+    } catch (const Error& e) {
+      c.note = exact.glTwin + " refuses these parameters, so the counterpart runs on the CPU: " + e.what();
+    }
+  } else if (gl && !exact.needsGl && device == ExactDevice::Same) {
+    c.note = registry.method + " has no GL twin";
+  }
+  c.sameDevice = c.device == (gl ? "gl" : "cpu");
+  return c;
+}
+
 Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const DiffOptions& diff,
-                                  const std::string& referenceFile) {
+                                  const std::string& referenceFile, ExactDevice device) {
   if (refSpp < 1 || refSpp > 1 << 20) fail("--ref-spp ", refSpp, ": must be in [1, 1048576]");
   const MethodInfo& info = findMethod(opt.method);
   if (!info.counterpart)
@@ -22,7 +57,8 @@ Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const Di
   c.refSpp = refSpp;
   // The counterpart gets the method's resolved parameters (defaults that
   // depend on the scene included, e.g. the radius).
-  c.counterpart = info.counterpart(resolveParameters(opt));
+  c.choice = counterpartOnDevice(opt, info.counterpart(resolveParameters(opt)), device);
+  c.counterpart = c.choice.counterpart;
   if (!referenceFile.empty()) {
     // The counterpart given as an image: read (and size-checked) before the method renders.
     const std::string stem = std::filesystem::path(referenceFile).replace_extension("").string();
@@ -84,7 +120,8 @@ nlohmann::json Comparison::summary() const {
   s["scene"] = approx.stats["scene"];
   s["method"] = approx.stats["method"];
   s["method_params"] = approx.stats["params"];
-  s["exact"] = {{"method", counterpart.method}, {"set", counterpart.set}, {"spp", refSpp}};
+  s["exact"] = choice.toJson();
+  s["exact"]["spp"] = refSpp;
   s["size"] = {approx.stats["width"], approx.stats["height"]};
   s["seed"] = approx.stats["seed"];
   s["gl_renderer"] = approx.stats["gl_renderer"];

@@ -15,9 +15,30 @@
 
 namespace vgi {
 
+// Where the exact counterpart runs. Speed against error means something only on
+// one device (DESIGN.md): by default a GL method's counterpart is the exact
+// method's GL twin (reference → reference_gl, MethodInfo::glTwin), a CPU
+// method's the CPU one; `Cpu` keeps the registry's (CPU) counterpart.
+enum class ExactDevice { Same, Cpu };
+
+struct CounterpartChoice {
+  Counterpart counterpart;
+  std::string device;       // "gl" or "cpu": where the counterpart runs
+  bool sameDevice = false;  // as the method
+  std::string note;         // why not on the method's device, when it is not
+  nlohmann::json toJson() const;
+};
+
+// The counterpart `registry` (the method's registry counterpart) on the device
+// asked for. A twin that refuses the parameters (reference_gl: visibility=voxels
+// runs on the CPU only) leaves the CPU counterpart, with the reason in `note`.
+CounterpartChoice counterpartOnDevice(const RenderOptions& method, const Counterpart& registry,
+                                      ExactDevice device);
+
 struct Comparison {
   RenderOutput approx, exact;
   Counterpart counterpart;
+  CounterpartChoice choice;  // which counterpart, on which device
   int refSpp = 0;
   std::map<std::string, ImageDiff> errors;  // "image" and each AOV the counterpart splits
   // Per frame: the passes the method runs per sample (its sample_passes); the
@@ -35,8 +56,10 @@ struct Comparison {
 // referenceFile: an existing image of the counterpart (its AOVs beside it as
 // <stem>.<aov>.exr, its stats as <stem>.json when present) instead of
 // rendering it; refused if its size differs.
+// device: where the counterpart runs (ExactDevice).
 Comparison compareWithCounterpart(const RenderOptions& method, int refSpp, const DiffOptions& diff = {},
-                                  const std::string& referenceFile = "");
+                                  const std::string& referenceFile = "",
+                                  ExactDevice device = ExactDevice::Same);
 
 // Writes stem.<method>.*, stem.exact.* (images, AOVs, stats), the signed
 // error images stem.error[.<aov>].exr/.png and stem.json; returns the image

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -18,6 +19,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/params.h"
+#include "experiments/compare.h"
 #include "illum/framework/method.h"
 #include "illum/framework/render_job.h"
 
@@ -107,6 +109,12 @@ SweepRender makeRender(const std::string& dir, const std::string& kind, const st
   return r;
 }
 
+// The method a render runs (its `--method` argument).
+std::string renderMethod(const SweepRender& r) {
+  const auto it = std::find(r.args.begin(), r.args.end(), "--method");
+  return it != r.args.end() && it + 1 != r.args.end() ? *(it + 1) : r.id;
+}
+
 std::string shellQuote(const std::string& s) {
   std::string q = "'";
   for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
@@ -190,7 +198,13 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
   fs::remove(probe, ec);
 
   const nlohmann::json ref = j.value("reference", nlohmann::json::object());
-  checkKeys(ref, "'reference'", {"spp", "method", "set", "file", "convergence"});
+  checkKeys(ref, "'reference'", {"spp", "method", "set", "file", "convergence", "device"});
+  if (ref.contains("device")) {
+    const std::string d = ref["device"].is_string() ? ref["device"].get<std::string>() : ref["device"].dump();
+    if (d != "same" && d != "cpu")
+      fail("experiment: 'reference.device' = ", ref["device"].dump(), " must be \"same\" or \"cpu\"");
+    e.exactDevice = d == "same" ? ExactDevice::Same : ExactDevice::Cpu;
+  }
   if (ref.contains("file") && (ref.contains("method") || ref.contains("spp") || ref.contains("convergence")))
     fail("experiment: 'reference' has a 'file' and a method, spp or convergence: give one of them");
   const int refSpp = ref.contains("spp") ? intIn(ref["spp"], "reference.spp", 1, 1 << 20) : 256;
@@ -220,6 +234,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
 
   if (!j["methods"].is_array() || j["methods"].empty())
     fail("experiment: 'methods' must be a non-empty list of {\"method\": …}");
+  std::map<std::string, std::string> curveMethods;  // scene, method, reference → its curve's method
   for (size_t mi = 0; mi < j["methods"].size(); ++mi) {
     const nlohmann::json& m = j["methods"][mi];
     const std::string where = "methods[" + std::to_string(mi) + "]";
@@ -347,8 +362,25 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
           }
           r = makeRender(dir, "references", rmethod,
                          renderArgs(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
-          auto same = std::find_if(e.references.begin(), e.references.end(),
-                                   [&](const SweepRender& x) { return x.id == r.id; });
+          // The convergence curve (what each point's equal-error time is read off) runs on the
+          // point's device: reference's GL twin for a GL method (the reference image may come
+          // from either: the same integral).
+          std::string cmethod = rmethod;
+          if (!e.curveCounts.empty()) {
+            const std::string key = scene + "\n" + method + "\n" + r.id;
+            auto known = curveMethods.find(key);
+            if (known == curveMethods.end())
+              known =
+                  curveMethods
+                      .emplace(key, counterpartOnDevice(o, Counterpart{rmethod, rset, raovs}, e.exactDevice)
+                                        .counterpart.method)
+                      .first;
+            cmethod = known->second;
+          }
+          auto same = std::find_if(e.references.begin(), e.references.end(), [&](const SweepRender& x) {
+            const SweepRender& c = e.curves[size_t(&x - e.references.data())];
+            return x.id == r.id && (c.args.empty() || renderMethod(c) == cmethod);
+          });
           if (same == e.references.end()) {
             RenderOptions ro;
             ro.scene = scene;
@@ -367,8 +399,8 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
             if (!e.curveCounts.empty()) {
               const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
               curve = makeRender(
-                  dir, "curves", rmethod,
-                  renderArgs(e, scene, rmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
+                  dir, "curves", cmethod,
+                  renderArgs(e, scene, cmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
             }
             e.curves.push_back(curve);
           } else {
@@ -528,10 +560,11 @@ nlohmann::json collectSweep(const Experiment& e) {
     std::string scene;
     for (auto& p : e.points)
       if (p.reference == i) scene = p.scene;
-    const std::string method = ref.args.size() > 4 ? ref.args[4] : ref.id;
+    const SweepRender& curve = e.curves[i];
+    const std::string method = renderMethod(curve);
     std::string label = method;  // with its parameters: two counterparts of one scene differ in them
-    for (size_t a = 0; a + 1 < ref.args.size(); ++a)
-      if (ref.args[a] == "--set") label += " " + ref.args[a + 1];
+    for (size_t a = 0; a + 1 < curve.args.size(); ++a)
+      if (curve.args[a] == "--set") label += " " + curve.args[a + 1];
     const nlohmann::json base = {{"scene", scene},
                                  {"method", method},
                                  {"label", label + " (exact, seed " + std::to_string(e.seed + 1) + ")"},
@@ -591,6 +624,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
                         {"relative_epsilon", e.relativeEpsilon},
                         {"time_budget_s", e.timeBudgetS},
                         {"convergence", e.curveCounts},
+                        {"exact_device", e.exactDevice == ExactDevice::Same ? "same" : "cpu"},
                         {"points", e.points.size()},
                         {"rows", rows}};
   std::ofstream(e.dir + "/results.json") << out.dump(2) << "\n";

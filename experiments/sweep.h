@@ -16,8 +16,12 @@
 //     "time_budget_s": 10,                    // optional: every point stops after this wall time
 //                                             // (`vgi render --time-limit`; spp is then the most)
 //     "reference": {"spp": 256,               // each method's registry counterpart (default),
-//                   "convergence": [1, 4, 16]}   // optional: the counterpart's own curve (next seed)
+//                   "convergence": [1, 4, 16],   // optional: the counterpart's own curve (next seed)
 //                                             // at these counts → each row's equal-error time ratio
+//                   "device": "same"}         // optional: the curve runs on each method's device
+//                                             // (a GL method's: reference_gl) — or "cpu": the
+//                                             // registry's counterpart; the reference image is the
+//                                             // registry's (or the given method's) either way
 //                | {"method": "reference", "set": {"integrator": "ao"}, "spp": 256}
 //                | {"file": "ref.exr"}        // an existing image (one scene; its AOVs next to it)
 //     "methods": [ {"method": "nearfield", "label": "NF",
@@ -37,6 +41,7 @@
 #include <vector>
 
 #include "core/image_metrics.h"
+#include "experiments/compare.h"
 
 namespace vgi {
 
@@ -67,6 +72,7 @@ struct Experiment {
   double relativeEpsilon = 0.1;   // the second relMSE's relative ε
   double timeBudgetS = 0;         // > 0: each point's wall-time limit
   std::vector<int> curveCounts;   // the counterparts' convergence checkpoints (sorted; last = its spp)
+  ExactDevice exactDevice = ExactDevice::Same;  // where the convergence curves run (reference.device)
   std::vector<SweepRender> references;
   std::vector<SweepRender> curves;  // per reference: its convergence render (no args: none)
   std::vector<SweepPoint> points;

@@ -433,7 +433,9 @@ void ReferenceRenderer::finishFrame(Frame& f) {
 }  // namespace
 
 MethodInfo referenceMethod() {
-  return {"reference", "CPU Embree reference: integrator=path|nearfield|ao|direct", false,
+  return {"reference",
+          "CPU Embree reference: integrator=path|nearfield|ao|direct",
+          false,
           [](ParamSet& p, const Scene& s) -> std::unique_ptr<Method> {
             return std::make_unique<ReferenceRenderer>(p, s);
           },
