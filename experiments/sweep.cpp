@@ -229,7 +229,6 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
     r.id = "file";
     r.stem = r.file;
     e.references.push_back(r);
-    e.curves.emplace_back();
   }
 
   if (!j["methods"].is_array() || j["methods"].empty())
@@ -362,25 +361,8 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
           }
           r = makeRender(dir, "references", rmethod,
                          renderArgs(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
-          // The convergence curve (what each point's equal-error time is read off) runs on the
-          // point's device: reference's GL twin for a GL method (the reference image may come
-          // from either: the same integral).
-          std::string cmethod = rmethod;
-          if (!e.curveCounts.empty()) {
-            const std::string key = scene + "\n" + method + "\n" + r.id;
-            auto known = curveMethods.find(key);
-            if (known == curveMethods.end())
-              known =
-                  curveMethods
-                      .emplace(key, counterpartOnDevice(o, Counterpart{rmethod, rset, raovs}, e.exactDevice)
-                                        .counterpart.method)
-                      .first;
-            cmethod = known->second;
-          }
-          auto same = std::find_if(e.references.begin(), e.references.end(), [&](const SweepRender& x) {
-            const SweepRender& c = e.curves[size_t(&x - e.references.data())];
-            return x.id == r.id && (c.args.empty() || renderMethod(c) == cmethod);
-          });
+          auto same = std::find_if(e.references.begin(), e.references.end(),
+                                   [&](const SweepRender& x) { return x.id == r.id; });
           if (same == e.references.end()) {
             RenderOptions ro;
             ro.scene = scene;
@@ -394,17 +376,35 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
             }
             e.references.push_back(r);
             pt.reference = e.references.size() - 1;
-            // Its own convergence: the same integral with the next seed, against the reference.
-            SweepRender curve;
-            if (!e.curveCounts.empty()) {
-              const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
-              curve = makeRender(
-                  dir, "curves", cmethod,
-                  renderArgs(e, scene, cmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
-            }
-            e.curves.push_back(curve);
           } else {
             pt.reference = size_t(same - e.references.begin());
+          }
+          // Its own convergence: the same integral with the next seed, against the reference,
+          // on the point's device (reference's GL twin for a GL method, unless reference.device
+          // is "cpu"): what each point's equal-error time is read off. The reference image may
+          // come from either device (the same integral).
+          if (!e.curveCounts.empty()) {
+            const std::string key = method + "\n" + r.id;
+            auto known = curveMethods.find(key);
+            if (known == curveMethods.end())
+              known =
+                  curveMethods
+                      .emplace(key, counterpartOnDevice(o, Counterpart{rmethod, rset, raovs}, e.exactDevice)
+                                        .counterpart.method)
+                      .first;
+            const std::string& cmethod = known->second;
+            const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
+            const SweepRender curve = makeRender(
+                dir, "curves", cmethod,
+                renderArgs(e, scene, cmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
+            auto c = std::find_if(e.curves.begin(), e.curves.end(),
+                                  [&](const SweepRender& x) { return x.id == curve.id; });
+            if (c == e.curves.end()) {
+              e.curves.push_back(curve);
+              e.curveReference.push_back(pt.reference);
+              c = e.curves.end() - 1;
+            }
+            pt.curve = int(c - e.curves.begin());
           }
         }
         e.points.push_back(std::move(pt));
@@ -553,13 +553,13 @@ nlohmann::json collectSweep(const Experiment& e) {
   std::vector<std::string> channels = {"image"};
   channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
   // The counterparts' own curves first: each point's equal-error time is read off them.
-  std::vector<nlohmann::json> curveRows(e.references.size(), nlohmann::json::array());
-  for (size_t i = 0; i < e.references.size(); ++i) {
-    const SweepRender& ref = e.references[i];
-    if (e.curves[i].args.empty() || !readJson(stemOfRender(ref) + ".json").is_object()) continue;
+  std::vector<nlohmann::json> curveRows(e.curves.size(), nlohmann::json::array());
+  for (size_t i = 0; i < e.curves.size(); ++i) {
+    const SweepRender& ref = e.references[e.curveReference[i]];
+    if (!readJson(stemOfRender(ref) + ".json").is_object()) continue;
     std::string scene;
     for (auto& p : e.points)
-      if (p.reference == i) scene = p.scene;
+      if (p.curve == int(i)) scene = p.scene;
     const SweepRender& curve = e.curves[i];
     const std::string method = renderMethod(curve);
     std::string label = method;  // with its parameters: two counterparts of one scene differ in them
@@ -588,9 +588,9 @@ nlohmann::json collectSweep(const Experiment& e) {
     for (auto& row : mine) {
       // The time the exact counterpart takes to reach this row's error (relMSE, relative ε).
       for (auto& ch : channels) {
-        if (!row.contains(ch) || curveRows[p.reference].empty()) continue;
+        if (!row.contains(ch) || p.curve < 0 || curveRows[size_t(p.curve)].empty()) continue;
         std::vector<CurvePoint> curve;
-        for (auto& c : curveRows[p.reference])
+        for (auto& c : curveRows[size_t(p.curve)])
           if (c.contains(ch))
             curve.push_back({c["time_ms"].get<double>(), c["sample_ms"].get<double>(),
                              c[ch]["relmse_relative"].get<double>()});

@@ -58,6 +58,7 @@ struct SweepPoint {
   std::string scene, method, label;
   nlohmann::json params;  // the grid's values of this point, key → value (text)
   size_t reference = 0;   // index into Experiment::references
+  int curve = -1;         // index into Experiment::curves: its counterpart's convergence, or −1
   int spp = 0;            // the method's "spp", or the experiment's
 };
 
@@ -74,7 +75,10 @@ struct Experiment {
   std::vector<int> curveCounts;   // the counterparts' convergence checkpoints (sorted; last = its spp)
   ExactDevice exactDevice = ExactDevice::Same;  // where the convergence curves run (reference.device)
   std::vector<SweepRender> references;
-  std::vector<SweepRender> curves;  // per reference: its convergence render (no args: none)
+  // The counterparts' convergence renders, each against references[curveReference[i]]: one per
+  // reference and device (a reference shared by a GL and a CPU method has two).
+  std::vector<SweepRender> curves;
+  std::vector<size_t> curveReference;
   std::vector<SweepPoint> points;
 };
 

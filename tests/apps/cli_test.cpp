@@ -77,6 +77,21 @@ TEST(Cli, CompareRendersTheExactCounterpartWithTheSameParameters) {
   nlohmann::json ex = nlohmann::json::parse(std::ifstream(tmp("cmp.exact.json")));
   EXPECT_EQ(ex["spp"], 64);
   EXPECT_EQ(ex["params"]["env"], false);
+  // On the method's device by default (reference's GL twin), and it says so; --exact-device cpu: reference.
+  EXPECT_EQ(s["exact"]["method"], "reference_gl");
+  EXPECT_EQ(s["exact"]["device"], "gl");
+  EXPECT_EQ(s["exact"]["same_device"], true);
+  EXPECT_NE(r.output.find("same device"), std::string::npos) << r.output;
+  CliRun cpu = vgi("compare --method voxel_ao --size 8x8 --spp 1 --ref-spp 1 --exact-device cpu --quiet -o " +
+                   tmp("c.exr"));
+  ASSERT_EQ(cpu.code, 0) << cpu.output;
+  nlohmann::json c = nlohmann::json::parse(std::ifstream(tmp("c.json")));
+  EXPECT_EQ(c["exact"]["method"], "reference");
+  EXPECT_EQ(c["exact"]["device"], "cpu");
+  EXPECT_EQ(c["exact"]["same_device"], false);
+  CliRun badDevice = vgi("compare --exact-device gpu --size 8x8 -o " + tmp("x.exr"));
+  EXPECT_EQ(badDevice.code, 2);
+  EXPECT_NE(badDevice.output.find("--exact-device"), std::string::npos) << badDevice.output;
   CliRun exact = vgi("compare --method reference --size 8x8 -o " + tmp("x.exr"));
   EXPECT_EQ(exact.code, 2);
   EXPECT_NE(exact.output.find("exactly"), std::string::npos) << exact.output;

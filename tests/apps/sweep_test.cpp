@@ -49,6 +49,8 @@ TEST(Sweep, SmokeExperimentRunsCollectsAndResumes) {
   EXPECT_EQ(countOf(list.output, "integrator=nearfield"), 2u) << list.output;
   EXPECT_EQ(countOf(list.output, "integrator=ao"), 2u) << list.output;
   EXPECT_EQ(countOf(list.output, "'--seed' '2'"), 2u) << list.output;
+  // The convergence curves (the next seed) run on the methods' device: reference_gl for these GL methods.
+  EXPECT_EQ(countOf(list.output, "'--method' 'reference_gl'"), 2u) << list.output;
   for (auto& f : std::filesystem::recursive_directory_iterator(dir))
     EXPECT_TRUE(f.is_directory()) << "--print-commands wrote " << f.path();
 
@@ -169,6 +171,35 @@ TEST(Sweep, AMethodCanShareAnotherMethodsCounterpart) {
   EXPECT_EQ(lines(list.output).size(), 3u) << "one shared reference, two points: " << list.output;
   EXPECT_EQ(countOf(list.output, "/references/"), 1u) << list.output;
   EXPECT_EQ(countOf(list.output, "'--spp' '8'"), 2u) << "the reference and the second point: " << list.output;
+}
+
+// The convergence curves, what the equal-error time is read off, run on the device of the method
+// whose points they serve (reference_gl for a GL method, reference for a CPU one, each once while
+// the two share the reference image), or with "device": "cpu" on the CPU for all.
+TEST(Sweep, ConvergenceCurvesRunOnEachMethodsDevice) {
+  const std::string dir = tmp("sweep_device");
+  for (const char* device : {"same", "cpu"}) {
+    const std::string file = tmp(std::string("sweep_device_") + device + ".json");
+    std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 2,
+      "reference": {"spp": 8, "convergence": [1, 4], "device": ")"
+                        << device << R"("},
+      "methods": [{"method": "voxel_ao"},
+                  {"method": "reference", "set": {"integrator": "ao", "radius": 0.0960740447},
+                   "reference": {"counterpart_of": "voxel_ao"}}]})";
+    CliRun list = vgi("sweep " + file + " -o " + dir + " --print-commands");
+    ASSERT_EQ(list.code, 0) << list.output;
+    EXPECT_EQ(countOf(list.output, "/references/"), 1u) << list.output;
+    EXPECT_EQ(countOf(list.output, "/curves/reference_gl-"), std::string(device) == "same" ? 1u : 0u)
+        << list.output;
+    EXPECT_EQ(countOf(list.output, "/curves/reference-"), 1u) << list.output;
+  }
+  CliRun bad = vgi("sweep " + tmp("sweep_device_bad.json") + " -o " + dir);
+  std::ofstream(tmp("sweep_device_bad.json")) << R"({"scenes": ["builtin:cornell"], "size": "16x16",
+    "spp": 2, "reference": {"device": "gpu"}, "methods": [{"method": "voxel_ao"}]})";
+  bad = vgi("sweep " + tmp("sweep_device_bad.json") + " -o " + dir);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.output.find("reference.device"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("gpu"), std::string::npos) << bad.output;
 }
 
 // The equal-error time against hand-computed curves: log-log interpolation inside, Monte Carlo's
