@@ -1,6 +1,7 @@
 // vgi render: one image of a scene with a method.
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 #include "apps/commands.h"
 #include "core/error.h"
@@ -100,7 +101,14 @@ void addRenderCommand(CLI::App& app) {
       opt->checkpoints.push_back(int(v));  // runRender checks the range against --spp
     }
     checkOutputPath(*out);
-    if (!stats->empty()) checkOutputFile(*stats, "--stats");
+    if (!stats->empty()) {
+      checkOutputFile(*stats, "--stats");
+      // The stats JSON must not replace one of the render's own files.
+      for (const std::string& f : renderOutputNames(*out, *opt))
+        if (std::filesystem::weakly_canonical(f) == std::filesystem::weakly_canonical(*stats))
+          fail("--stats '", *stats, "' is also a file this render writes for -o '", *out, "' (", f,
+               "): give another path");
+    }
     opt->methodGiven = cmd->count("--method") > 0;
     installInterruptHandler();
     std::vector<std::string> files;

@@ -48,6 +48,11 @@ void writeImage(const Image& img, const std::string& path, float exposure) {
 
 Image readImage(const std::string& path) {
   Texture t = loadTexture(path, "image");
+  // An image read to be measured (diff, compare --reference, a sweep's reference file): a metric over
+  // pixels that are not numbers would mean nothing, and reading them as 0 would hide them.
+  if (t.nonFiniteTexels > 0)
+    fail("image '", path, "' has ", t.nonFiniteTexels, " non-finite (NaN or Inf) channel value(s) in ",
+         t.width, "x", t.height, " pixels: refused (an error metric over them means nothing)");
   Image img(t.width, t.height);
   img.pixels = std::move(t.texels);
   return img;

@@ -38,13 +38,17 @@ void checkOutputFile(const std::string& path, const std::string& option) {
   if (fs::is_directory(st)) fail(option, " '", path, "' is a directory, not a file");
 }
 
-void writeJsonFile(const nlohmann::json& j, const std::string& path) {
-  const std::string text =
-      jsonText(j, 2) + "\n";  // whole before the file is opened: never a half-written file
+void writeTextFile(const std::string& text, const std::string& path) {
   std::ofstream out(path, std::ios::binary);
   out << text;
   out.close();
-  if (!out) fail("cannot write '", path, "'");
+  if (!out)
+    fail("cannot write '", path, "'", std::filesystem::is_directory(path) ? ": it is a directory" : "");
+}
+
+void writeJsonFile(const nlohmann::json& j, const std::string& path) {
+  // Whole before the file is opened: never a half-written file.
+  writeTextFile(jsonText(j, 2) + "\n", path);
 }
 
 }  // namespace vgi

@@ -607,8 +607,10 @@ Texture loadTexture(const std::string& path, const std::string& what) {
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(what, " '", path, "' has no pixels");
   if (size_t(spec.width) * spec.height > (size_t(1) << 28))
     fail(what, " '", path, "' is too large (", spec.width, "x", spec.height, ")");
-  std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px.data()))
+  // Only the channels used (RGB, or the first as grey): a header may claim a thousand.
+  const int nc = std::min(spec.nchannels, 3);
+  std::vector<float> px(size_t(spec.width) * spec.height * nc);
+  if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, px.data()))
     fail("cannot decode ", what, " '", path, "': ", in->geterror());
   bool srgb = spec.format.basetype == TypeDesc::UINT8 || spec.format.basetype == TypeDesc::UINT16;
   Texture t;
@@ -616,12 +618,14 @@ Texture loadTexture(const std::string& path, const std::string& what) {
   t.width = spec.width;
   t.height = spec.height;
   t.texels.resize(size_t(t.width) * t.height);
-  int nc = spec.nchannels;
   for (size_t i = 0; i < t.texels.size(); ++i) {
     glm::vec3 c;
     for (int k = 0; k < 3; ++k) {
       float v = px[i * nc + std::min(k, nc >= 3 ? k : 0)];
-      if (!std::isfinite(v)) v = 0;
+      if (!std::isfinite(v)) {
+        v = 0;
+        if (k == 0 || nc >= 3) ++t.nonFiniteTexels;
+      }
       c[k] = srgb ? srgbToLinear(v) : v;
     }
     t.texels[i] = c;

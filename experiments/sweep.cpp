@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/output_files.h"
 #include "core/params.h"
 #include "experiments/compare.h"
 #include "illum/framework/method.h"
@@ -61,6 +62,15 @@ int intIn(const nlohmann::json& v, const std::string& key, int lo, int hi) {
   if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
     fail("experiment: '", key, "' = ", v.dump(), " must be an integer in [", lo, ", ", hi, "]");
   return v.get<int>();
+}
+
+// The string at obj[key] (JSON path `where`), or `def` where the key is absent.
+std::string stringAt(const nlohmann::json& obj, const std::string& key, const std::string& where,
+                     const std::string& def = "") {
+  if (!obj.is_object() || !obj.contains(key)) return def;
+  const nlohmann::json& v = obj[key];
+  if (!v.is_string()) fail("experiment: '", where, "' = ", v.dump(), " must be a string");
+  return v.get<std::string>();
 }
 
 double positive(const nlohmann::json& v, const std::string& key) {
@@ -139,7 +149,23 @@ nlohmann::json readJson(const std::string& path) {
 
 }  // namespace
 
+namespace {
+Experiment loadExperimentFile(const std::string& path, const std::string& dir);
+}  // namespace
+
 Experiment loadExperiment(const std::string& path, const std::string& dir) {
+  try {
+    return loadExperimentFile(path, dir);
+  } catch (const Error& ex) {
+    // Every message names the file: "experiment: X" becomes "experiment file 'PATH': X".
+    const std::string m = ex.what(), prefix = "experiment: ";
+    if (m.rfind(prefix, 0) == 0) fail("experiment file '", path, "': ", m.substr(prefix.size()));
+    throw;
+  }
+}
+
+namespace {
+Experiment loadExperimentFile(const std::string& path, const std::string& dir) {
   if (!fs::is_regular_file(path))
     fail("experiment file '", path, "' does not exist or is not a regular file");
   nlohmann::json j;
@@ -157,7 +183,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
   Experiment e;
   e.path = path;
   e.dir = dir;
-  e.name = j.value("name", fs::path(path).stem().string());
+  e.name = stringAt(j, "name", "name", fs::path(path).stem().string());
   for (const char* k : {"scenes", "size", "spp", "methods"})
     if (!j.contains(k)) fail("experiment file '", path, "': '", k, "' is missing");
   if (!j["scenes"].is_array() || j["scenes"].empty())
@@ -200,7 +226,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
   const nlohmann::json ref = j.value("reference", nlohmann::json::object());
   checkKeys(ref, "'reference'", {"spp", "method", "set", "file", "convergence", "device"});
   if (ref.contains("device")) {
-    const std::string d = ref["device"].is_string() ? ref["device"].get<std::string>() : ref["device"].dump();
+    const std::string d = stringAt(ref, "device", "reference.device");
     if (d != "same" && d != "cpu")
       fail("experiment: 'reference.device' = ", ref["device"].dump(), " must be \"same\" or \"cpu\"");
     e.exactDevice = d == "same" ? ExactDevice::Same : ExactDevice::Cpu;
@@ -220,7 +246,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
     if (e.scenes.size() != 1)
       fail("experiment: a reference 'file' stands for one scene, but 'scenes' lists ", e.scenes.size());
     SweepRender r;
-    r.file = ref["file"].get<std::string>();
+    r.file = stringAt(ref, "file", "reference.file");
     if (fs::path(r.file).is_relative()) r.file = (fs::path(path).parent_path() / r.file).string();
     const Image img = readImage(r.file);  // throws naming a missing or unreadable file
     if (img.width != e.width || img.height != e.height)
@@ -233,7 +259,8 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
 
   if (!j["methods"].is_array() || j["methods"].empty())
     fail("experiment: 'methods' must be a non-empty list of {\"method\": …}");
-  std::map<std::string, std::string> curveMethods;  // scene, method, reference → its curve's method
+  std::map<std::string, std::string> curveMethods;  // method, reference → its curve's method
+  std::set<std::string> written;                    // the outputs the methods write
   for (size_t mi = 0; mi < j["methods"].size(); ++mi) {
     const nlohmann::json& m = j["methods"][mi];
     const std::string where = "methods[" + std::to_string(mi) + "]";
@@ -270,14 +297,19 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
       axes.emplace_back(k, values);
     }
     size_t combos = 1;
-    for (auto& a : axes) combos *= a.second.size();
-    if (combos > 10000) fail("experiment: ", where, " expands to ", combos, " points (at most 10000)");
+    for (auto& a : axes) {
+      // Checked before multiplying: 16 keys of 16 values would wrap a size_t to 0.
+      if (combos > 10000 / a.second.size())
+        fail("experiment: ", where, ".grid expands to more than 10000 points (", axes.size(),
+             " keys; at most 10000 combinations)");
+      combos *= a.second.size();
+    }
     for (const std::string& scene : e.scenes)
       for (size_t c = 0; c < combos; ++c) {
         SweepPoint pt;
         pt.scene = scene;
         pt.method = method;
-        pt.label = m.value("label", method);
+        pt.label = stringAt(m, "label", where + ".label", method);
         std::vector<std::string> set = fixed;
         size_t rest = c;
         pt.params = nlohmann::json::object();
@@ -303,6 +335,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
         } catch (const Error& ex) {
           fail("experiment: ", where, " (", method, " on ", scene, ", ", pt.params.dump(), "): ", ex.what());
         }
+        written.insert(outputs.begin(), outputs.end());
         // Only the outputs this method writes are asked of it.
         std::vector<std::string> aovs;
         for (auto& a : e.aovs)
@@ -319,7 +352,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
           std::string rmethod;
           std::vector<std::string> rset, raovs;
           if (mref.contains("method")) {
-            rmethod = mref["method"].get<std::string>();
+            rmethod = stringAt(mref, "method", where + ".reference.method");
             findMethod(rmethod, "experiment " + where + ".reference.method");
             const nlohmann::json refSet = mref.value("set", nlohmann::json::object());
             if (!refSet.is_object())
@@ -328,8 +361,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
               rset.push_back(k + "=" + paramText(v, where + ".reference.set." + k));
             raovs = e.aovs;
           } else if (mref.contains("counterpart_of")) {
-            const std::string other =
-                mref["counterpart_of"].is_string() ? mref["counterpart_of"].get<std::string>() : "";
+            const std::string other = stringAt(mref, "counterpart_of", where + ".reference.counterpart_of");
             const MethodInfo& oi = findMethod(other, "experiment " + where + ".reference.counterpart_of");
             if (!oi.counterpart)
               fail("experiment: ", where, ".reference.counterpart_of: '", other, "' has no counterpart");
@@ -342,7 +374,7 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
             for (auto& a : e.aovs)
               if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
           } else if (ref.contains("method")) {
-            rmethod = ref["method"].get<std::string>();
+            rmethod = stringAt(ref, "method", "reference.method");
             findMethod(rmethod, "experiment reference.method");
             const nlohmann::json refSet = ref.value("set", nlohmann::json::object());
             if (!refSet.is_object()) fail("experiment: reference.set must be an object of parameters");
@@ -410,8 +442,17 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
         e.points.push_back(std::move(pt));
       }
   }
+  // An output no method writes would be a column of blanks: refused before anything renders.
+  for (const std::string& a : e.aovs)
+    if (!written.count(a)) {
+      std::string list;
+      for (auto& w : written) list += (list.empty() ? "" : ", ") + w;
+      fail("experiment: 'aovs' names '", a, "', which no method of the experiment writes (",
+           list.empty() ? std::string("they write none") : "they write: " + list, ")");
+    }
   return e;
 }
+}  // namespace
 
 std::string sweepCommand(const SweepRender& r, const std::string& vgi) {
   std::string c = shellQuote(vgi);
@@ -442,7 +483,7 @@ int runSweep(const Experiment& e, const std::string& vgi) {
   for (auto& [r, spp] : todo) {
     fs::create_directories(r->dir);
     const std::string cmd = sweepCommand(*r, vgi);
-    std::ofstream(r->dir + "/command.txt") << cmd << "\n";
+    writeTextFile(cmd + "\n", r->dir + "/command.txt");
     std::fprintf(stderr, "sweep %s: [%d/%zu] %s\n", e.name.c_str(), ++n, todo.size(), r->id.c_str());
     const int rc = std::system((cmd + " > " + shellQuote(r->dir + "/log.txt") + " 2>&1").c_str());
     if ((WIFSIGNALED(rc) && (WTERMSIG(rc) == SIGINT || WTERMSIG(rc) == SIGTERM)) ||
@@ -627,7 +668,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
                         {"exact_device", e.exactDevice == ExactDevice::Same ? "same" : "cpu"},
                         {"points", e.points.size()},
                         {"rows", rows}};
-  std::ofstream(e.dir + "/results.json") << out.dump(2) << "\n";
+  writeJsonFile(out, e.dir + "/results.json");
   // CSV: the fixed columns, the grid's parameter keys, then per channel the metrics.
   std::set<std::string> keys;
   for (auto& p : e.points)
@@ -636,7 +677,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
   channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
   std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy"};
   if (!e.curveCounts.empty()) metrics.push_back("equal_error_time_ratio");
-  std::ofstream csv(e.dir + "/results.csv");
+  std::ostringstream csv;
   csv << "scene,method,label,role,point";
   for (auto& k : keys) csv << "," << k;
   csv << ",spp,time_ms,sample_ms,setup_ms,time_limited";
@@ -664,6 +705,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
     csv << "," << field(r["gl_renderer"]) << "," << field(r["machine"]) << "," << field(r["git_revision"])
         << "\n";
   }
+  writeTextFile(csv.str(), e.dir + "/results.csv");
   return rows;
 }
 

@@ -521,6 +521,39 @@ std::string stemOf(const std::string& path) {
 
 }  // namespace
 
+std::string checkpointStem(const std::string& stem, int spp) {
+  char number[24];
+  std::snprintf(number, sizeof number, ".spp%05d", spp);
+  return stem + number;
+}
+
+std::string frameStem(const std::string& stem, int frame) {
+  char number[16];
+  std::snprintf(number, sizeof number, "_%04d", frame);
+  return stem + number;
+}
+
+std::vector<std::string> renderOutputNames(const std::string& path, const RenderOptions& o) {
+  const std::string stem = stemOf(path);
+  std::vector<std::string> channels = {""};
+  channels.insert(channels.end(), o.aovs.begin(), o.aovs.end());
+  auto images = [&](const std::string& s, std::vector<std::string>& out) {
+    for (const std::string& a : channels)
+      for (const char* ext : {".exr", ".png"}) out.push_back(s + (a.empty() ? "" : "." + a) + ext);
+  };
+  std::vector<std::string> names = {stem + ".json"};
+  if (o.frames > 1) {
+    for (int f = 0; f < o.frames; ++f) images(frameStem(stem, f), names);
+    return names;
+  }
+  images(stem, names);
+  for (int k : o.checkpoints) {
+    images(checkpointStem(stem, k), names);
+    names.push_back(checkpointStem(stem, k) + ".json");
+  }
+  return names;
+}
+
 std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path,
                                             float exposure) {
   const std::string stem = stemOf(path);
@@ -532,9 +565,7 @@ std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::
 
 std::vector<std::string> writeCheckpointOutputs(const RenderOutput& out, const std::string& path, int spp,
                                                 float exposure) {
-  char number[24];
-  std::snprintf(number, sizeof number, ".spp%05d", spp);
-  const std::string stem = stemOf(path) + number;
+  const std::string stem = checkpointStem(stemOf(path), spp);
   std::vector<std::string> files = writeImages(out.result, stem, exposure);
   files.insert(files.begin() + 2, stem + ".json");
   writeStats(out.stats, stem + ".json", files, exposure);
@@ -543,9 +574,7 @@ std::vector<std::string> writeCheckpointOutputs(const RenderOutput& out, const s
 
 std::vector<std::string> writeFrameImages(const RenderOutput& out, const std::string& path, int frame,
                                           float exposure) {
-  char number[16];
-  std::snprintf(number, sizeof number, "_%04d", frame);
-  return writeImages(out.result, stemOf(path) + number, exposure);
+  return writeImages(out.result, frameStem(stemOf(path), frame), exposure);
 }
 
 std::string writeAnimationStats(const RenderOutput& out, const std::string& path,

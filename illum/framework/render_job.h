@@ -136,6 +136,13 @@ nlohmann::json renderStats(const RenderResult& result, const Profiler& profiler)
 // given, receives the extra outputs (AOVs) the method can write.
 nlohmann::json resolveParameters(const RenderOptions& options, std::vector<std::string>* outputs = nullptr);
 
+// The names the render outputs below take: <stem>.sppNNNNN (a checkpoint), <stem>_NNNN (a frame).
+std::string checkpointStem(const std::string& stem, int spp);
+std::string frameStem(const std::string& stem, int frame);
+// Every file a render with options `o` writes for output path `path` (images, AOVs, checkpoints,
+// frames, the stats JSON): what another output of the same command must not be.
+std::vector<std::string> renderOutputNames(const std::string& path, const RenderOptions& o);
+
 // Writes <stem>.exr, <stem>.png and <stem>.json (stats) for output path `path`
 // (.exr or .png), and <stem>.<aov>.exr/.png per extra output; returns the files written.
 std::vector<std::string> writeRenderOutputs(const RenderOutput& out, const std::string& path, float exposure);

@@ -2,6 +2,9 @@
 // each as the `vgi` command meets it: every case exits 0 with a finite image
 // and valid stats, or 2 with a message naming the input — never a crash
 // (-1 here), a hang, an internal error (3), or an exit 0 without its files.
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -159,6 +162,109 @@ TEST(BadInputCli, OutputPathsAreCheckedAndMadeBeforeTheRender) {
                     " -o " + tmp("sd.exr")),
                 {"--stats", "is a directory"});
   EXPECT_FALSE(std::filesystem::exists(tmp("sd.exr")));
+}
+
+// Experiment files: a field of the wrong JSON type, a grid whose point count would wrap, an output
+// no method writes — each refused before anything renders, naming the file, the JSON path and the
+// value (never "internal error: type must be string").
+TEST(BadInputCli, ExperimentFieldsOfTheWrongTypeOrSizeAreRefusedByPath) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"name_number.json", {"'name'", "42", "string"}},
+      {"label_number.json", {"methods[0].label", "7"}},
+      {"reference_file_number.json", {"reference.file", "5"}},
+      {"reference_method_number.json", {"reference.method", "3"}},
+      {"method_reference_method_array.json", {"methods[0].reference.method", "[\"reference\"]"}},
+      {"counterpart_of_bool.json", {"methods[0].reference.counterpart_of", "true"}},
+      {"device_number.json", {"reference.device", "1"}},
+      {"grid_wraps.json", {"methods[0].grid", "10000"}},
+      {"grid_too_big.json", {"methods[0].grid", "10000"}},
+      {"aov_misspelled.json", {"'aovs'", "indirekt", "direct, indirect"}},
+      {"aov_not_written.json", {"'aovs'", "indirect", "none"}},
+  };
+  const std::string dir = tmp("bad_experiment_out");
+  for (auto& [file, needles] : cases) {
+    std::filesystem::remove_all(dir);
+    const std::string path = dataPath("bad/experiments/" + file);
+    CliRun r = vgi("sweep '" + path + "' -o " + dir);
+    std::vector<std::string> all = needles;
+    all.push_back(path);  // the file is named
+    for (auto& n : all)
+      EXPECT_NE(r.output.find(n), std::string::npos) << file << ": '" << n << "' in " << r.output;
+    EXPECT_EQ(r.code, 2) << file << ": " << r.output;
+    EXPECT_EQ(r.output.find("internal"), std::string::npos) << file << ": " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/references")) << file << ": something rendered";
+  }
+}
+
+// Nothing is reported written that was not: a results file that is a directory is an error naming
+// it, and --stats may not be one of the render's own files (the JSON would replace the image).
+TEST(BadInputCli, OutputsThatCannotBeWrittenOrCollideAreRefused) {
+  const std::string dir = tmp("sweep_results_dir"), file = tmp("sweep_results_dir.json");
+  std::filesystem::remove_all(dir);
+  std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "8x8", "spp": 1,
+    "reference": {"spp": 1}, "methods": [{"method": "voxel_ao", "set": {"voxels": "16x16x128"}}]})";
+  for (const char* blocked : {"results.csv", "results.json"}) {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir + "/" + blocked);
+    CliRun r = vgi("sweep " + file + " -o " + dir);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find(blocked), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("is a directory"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Traceback"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("wrote " + dir + "/" + blocked), std::string::npos) << r.output;
+  }
+  const std::string stem = tmp("collide");
+  for (const std::string& extra :
+       {std::string("--stats ") + stem + ".exr", std::string("--stats ") + stem + ".png",
+        std::string("--stats ") + stem + ".json", "--aov indirect --stats " + stem + ".indirect.exr",
+        "--spp 4 --checkpoints 2 --stats " + stem + ".spp00002.png",
+        "--frames 2 --stats " + stem + "_0001.exr"}) {
+    CliRun r = vgi("render --method nearfield --set voxels=16x16x128 --size 8x8 --quiet " + extra + " -o " +
+                   stem + ".exr");
+    EXPECT_EQ(r.code, 2) << extra << ": " << r.output;
+    EXPECT_NE(r.output.find("--stats"), std::string::npos) << extra << ": " << r.output;
+    EXPECT_NE(r.output.find("also a file this render writes"), std::string::npos) << r.output;
+  }
+  // Another name is fine.
+  expectRendered(vgi("render --method nearfield --set voxels=16x16x128 --size 8x8 --spp 1 --quiet --stats " +
+                     stem + ".stats.json -o " + stem + ".exr"),
+                 stem);
+  EXPECT_TRUE(std::filesystem::exists(stem + ".stats.json"));
+}
+
+// Images read to be measured: a NaN or Inf value is refused naming the file and the count (not read
+// as 0 into ordinary-looking metrics); a header that claims a thousand channels reads only three.
+TEST(BadInputCli, ImagesWithNonFiniteValuesOrManyChannelsAreHandled) {
+  Image ok(8, 8);
+  for (auto& p : ok.pixels) p = glm::vec3(0.5f);
+  writeImage(ok, tmp("finite.exr"));
+  for (float bad : {std::nanf(""), INFINITY, -INFINITY}) {
+    Image img = ok;
+    img.pixels[9].y = bad;
+    img.pixels[20] = glm::vec3(bad);
+    writeImage(img, tmp("nonfinite.exr"));
+    CliRun diff = vgi("diff " + tmp("nonfinite.exr") + " " + tmp("finite.exr"));
+    expectRefused(diff, {tmp("nonfinite.exr"), "4 non-finite"});
+    CliRun cmp =
+        vgi("compare --method voxel_ao --set voxels=16x16x128 --size 8x8 --spp 1 --quiet --reference " +
+            tmp("nonfinite.exr") + " -o " + tmp("cmp_nf.exr"));
+    expectRefused(cmp, {tmp("nonfinite.exr"), "non-finite"});
+  }
+  // 1000 channels (the first three are the image).
+  {
+    using namespace OIIO;
+    const int w = 8, h = 8, nc = 1000;
+    ImageSpec spec(w, h, nc, TypeDesc::HALF);
+    std::vector<float> px(size_t(w) * h * nc, 0.25f);
+    auto out = ImageOutput::create(tmp("many_channels.exr"));
+    ASSERT_TRUE(out && out->open(tmp("many_channels.exr"), spec));
+    ASSERT_TRUE(out->write_image(TypeDesc::FLOAT, px.data()));
+    out->close();
+  }
+  CliRun many = vgi("diff " + tmp("many_channels.exr") + " " + tmp("finite.exr"));
+  EXPECT_EQ(many.code, 0) << many.output;
+  EXPECT_EQ(many.output.find("internal"), std::string::npos) << many.output;
+  EXPECT_NE(many.output.find("0.25"), std::string::npos) << "the first three channels read: " << many.output;
 }
 
 TEST(BadInputCli, UsageErrorsExitTwoAndNameTheClosestOption) {
