@@ -114,6 +114,12 @@ std::vector<ScriptEvent> loadScript(const std::string& path) {
       fail(where, ": '", kind, "' = ", v.dump(), " must be a string");
     if (kind == "set" && !v.is_object())
       fail(where, ": 'set' = ", v.dump(), " must be an object of parameters");
+    if (kind == "set")
+      for (auto& [k, x] : v.items()) {
+        std::string text;
+        if (!paramTextOf(x, text))
+          fail(where, ": 'set.", k, "' = ", x.dump(), " must be a number, string or bool");
+      }
     if (kind == "time" && (!v.is_number() || !finiteAsFloat(v.get<double>())))
       fail(where, ": 'time' = ", v.dump(), " must be a finite 32-bit float");
     if (kind == "screenshot") checkOutputPath(v.get<std::string>());

@@ -166,6 +166,15 @@ TEST(View, BadInputIsRefusedWithItsName) {
   script = underXvfb("--script " + bad);
   EXPECT_EQ(script.code, 2) << script.output;
   EXPECT_NE(script.output.find("orbit"), std::string::npos) << script.output;
+  // Every field typed, named by event and key (a list as a parameter value once gave no event).
+  for (const char* e : {R"({"set": {"rays": [1]}})", R"({"method": 5})", R"({"frames": "x"})",
+                        R"({"screenshot": 3})", R"({"set": {"radius": {"a": 1}}})"}) {
+    std::ofstream(bad) << "[" << e << "]";
+    script = underXvfb("--script " + bad);
+    EXPECT_EQ(script.code, 2) << e << ": " << script.output;
+    EXPECT_NE(script.output.find("event 0"), std::string::npos) << e << ": " << script.output;
+    EXPECT_NE(script.output.find(bad), std::string::npos) << e << ": " << script.output;
+  }
   // Finite as doubles but not as floats (once a black image and a '-nan' camera, or '--time inf').
   for (const char* e : {R"({"orbit": [1e300, 1e300]})", R"({"move": [0, 1e39, 0]})", R"({"time": 1e300})"}) {
     std::ofstream(bad) << "[" << e << "]";
