@@ -94,6 +94,7 @@ struct TraverseOptions {
   int threads = 0, repeat = 3;
   uint32_t seed = 1;
   float offset = 1.0f;
+  unsigned bvhWidth = 2;
   bool json = false, noGl = false;
 };
 
@@ -138,7 +139,9 @@ TraverseSetup setupTraverse(const TraverseOptions& o, const VoxelizerInfo& vox, 
   t.embree = std::make_unique<EmbreeTracer>(t.flat);
   t.build["embree_build_ms"] = msSince(t0);
   t0 = std::chrono::steady_clock::now();
-  t.bvh = buildBvh(t.flat);
+  BvhBuildOptions bvhOptions;
+  bvhOptions.width = o.bvhWidth;
+  t.bvh = buildBvh(t.flat, bvhOptions);
   t.build["bvh_build_ms"] = msSince(t0);
   t.build["bvh"] = t.bvh.describe();
   buildProf.resolve(true);
@@ -302,6 +305,10 @@ void addTraverseBench(CLI::App& bench) {
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "ray population seed")->capture_default_str();
   cmd->add_option("--gl", o->gl, "GL backend: auto|egl|osmesa")->capture_default_str();
+  cmd->add_option("--bvh-width", o->bvhWidth,
+                  "children per node of the bvh tracer's BVH: 2 (Aila & Laine, the methods' layout) or 4")
+      ->check(CLI::IsMember({2u, 4u}))
+      ->capture_default_str();
   cmd->add_flag("--no-gl", o->noGl, "skip the GLSL runs (the voxelizer may still need GL)");
   cmd->add_flag("--json", o->json, "print the results as JSON instead of a table");
   cmd->add_option("--stats", o->stats, "also write the JSON here");

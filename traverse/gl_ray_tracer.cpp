@@ -130,6 +130,7 @@ std::vector<TraceResult> traceRaysGl(const GlPyramid& pyramid, ShaderLibrary& sh
   ShaderDefines defines;
   addTracerDefine(defines, tracer);
   if (level > 0) defines["TRACE_FROM_LEVEL"] = "1";  // (level 0, the benchmarks' case, copies nothing)
+  if (bvh) addBvhDefine(defines, *bvh);
   unsigned prog = shaders.program({"traverse/trace_rays.comp.glsl"}, defines);
   std::vector<TraceResult> out(rays.size());
   if (rays.empty()) return out;

@@ -19,8 +19,8 @@ struct BuildNode {
   bool leaf;
 };
 struct InnerNode : BuildNode {
-  BuildNode* children[2];
-  RTCBounds bounds[2];
+  BuildNode* children[shared::kBvhMaxWidth];
+  RTCBounds bounds[shared::kBvhMaxWidth];
 };
 struct LeafNode : BuildNode {
   unsigned count;
@@ -28,10 +28,10 @@ struct LeafNode : BuildNode {
 };
 
 void* createNode(RTCThreadLocalAllocator alloc, unsigned childCount, void*) {
-  VGI_CHECK(childCount <= 2);
+  VGI_CHECK(childCount <= shared::kBvhMaxWidth);
   auto* n = static_cast<InnerNode*>(rtcThreadLocalAlloc(alloc, sizeof(InnerNode), 16));
   n->leaf = false;
-  n->children[0] = n->children[1] = nullptr;
+  for (auto*& c : n->children) c = nullptr;
   return n;
 }
 void setChildren(void* node, void** children, unsigned count, void*) {
@@ -78,17 +78,19 @@ struct Flattener {
       ++out.leaves;
       out.depth = std::max(out.depth, depth + 1);
     } else {
-      ref = uint32_t(out.nodes.size() / 4);
+      ref = uint32_t(out.nodes.size() / stride());
       node(static_cast<const InnerNode*>(b), depth + 1);
     }
-    out.nodes[4 * index + 2 * size_t(c)] = withBits(bounds.lower_x, bounds.lower_y, bounds.lower_z, ref);
-    out.nodes[4 * index + 2 * size_t(c) + 1] =
+    out.nodes[stride() * index + 2 * size_t(c)] =
+        withBits(bounds.lower_x, bounds.lower_y, bounds.lower_z, ref);
+    out.nodes[stride() * index + 2 * size_t(c) + 1] =
         withBits(bounds.upper_x, bounds.upper_y, bounds.upper_z, count);
   }
+  size_t stride() const { return 2 * size_t(out.width); }
   void node(const InnerNode* n, unsigned depth) {
-    const size_t index = out.nodes.size() / 4;
-    out.nodes.resize(out.nodes.size() + 4);
-    for (int c = 0; c < 2; ++c) {
+    const size_t index = out.nodes.size() / stride();
+    out.nodes.resize(out.nodes.size() + stride());
+    for (int c = 0; c < int(out.width); ++c) {
       if (n->children[c])
         child(index, c, n->children[c], n->bounds[c], depth);
       else
@@ -97,8 +99,8 @@ struct Flattener {
   }
   void emptyChild(size_t index, int c) {
     const float inf = std::numeric_limits<float>::infinity();
-    out.nodes[4 * index + 2 * size_t(c)] = withBits(inf, inf, inf, 0);
-    out.nodes[4 * index + 2 * size_t(c) + 1] = withBits(-inf, -inf, -inf, 0);
+    out.nodes[stride() * index + 2 * size_t(c)] = withBits(inf, inf, inf, 0);
+    out.nodes[stride() * index + 2 * size_t(c) + 1] = withBits(-inf, -inf, -inf, 0);
   }
 };
 
@@ -109,7 +111,9 @@ BvhArrays buildBvh(const FlatScene& scene, const BvhBuildOptions& o) {
   if (n >= size_t(std::numeric_limits<uint32_t>::max()) / 3)
     fail("the BVH addresses at most ", std::numeric_limits<uint32_t>::max() / 3, " triangles; the scene has ",
          n);
+  if (o.width != 2 && o.width != 4) fail("BVH width ", o.width, ": 2 or 4");
   BvhArrays out;
+  out.width = o.width;
   out.normals.reserve(3 * n);
   for (size_t t = 0; t < n; ++t) {
     const glm::vec3* P = &scene.positions[3 * t];
@@ -136,10 +140,9 @@ BvhArrays buildBvh(const FlatScene& scene, const BvhBuildOptions& o) {
     p.upper_x = hi.x, p.upper_y = hi.y, p.upper_z = hi.z, p.primID = unsigned(t);
     prims.push_back(p);
   }
-  if (prims.empty()) {  // one node with two empty children: every ray misses
-    out.nodes.resize(4);
-    Flattener{scene, out}.emptyChild(0, 0);
-    Flattener{scene, out}.emptyChild(0, 1);
+  if (prims.empty()) {  // one node of empty children: every ray misses
+    out.nodes.resize(2 * size_t(out.width));
+    for (int c = 0; c < int(out.width); ++c) Flattener{scene, out}.emptyChild(0, c);
     out.depth = 1;
     return out;
   }
@@ -148,8 +151,8 @@ BvhArrays buildBvh(const FlatScene& scene, const BvhBuildOptions& o) {
   RTCBVH bvh = rtcNewBVH(device);
   RTCBuildArguments args = rtcDefaultBuildArguments();
   args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
-  args.maxBranchingFactor = 2;
-  args.maxDepth = shared::kBvhMaxDepth - 1;
+  args.maxBranchingFactor = out.width;
+  args.maxDepth = shared::bvhMaxDepth(out.width) - 1;
   args.sahBlockSize = 1;
   args.minLeafSize = 1;
   args.maxLeafSize = std::min<unsigned>(std::max(o.maxLeafSize, 1u), RTC_BUILD_MAX_PRIMITIVES_PER_LEAF);
@@ -172,7 +175,7 @@ BvhArrays buildBvh(const FlatScene& scene, const BvhBuildOptions& o) {
   }
   Flattener f{scene, out};
   if (root->leaf) {  // a scene that fits one leaf: a root with it as child 0
-    out.nodes.resize(4);
+    out.nodes.resize(2 * size_t(out.width));
     RTCBounds b{};
     glm::vec3 lo(prims[0].lower_x, prims[0].lower_y, prims[0].lower_z),
         hi(prims[0].upper_x, prims[0].upper_y, prims[0].upper_z);
@@ -183,7 +186,7 @@ BvhArrays buildBvh(const FlatScene& scene, const BvhBuildOptions& o) {
     b.lower_x = lo.x, b.lower_y = lo.y, b.lower_z = lo.z;
     b.upper_x = hi.x, b.upper_y = hi.y, b.upper_z = hi.z;
     f.child(0, 0, root, b, 1);
-    f.emptyChild(0, 1);
+    for (int c = 1; c < int(out.width); ++c) f.emptyChild(0, c);
   } else {
     f.node(static_cast<const InnerNode*>(root), 1);
   }
@@ -193,19 +196,29 @@ BvhArrays buildBvh(const FlatScene& scene, const BvhBuildOptions& o) {
 }
 
 nlohmann::json BvhArrays::describe() const {
-  return {{"nodes", nodes.size() / 4},    {"leaves", leaves}, {"triangles", tris.size() / 3},
-          {"zero_area_dropped", dropped}, {"depth", depth},   {"bytes", bytes()}};
+  return {{"width", width},
+          {"nodes", nodes.size() / (2 * size_t(width))},
+          {"leaves", leaves},
+          {"triangles", tris.size() / 3},
+          {"zero_area_dropped", dropped},
+          {"depth", depth},
+          {"bytes", bytes()}};
 }
 
 shared::BvhHit traceBvhCpu(const BvhArrays& bvh, glm::vec3 origin, glm::vec3 dir, float tmax, bool anyHit) {
-  return shared::traceBvh(origin, dir, tmax, anyHit, bvh.nodes.data(), bvh.tris.data());
+  return shared::traceBvhWidth(origin, dir, tmax, anyHit, bvh.width, bvh.nodes.data(), bvh.tris.data());
 }
 
 GpuBvh::GpuBvh(const BvhArrays& bvh) { upload(bvh); }
 
+void addBvhDefine(ShaderDefines& defines, const GpuBvh& bvh) {
+  defines["BVH_WIDTH"] = std::to_string(bvh.width()) + "u";
+}
+
 GpuBvh::~GpuBvh() { glDeleteBuffers(3, buffers_); }
 
 void GpuBvh::upload(const BvhArrays& bvh) {
+  width_ = bvh.width;
   const std::vector<glm::vec4>* arrays[3] = {&bvh.nodes, &bvh.tris, &bvh.normals};
   bytes_ = 0;
   for (int i = 0; i < 3; ++i) {

@@ -11,18 +11,21 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "core/shader_library.h"
 #include "shaders/shared/trace_bvh.glsl"
 
 namespace vgi {
 
 struct BvhBuildOptions {
+  unsigned width = 2;             // children per node: 2 (Aila & Laine) or 4 (a wide BVH)
   unsigned maxLeafSize = 4;       // triangles per leaf at most
   float traversalCost = 1.0f;     // SAH: a node's cost against
   float intersectionCost = 1.0f;  // a triangle's
 };
 
 struct BvhArrays {
-  std::vector<glm::vec4> nodes;  // 4 per node (trace_bvh.glsl)
+  unsigned width = 2;            // children per node
+  std::vector<glm::vec4> nodes;  // 2·width per node (trace_bvh.glsl)
   std::vector<glm::vec4> tris;   // 3 per triangle, in leaf order
   // 3 per triangle, in the flattened scene's order (BvhHit::triangle): the corners' shading
   // normals in xyz, the unit geometric normal (corner 0 → 1 × 0 → 2) in the three w.
@@ -40,6 +43,10 @@ BvhArrays buildBvh(const FlatScene& scene, const BvhBuildOptions& options = {});
 // The shared kernel on the CPU (what the GLSL pass runs).
 shared::BvhHit traceBvhCpu(const BvhArrays& bvh, glm::vec3 origin, glm::vec3 dir, float tmax, bool anyHit);
 
+class GpuBvh;
+// The define a program that traces `bvh` is compiled with (BVH_WIDTH).
+void addBvhDefine(ShaderDefines& defines, const GpuBvh& bvh);
+
 // The arrays on the GPU, bound at BINDING_BVH_NODES / BINDING_BVH_TRIS / BINDING_BVH_NORMALS.
 class GpuBvh {
  public:
@@ -50,8 +57,10 @@ class GpuBvh {
   void upload(const BvhArrays& bvh);  // the same sizes or others (buffers made again)
   void bind() const;
   size_t bytes() const { return bytes_; }
+  unsigned width() const { return width_; }
 
  private:
+  unsigned width_ = 2;
   unsigned buffers_[3] = {0, 0, 0};
   size_t sizes_[3] = {0, 0, 0}, bytes_ = 0;
 };

@@ -2,11 +2,12 @@
 // binary BVH — the same-device exact counterpart of the voxel tracers.
 //
 // Layout (Aila & Laine, "Understanding the Efficiency of Ray Traversal on
-// GPUs", HPG 2009: both children's boxes stored in the parent, so one node
-// fetch tests both): node i is four vec4 in `bvhNodes`,
-//   [4i+0] child 0's box min, w = its ref (uint bits)
-//   [4i+1] child 0's box max, w = its triangle count (uint bits; 0: an inner node)
-//   [4i+2], [4i+3] the same for child 1;
+// GPUs", HPG 2009: the children's boxes stored in the parent, so one node
+// fetch tests them all), W = 2 children per node, or 4 (a wide BVH, as
+// Embree's own BVH4 and Wald et al. 2008's, fewer nodes per ray): node i is 2W
+// vec4 in `bvhNodes` from 2W·i,
+//   [2W·i + 2c]     child c's box min, w = its ref (uint bits)
+//   [2W·i + 2c + 1] child c's box max, w = its triangle count (uint bits; 0: an inner node);
 // an inner child's ref is a node index, a leaf's the first of its `count`
 // triangles in `bvhTris` (three vec4 each: the corners, w of the first = the
 // triangle's index in the flattened scene). An empty child has min > max.
@@ -34,10 +35,16 @@
 #include "ray_grid.glsl"
 SHARED_BEGIN
 
-// The traversal stack: the builder's depth limit is kBvhMaxDepth, and each
-// node pops one entry and pushes at most two, so the stack never exceeds it + 1.
+// The traversal stack: each node pops one entry and pushes at most width of
+// them, so a tree of depth d needs (width − 1)·d + 1 entries; the builder
+// limits the depth to bvhMaxDepth(width) (60 for a binary tree, 20 for a
+// 4-wide one), within kBvhStackSize.
 const int kBvhStackSize = 64;
 const uint kBvhMaxDepth = 60u;
+const uint kBvhMaxWidth = 4u;
+SHARED_FN uint bvhMaxDepth(uint width) {
+  return min(kBvhMaxDepth, (uint(kBvhStackSize) - 4u) / (width - 1u));
+}
 
 struct BvhHit {
   uint hit;       // 1 or 0
@@ -104,8 +111,8 @@ SHARED_FN BvhHit intersectWatertight(SHARED_IN(WatertightRay) w, vec3 origin, ve
   SHARED_PRECISE float det = u + v + e;
   // A ray in the triangle's plane (or within ~1e-6 rad of it): the edge
   // functions are all rounding noise, and so would be t. No hit, as Embree.
-  SHARED_PRECISE float scale = abs(cx * by) + abs(cy * bx) + abs(ax * cy) + abs(ay * cx) + abs(bx * ay) +
-                               abs(by * ax);
+  SHARED_PRECISE float scale =
+      abs(cx * by) + abs(cy * bx) + abs(ax * cy) + abs(ay * cx) + abs(bx * ay) + abs(by * ax);
   if (!(abs(det) > 1.0e-6f * scale)) return h;
   SHARED_PRECISE float az = w.sz * a[w.kz];
   SHARED_PRECISE float bz = w.sz * b[w.kz];
@@ -178,22 +185,49 @@ SHARED_FN BvhHit bvhMiss(uint steps) {
   return h;
 }
 
-// The first hit within (0, tmax] along the unit direction `dir` (anyHit: any
-// hit, the first found — for visibility). tmax may be +∞; a NaN or infinite
-// origin or direction, a zero direction, or tmax < 0 or NaN: a miss.
-SHARED_FN BvhHit traceBvh(vec3 origin, vec3 dir, float tmax, bool anyHit BVH_PARAM) {
-  bool finiteInput = isFiniteFloat(origin.x) && isFiniteFloat(origin.y) && isFiniteFloat(origin.z) &&
-                     isFiniteFloat(dir.x) && isFiniteFloat(dir.y) && isFiniteFloat(dir.z) &&
-                     !(tmax != tmax) && tmax >= 0.0f && (dir.x != 0.0f || dir.y != 0.0f || dir.z != 0.0f);
-  if (!finiteInput) return bvhMiss(0u);
-  // Finite, so that a missed box (entry +∞) stays beyond it, slack and all.
-  float tLimit = min(tmax, kTraceInfinity);
+// Whether a ray can be traced: a finite origin and direction, a non-zero
+// direction, tmax ≥ 0 (not NaN).
+SHARED_FN bool bvhRayValid(vec3 origin, vec3 dir, float tmax) {
+  return isFiniteFloat(origin.x) && isFiniteFloat(origin.y) && isFiniteFloat(origin.z) &&
+         isFiniteFloat(dir.x) && isFiniteFloat(dir.y) && isFiniteFloat(dir.z) && !(tmax != tmax) &&
+         tmax >= 0.0f && (dir.x != 0.0f || dir.y != 0.0f || dir.z != 0.0f);
+}
+
+// 1/dir for the slabs, 0 for components too small to invert finitely (the
+// slabs treat the ray as parallel there).
+SHARED_FN vec3 bvhInvDir(vec3 dir) {
+  return vec3(abs(dir.x) < 1e-30f ? 0.0f : 1.0f / dir.x, abs(dir.y) < 1e-30f ? 0.0f : 1.0f / dir.y,
+              abs(dir.z) < 1e-30f ? 0.0f : 1.0f / dir.z);
+}
+
+// The triangles [ref, ref + count) of a leaf against the ray; returns `best`
+// replaced by a nearer hit (with anyHit: stops at the first).
+SHARED_FN BvhHit intersectLeaf(SHARED_IN(WatertightRay) w, vec3 origin, uint ref, uint count, BvhHit best,
+                               bool anyHit BVH_PARAM) {
+  for (uint i = ref; i < ref + count; ++i) {
+    vec4 q0 = bvhTris[3u * i];
+    vec4 q1 = bvhTris[3u * i + 1u];
+    vec4 q2 = bvhTris[3u * i + 2u];
+    BvhHit h = intersectWatertight(w, origin, vec3(q0.x, q0.y, q0.z), vec3(q1.x, q1.y, q1.z),
+                                   vec3(q2.x, q2.y, q2.z), best.t);
+    if (h.hit != 0u) {
+      best = h;
+      best.triangle = floatBitsToUint(q0.w);
+      if (anyHit) return best;
+    }
+  }
+  return best;
+}
+
+// The binary BVH's traversal, written for two children (the generic loop
+// below, with its arrays indexed at run time, ran 28 % slower on llvmpipe).
+SHARED_FN BvhHit traceBvh2(vec3 origin, vec3 dir, float tmax, bool anyHit BVH_PARAM) {
+  if (!bvhRayValid(origin, dir, tmax)) return bvhMiss(0u);
   WatertightRay w = watertightRay(dir);
-  // 0 for components too small to invert finitely (the slabs treat the ray as parallel there).
-  vec3 invDir = vec3(abs(dir.x) < 1e-30f ? 0.0f : 1.0f / dir.x, abs(dir.y) < 1e-30f ? 0.0f : 1.0f / dir.y,
-                     abs(dir.z) < 1e-30f ? 0.0f : 1.0f / dir.z);
+  vec3 invDir = bvhInvDir(dir);
   BvhHit best = bvhMiss(0u);
-  best.t = tLimit;
+  // Finite, so that a missed box (entry +∞) stays beyond it, slack and all.
+  best.t = min(tmax, kTraceInfinity);
   uint stack[kBvhStackSize];
   int sp = 0;
   stack[sp] = 0u;
@@ -227,20 +261,10 @@ SHARED_FN BvhHit traceBvh(vec3 origin, vec3 dir, float tmax, bool anyHit BVH_PAR
         innerCount = innerCount + 1;
         continue;
       }
-      for (uint i = ref; i < ref + count; ++i) {
-        vec4 q0 = bvhTris[3u * i];
-        vec4 q1 = bvhTris[3u * i + 1u];
-        vec4 q2 = bvhTris[3u * i + 2u];
-        BvhHit h = intersectWatertight(w, origin, vec3(q0.x, q0.y, q0.z), vec3(q1.x, q1.y, q1.z),
-                                       vec3(q2.x, q2.y, q2.z), best.t);
-        if (h.hit != 0u) {
-          best = h;
-          best.triangle = floatBitsToUint(q0.w);
-          if (anyHit) {
-            best.steps = steps;
-            return best;
-          }
-        }
+      best = intersectLeaf(w, origin, ref, count, best, anyHit BVH_ARG);
+      if (anyHit && best.hit != 0u) {
+        best.steps = steps;
+        return best;
       }
     }
     // The nearer inner child is visited first (pushed last); a child whose
@@ -259,5 +283,81 @@ SHARED_FN BvhHit traceBvh(vec3 origin, vec3 dir, float tmax, bool anyHit BVH_PAR
   if (best.hit == 0u) best.t = 0.0f;
   return best;
 }
+
+// The first hit within (0, tmax] along the unit direction `dir` (anyHit: any
+// hit, the first found — for visibility) in a BVH of `width` children per
+// node (2 or 4; node i is 2·width vec4 from 2·width·i). tmax may be +∞; a NaN
+// or infinite origin or direction, a zero direction, or tmax < 0 or NaN: a miss.
+SHARED_FN BvhHit traceBvhWidth(vec3 origin, vec3 dir, float tmax, bool anyHit, uint width BVH_PARAM) {
+  if (width == 2u) return traceBvh2(origin, dir, tmax, anyHit BVH_ARG);
+  if (!bvhRayValid(origin, dir, tmax)) return bvhMiss(0u);
+  WatertightRay w = watertightRay(dir);
+  vec3 invDir = bvhInvDir(dir);
+  BvhHit best = bvhMiss(0u);
+  // Finite, so that a missed box (entry +∞) stays beyond it, slack and all.
+  best.t = min(tmax, kTraceInfinity);
+  uint stack[kBvhStackSize];
+  int sp = 0;
+  stack[sp] = 0u;
+  sp = sp + 1;
+  uint steps = 0u;
+  while (sp > 0) {
+    sp = sp - 1;
+    uint node = stack[sp];
+    steps = steps + 1u;
+    uint base = node * 2u * width;
+    // Every child's box against the best hit so far, before any leaf of this node is tested.
+    float entry[kBvhMaxWidth];
+    bool entered[kBvhMaxWidth];
+    for (uint c = 0u; c < width; ++c) {
+      entry[c] = boxEntry(origin, invDir, bvhNodes[base + 2u * c], bvhNodes[base + 2u * c + 1u]);
+      entered[c] = entry[c] <= best.t * kBoxSlack;
+    }
+    uint inner[kBvhMaxWidth];
+    float innerEntry[kBvhMaxWidth];
+    int innerCount = 0;
+    for (uint c = 0u; c < width; ++c) {
+      if (!entered[c]) continue;
+      uint ref = floatBitsToUint(bvhNodes[base + 2u * c].w);
+      uint count = floatBitsToUint(bvhNodes[base + 2u * c + 1u].w);
+      if (count == 0u) {
+        // Kept sorted by entry (insertion, stable: equal entries in child order).
+        int j = innerCount;
+        while (j > 0 && innerEntry[j - 1] > entry[c]) {
+          inner[j] = inner[j - 1];
+          innerEntry[j] = innerEntry[j - 1];
+          j = j - 1;
+        }
+        inner[j] = ref;
+        innerEntry[j] = entry[c];
+        innerCount = innerCount + 1;
+        continue;
+      }
+      best = intersectLeaf(w, origin, ref, count, best, anyHit BVH_ARG);
+      if (anyHit && best.hit != 0u) {
+        best.steps = steps;
+        return best;
+      }
+    }
+    // The nearest inner child is visited first (pushed last).
+    for (int k = innerCount - 1; k >= 0; --k) {
+      stack[sp] = inner[k];
+      sp = sp + 1;
+    }
+  }
+  best.steps = steps;
+  if (best.hit == 0u) best.t = 0.0f;
+  return best;
+}
+
+#ifndef __cplusplus
+// The GLSL entry point: the BVH's width is a define of the program (BVH_WIDTH, 2 by default).
+#ifndef BVH_WIDTH
+#define BVH_WIDTH 2u
+#endif
+BvhHit traceBvh(vec3 origin, vec3 dir, float tmax, bool anyHit) {
+  return traceBvhWidth(origin, dir, tmax, anyHit, BVH_WIDTH);
+}
+#endif
 
 SHARED_END

@@ -202,13 +202,18 @@ TEST(Bvh, CppEqualsEmbreeOnAMillionRaysWithHardCases) {
   const std::string original = test::sharedScene("cornell-box/CornellBox-Original.obj");
   if (!original.empty()) scenes.push_back(original);
   size_t total = 0, hits = 0;
-  for (auto& name : scenes) {
+  // Both layouts: binary (Aila & Laine) and 4-wide; the second scene in the other width.
+  for (size_t si = 0; si < 2 * scenes.size(); ++si) {
+    const std::string& name = scenes[si % scenes.size()];
+    BvhBuildOptions options;
+    options.width = si < scenes.size() ? 2u : 4u;
+    SCOPED_TRACE(name + ", width " + std::to_string(options.width));
     HardTriangles hard;
     const FlatScene s = withHardTriangles(flatten(loadScene(name), 0.0f), &hard);
-    const BvhArrays bvh = buildBvh(s);
+    const BvhArrays bvh = buildBvh(s, options);
     EXPECT_EQ(bvh.dropped, 2u);  // the line and the point of withHardTriangles
     EXPECT_EQ(bvh.tris.size(), 3 * (s.triangleCount() - 2));
-    EXPECT_LE(bvh.depth, shared::kBvhMaxDepth);
+    EXPECT_LE(bvh.depth, shared::bvhMaxDepth(options.width));
     const EmbreeTracer embree(s);
     float diag = 0.0f;
     {
@@ -324,33 +329,38 @@ TEST(Bvh, GlslOnLlvmpipeEqualsCppBitForBit) {
   const Scene scene = loadScene("builtin:cornell");
   HardTriangles hard;
   const FlatScene s = withHardTriangles(flatten(scene, 0.0f), &hard);
-  const BvhArrays bvh = buildBvh(s);
-  const EmbreeTracer embree(s);
-  GridBox box = fitGridBox(scene, glm::uvec3(64, 64, 128), 0.0f);
-  OrMipPyramid pyramid{BinaryGrid(box)};
-  GlPyramid gpuPyramid(pyramid);
-  GpuBvh gpu(bvh);
-  std::vector<TraceRay> rays;
-  for (const RaySet& set : hardRays(s, hard, embree, 12000, 29))
-    rays.insert(rays.end(), set.rays.begin(), set.rays.end());
-  TracerInputs in;
-  in.bvh = &bvh;
-  in.pyramid = &pyramid;
-  std::vector<TraceResult> cpu;
-  createTracer("bvh", in)->traceBatch(rays, cpu);
-  const std::vector<TraceResult> glsl = traceRaysGl(gpuPyramid, shaders, "bvh", rays, profiler, 0, &gpu);
-  size_t mismatches = 0, hits = 0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    hits += cpu[i].hit;
-    if (cpu[i].hit != glsl[i].hit || cpu[i].steps != glsl[i].steps ||
-        (cpu[i].hit && (cpu[i].t != glsl[i].t || cpu[i].voxel != glsl[i].voxel))) {
-      if (mismatches++ == 0)
-        ADD_FAILURE() << "ray " << i << ": hit " << cpu[i].hit << "/" << glsl[i].hit << " t " << cpu[i].t
-                      << "/" << glsl[i].t << " steps " << cpu[i].steps << "/" << glsl[i].steps;
+  for (unsigned width : {2u, 4u}) {
+    SCOPED_TRACE("width " + std::to_string(width));
+    BvhBuildOptions options;
+    options.width = width;
+    const BvhArrays bvh = buildBvh(s, options);
+    const EmbreeTracer embree(s);
+    GridBox box = fitGridBox(scene, glm::uvec3(64, 64, 128), 0.0f);
+    OrMipPyramid pyramid{BinaryGrid(box)};
+    GlPyramid gpuPyramid(pyramid);
+    GpuBvh gpu(bvh);
+    std::vector<TraceRay> rays;
+    for (const RaySet& set : hardRays(s, hard, embree, 12000, 29))
+      rays.insert(rays.end(), set.rays.begin(), set.rays.end());
+    TracerInputs in;
+    in.bvh = &bvh;
+    in.pyramid = &pyramid;
+    std::vector<TraceResult> cpu;
+    createTracer("bvh", in)->traceBatch(rays, cpu);
+    const std::vector<TraceResult> glsl = traceRaysGl(gpuPyramid, shaders, "bvh", rays, profiler, 0, &gpu);
+    size_t mismatches = 0, hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      hits += cpu[i].hit;
+      if (cpu[i].hit != glsl[i].hit || cpu[i].steps != glsl[i].steps ||
+          (cpu[i].hit && (cpu[i].t != glsl[i].t || cpu[i].voxel != glsl[i].voxel))) {
+        if (mismatches++ == 0)
+          ADD_FAILURE() << "ray " << i << ": hit " << cpu[i].hit << "/" << glsl[i].hit << " t " << cpu[i].t
+                        << "/" << glsl[i].t << " steps " << cpu[i].steps << "/" << glsl[i].steps;
+      }
     }
+    EXPECT_EQ(mismatches, 0u) << "of " << rays.size();
+    EXPECT_GT(hits, rays.size() / 4);
   }
-  EXPECT_EQ(mismatches, 0u) << "of " << rays.size();
-  EXPECT_GT(hits, rays.size() / 4);
   EXPECT_EQ(gl->errorCount(), 0);
 }
 
