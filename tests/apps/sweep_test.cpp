@@ -202,6 +202,29 @@ TEST(Sweep, ConvergenceCurvesRunOnEachMethodsDevice) {
   EXPECT_NE(bad.output.find("gpu"), std::string::npos) << bad.output;
 }
 
+// Every shipped experiment file loads and expands (the scenes it needs from ../shared/scenes, where
+// those are present): an experiment file that rots is found here, not by its next user.
+TEST(Sweep, EveryShippedExperimentFileLoads) {
+  const std::string dir = std::string(VGI_TEST_DATA) + "/../../scenes/experiments";
+  int files = 0;
+  for (auto& f : std::filesystem::directory_iterator(dir)) {
+    if (f.path().extension() != ".json") continue;
+    const std::string text(std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(f.path())), {});
+    if (text.find("sibenik") != std::string::npos && test::sharedScene("sibenik/sibenik.obj").empty())
+      continue;
+    ++files;
+    // Relative scene paths are the repository root's, as the README runs them.
+    const auto cwd = std::filesystem::current_path();
+    std::filesystem::current_path(std::string(VGI_TEST_DATA) + "/../..");
+    CliRun list = vgi("sweep " + f.path().string() + " -o " + tmp("shipped_" + f.path().stem().string()) +
+                      " --print-commands");
+    std::filesystem::current_path(cwd);
+    EXPECT_EQ(list.code, 0) << f.path() << ": " << list.output;
+    EXPECT_GT(lines(list.output).size(), 1u) << f.path();
+  }
+  EXPECT_GE(files, 3);
+}
+
 // The equal-error time against hand-computed curves: log-log interpolation inside, Monte Carlo's
 // 1/samples rate on the per-sample time outside.
 TEST(Sweep, EqualErrorTimeInterpolatesAndExtrapolates) {
