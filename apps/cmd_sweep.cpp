@@ -45,7 +45,14 @@ void addSweepCommand(CLI::App& app) {
       }
       return;
     }
-    if (!*collect) runSweep(e, self);
+    if (!*collect) {
+      try {
+        runSweep(e, self);
+      } catch (const SweepInterrupted& ex) {
+        std::fprintf(stderr, "%s\n", ex.what());
+        throw Interrupted{};
+      }
+    }
     const nlohmann::json rows = writeSweepResults(e);
     std::fprintf(stderr, "sweep %s: %zu points, %zu rows: wrote %s/results.csv and results.json\n",
                  e.name.c_str(), e.points.size(), rows.size(), e.dir.c_str());

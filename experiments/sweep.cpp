@@ -488,8 +488,8 @@ int runSweep(const Experiment& e, const std::string& vgi) {
     const int rc = std::system((cmd + " > " + shellQuote(r->dir + "/log.txt") + " 2>&1").c_str());
     if ((WIFSIGNALED(rc) && (WTERMSIG(rc) == SIGINT || WTERMSIG(rc) == SIGTERM)) ||
         (WIFEXITED(rc) && WEXITSTATUS(rc) == 130))
-      fail("sweep: interrupted during ", r->id, " (", n - 1, " of ", todo.size(),
-           " renders done); run it again to resume");
+      throw SweepInterrupted("sweep: interrupted during " + r->id + " (" + std::to_string(n - 1) + " of " +
+                             std::to_string(todo.size()) + " renders done); run it again to resume");
     if (rc != 0 || !sweepRenderDone(*r, spp)) failed.push_back(r->id + " (see " + r->dir + "/log.txt)");
   }
   if (!failed.empty()) {

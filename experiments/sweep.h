@@ -37,6 +37,7 @@
 // done when its JSON says every sample completed (a killed one is run again).
 #pragma once
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,12 @@ std::string sweepCommand(const SweepRender& r, const std::string& vgi);
 bool sweepRenderDone(const SweepRender& r, int spp);
 // The --spp of a render's arguments.
 int sweepRenderSpp(const SweepRender& r);
+// Thrown by runSweep when a render was interrupted (Ctrl-C): the renders that
+// finished are kept, and a second run resumes (`vgi sweep` exits 130).
+struct SweepInterrupted : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 // Runs every reference and point not done yet, one process at a time; returns
 // how many ran. Prints progress lines to stderr.
 int runSweep(const Experiment& e, const std::string& vgi);

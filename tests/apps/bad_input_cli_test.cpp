@@ -267,6 +267,20 @@ TEST(BadInputCli, ImagesWithNonFiniteValuesOrManyChannelsAreHandled) {
   EXPECT_NE(many.output.find("0.25"), std::string::npos) << "the first three channels read: " << many.output;
 }
 
+// Ctrl-C during a sweep: exit 130 (the README's scheme), naming where it stopped; the run resumes.
+TEST(BadInputCli, AnInterruptedSweepExits130) {
+  const std::string file = tmp("sweep_sigint.json"), dir = tmp("sweep_sigint");
+  std::filesystem::remove_all(dir);
+  std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "64x64", "spp": 100000,
+    "reference": {"spp": 100000}, "methods": [{"method": "direct"}]})";
+  // timeout signals its process group: the sweep and the render it waits for, as a terminal's Ctrl-C.
+  CliRun r = test::shell("timeout --preserve-status -s INT 4 " + std::string(VGI_BINARY) + " sweep " + file +
+                         " -o " + dir);
+  EXPECT_EQ(r.code, 130) << r.output;
+  EXPECT_NE(r.output.find("interrupted during"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("run it again to resume"), std::string::npos) << r.output;
+}
+
 TEST(BadInputCli, UsageErrorsExitTwoAndNameTheClosestOption) {
   CliRun r = vgi("render --methdo nearfield");
   expectRefused(r, {"--methdo", "did you mean '--method'"});

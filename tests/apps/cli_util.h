@@ -14,9 +14,9 @@ struct CliRun {
   std::string output;
 };
 
-// `args` go through the shell (quote what needs it).
-inline CliRun vgi(const std::string& args) {
-  std::string cmd = std::string(VGI_BINARY) + " " + args + " 2>&1";
+// A shell command line, its exit status and its output (stdout and stderr).
+inline CliRun shell(const std::string& command) {
+  std::string cmd = command + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   std::string out;
   char buf[4096];
@@ -25,6 +25,9 @@ inline CliRun vgi(const std::string& args) {
   int status = pclose(p);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
+
+// `vgi ARGS`; `args` go through the shell (quote what needs it).
+inline CliRun vgi(const std::string& args) { return shell(std::string(VGI_BINARY) + " " + args); }
 
 inline std::string tmp(const std::string& name) { return testing::TempDir() + "/" + name; }
 
