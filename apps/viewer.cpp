@@ -27,6 +27,7 @@
 #include "core/output_files.h"
 #include "core/params.h"
 #include "core/profiler.h"
+#include "core/progress.h"
 #include "core/shader_library.h"
 #include "illum/framework/resources.h"
 #include "illum/framework/sample_loop.h"
@@ -484,7 +485,8 @@ void Viewer::screenshot(const std::string& path) {
 void Viewer::apply(const ScriptEvent& e) {
   const nlohmann::json& v = e.value;
   if (e.kind == "frames") {
-    for (long i = 0; i < v.get<long>() && !glfwWindowShouldClose(window_); ++i) frame();
+    for (long i = 0; i < v.get<long>() && !glfwWindowShouldClose(window_) && !interruptRequested(); ++i)
+      frame();
   } else if (e.kind == "orbit") {
     orbit(v[0].get<float>(), v[1].get<float>());
   } else if (e.kind == "move") {
@@ -858,30 +860,37 @@ int Viewer::run() {
   home_ = job_->scene().camera;
   for (auto& l : job_->options().lightPositions) movedLights_.insert(l.first);
   if (!script.empty()) {
-    for (auto& e : script) apply(e);
+    // Ctrl-C: the events done stand (their screenshots written); the rest is not run.
+    for (auto& e : script)
+      if (!interruptRequested()) apply(e);
   } else if (opt_.frames > 0) {
-    while (!glfwWindowShouldClose(window_) && (!session_ || dirty_ || session_->samples() < opt_.frames)) {
+    while (!glfwWindowShouldClose(window_) && !interruptRequested() &&
+           (!session_ || dirty_ || session_->samples() < opt_.frames)) {
       const int before = session_ ? session_->samples() : -1;
       frame();
       if (stalled_ || (session_ && session_->samples() == before && !dirty_))
         break;  // an error: nothing more
     }
   } else {
-    while (!glfwWindowShouldClose(window_)) frame();
+    while (!glfwWindowShouldClose(window_) && !interruptRequested()) frame();
   }
+  // Interrupted (Ctrl-C): the screenshot of what was accumulated is still written, and the exit is 130.
+  const bool interrupted = interruptRequested();
   if (!opt_.screenshot.empty()) {
     const int before = shotCount_;
     screenshot(opt_.screenshot);
-    if (shotCount_ == before) return 1;
+    if (shotCount_ == before) return 2;  // nothing to write: the session's error was reported
   }
-  std::fprintf(stderr, "vgi view: %d frames recorded, %d screenshots, %d errors reported, %ld GL errors\n",
-               recorded_, shotCount_, failures_, gl_->errorCount());
-  return gl_->errorCount() > 0 ? 1 : 0;
+  std::fprintf(stderr, "vgi view: %d frames recorded, %d screenshots, %d errors reported, %ld GL errors%s\n",
+               recorded_, shotCount_, failures_, gl_->errorCount(), interrupted ? ", interrupted" : "");
+  if (gl_->errorCount() > 0) return 3;  // a GL error is a bug (the README's scheme)
+  return interrupted ? 130 : 0;
 }
 
 }  // namespace
 
 int runViewer(const ViewOptions& options) {
+  installInterruptHandler();
   Viewer v(options);
   return v.run();
 }

@@ -147,6 +147,22 @@ TEST(View, ScriptReplaysLikeRenderAndSurvivesBadInput) {
   EXPECT_EQ(window.width, 48 + 360);
 }
 
+// Ctrl-C: the viewer stops, still writes the screenshot of what it accumulated, and exits 130.
+TEST(View, CtrlCWritesWhatWasAccumulatedAndExits130) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string shot = tmp("view_sigint.exr");
+  std::filesystem::remove(shot);
+  // SIGINT to the viewer alone (a terminal's Ctrl-C would also reach Xvfb here, not a real display).
+  CliRun r = test::shell("xvfb-run -a sh -c '" + std::string(VGI_BINARY) +
+                         " view --method reference --set integrator=direct --size 32x32 --frames 1000000 "
+                         "--screenshot " +
+                         shot + " & pid=$!; sleep 5; kill -INT $pid; wait $pid; echo rc=$?'");
+  EXPECT_NE(r.output.find("rc=130"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("interrupted"), std::string::npos) << r.output;
+  ASSERT_TRUE(std::filesystem::exists(shot)) << r.output;
+  for (const glm::vec3& p : readImage(shot).pixels) ASSERT_TRUE(std::isfinite(p.x));
+}
+
 // What a script or the command line gets wrong is refused before the window opens, naming it.
 TEST(View, BadInputIsRefusedWithItsName) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
