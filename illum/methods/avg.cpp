@@ -66,6 +66,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/gpu_memory.h"
 #include "core/gpu_scene.h"
 #include "core/parallel.h"
 #include "core/shader_library.h"
@@ -84,7 +85,10 @@
 namespace vgi {
 
 AvgGrid::AvgGrid(const GridBox& box, ShaderLibrary& shaders) : box_(box), shaders_(shaders) {
-  cells_ = makeBuffer(size_t(box.cellCount()) * 8 * sizeof(uint32_t));
+  const double bytes = double(box.cellCount()) * 8.0 * sizeof(uint32_t);
+  checkSsboAllocation(
+      bytes, "parameter 'grid' = " + std::to_string(box.resolution.x) + " (the AVG's cells, 8 words each)");
+  cells_ = makeBuffer(size_t(bytes));
   prog_ = shaders.program(
       {"voxelize/conservative.vert.glsl", "voxelize/conservative.geom.glsl", "illum/avg/cells.frag.glsl"},
       {{"CONSERVATIVE_VALUES", "1"}});

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/gpu_memory.h"
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
@@ -92,6 +93,12 @@ LightMaps::LightMaps(const std::vector<Light>& lights, const GpuScene& gpu, int 
 
   const GLenum formats[4] = {GL_R32F, GL_RGBA32F, GL_RGBA16F, GL_RGBA16F};
   const int channels = reflective ? 4 : 1;
+  // Distance (4 bytes a texel), and for RSMs position, normal, radiance (16 + 8 + 8), per face; the depth buffer.
+  const double texel = reflective ? 36.0 : 4.0;
+  checkGpuAllocation((double(layers) * texel + 4.0) * double(resolution) * double(resolution),
+                     "parameter 'shadow_res' = " + std::to_string(resolution) + " with " +
+                         std::to_string(lights.size()) + " light(s) (" + std::to_string(layers) +
+                         " light-map faces" + (reflective ? ", reflective" : "") + ")");
   glCreateTextures(GL_TEXTURE_2D_ARRAY, channels, textures_);
   for (int c = 0; c < channels; ++c) {
     glTextureStorage3D(textures_[c], 1, formats[c], resolution, resolution, layers);

@@ -281,6 +281,21 @@ TEST(BadInputCli, AnInterruptedSweepExits130) {
   EXPECT_NE(r.output.find("run it again to resume"), std::string::npos) << r.output;
 }
 
+// Large GL allocations are estimated and refused before they are made, naming the parameter, its
+// value and the bytes against the budget (core/gpu_memory.h) — not left to fail in the driver.
+TEST(BadInputCli, AllocationsBeyondTheDeviceAreRefusedByParameter) {
+  expectRefused(renderBad("ten_point_lights.json", "--method nearfield --set shadow_res=8192"),
+                {"shadow_res", "8192", "10 light(s)", "MiB"});
+  expectRefused(renderBad("ten_point_lights.json", "--method direct --set shadow_res=8192"),
+                {"shadow_res", "8192", "MiB"});
+  expectRendered(renderBad("ten_point_lights.json", "--method nearfield --set shadow_res=64"),
+                 tmp("bad_ten_point_lights.json"));
+  for (const char* grid : {"512", "256", "1024"})
+    expectRefused(vgi(std::string("render --method avg --set grid=") + grid + " --size 8x8 --quiet -o " +
+                      tmp("avg_big.exr")),
+                  {"grid", grid, std::string(grid) == "1024" ? "GiB" : "MiB"});
+}
+
 TEST(BadInputCli, UsageErrorsExitTwoAndNameTheClosestOption) {
   CliRun r = vgi("render --methdo nearfield");
   expectRefused(r, {"--methdo", "did you mean '--method'"});

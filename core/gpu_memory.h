@@ -1,0 +1,20 @@
+// Large GL allocations are estimated before they are made and refused, naming
+// what asked for them, against a budget this GL and machine can state — not
+// left to fail in the driver ("out of memory", an incomplete framebuffer).
+#pragma once
+#include <string>
+
+namespace vgi {
+
+// Bytes one run may allocate on the GL device: the dedicated memory the
+// driver reports (GL_NVX_gpu_memory_info), else half of this machine's
+// memory (llvmpipe keeps textures in system memory; a driver that reports
+// nothing gets the same conservative cap). Needs a current GL context.
+double gpuMemoryBudget();
+// Throws naming `what` (the parameter and value that asked), `bytes` and the
+// budget when the allocation exceeds it.
+void checkGpuAllocation(double bytes, const std::string& what);
+// The same for one shader storage buffer, which must also fit GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
+void checkSsboAllocation(double bytes, const std::string& what);
+
+}  // namespace vgi
