@@ -165,24 +165,11 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
 }
 
 namespace {
-Experiment loadExperimentFile(const std::string& path, const std::string& dir) {
-  if (!fs::is_regular_file(path))
-    fail("experiment file '", path, "' does not exist or is not a regular file");
-  nlohmann::json j;
-  {
-    std::ifstream in(path);
-    try {
-      j = nlohmann::json::parse(in);
-    } catch (const std::exception& ex) {
-      fail("experiment file '", path, "': not valid JSON (", ex.what(), ")");
-    }
-  }
+// The experiment's own fields: name, scenes, size, spp, seed, checkpoints, aovs, ε, time budget.
+void readExperimentHead(const nlohmann::json& j, const std::string& path, Experiment& e) {
   checkKeys(j, "the experiment",
             {"name", "scenes", "size", "spp", "checkpoints", "seed", "aovs", "epsilon", "relative_epsilon",
              "time_budget_s", "reference", "methods"});
-  Experiment e;
-  e.path = path;
-  e.dir = dir;
   e.name = stringAt(j, "name", "name", fs::path(path).stem().string());
   for (const char* k : {"scenes", "size", "spp", "methods"})
     if (!j.contains(k)) fail("experiment file '", path, "': '", k, "' is missing");
@@ -215,15 +202,19 @@ Experiment loadExperimentFile(const std::string& path, const std::string& dir) {
   if (j.contains("epsilon")) e.diff.epsilon = positive(j["epsilon"], "epsilon");
   if (j.contains("relative_epsilon")) e.relativeEpsilon = positive(j["relative_epsilon"], "relative_epsilon");
   if (j.contains("time_budget_s")) e.timeBudgetS = positive(j["time_budget_s"], "time_budget_s");
+}
 
-  // The output folder must be writable before anything renders.
+// The output folder must be writable before anything renders.
+void checkOutputFolder(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   const std::string probe = dir + "/.vgi_sweep_probe";
   if (ec || !std::ofstream(probe)) fail("sweep output folder '", dir, "' cannot be written");
   fs::remove(probe, ec);
+}
 
-  const nlohmann::json ref = j.value("reference", nlohmann::json::object());
+// The experiment's "reference": its spp (returned), the convergence counts, the device, or an image file.
+int readReference(const nlohmann::json& ref, const std::string& path, Experiment& e) {
   checkKeys(ref, "'reference'", {"spp", "method", "set", "file", "convergence", "device"});
   if (ref.contains("device")) {
     const std::string d = stringAt(ref, "device", "reference.device");
@@ -257,191 +248,262 @@ Experiment loadExperimentFile(const std::string& path, const std::string& dir) {
     e.references.push_back(r);
   }
 
-  if (!j["methods"].is_array() || j["methods"].empty())
-    fail("experiment: 'methods' must be a non-empty list of {\"method\": …}");
+  return refSpp;
+}
+
+// The grid's axes: every key's values as text, keys in the file's (sorted) order; `combos` their
+// product, refused beyond 10000.
+using GridAxes = std::vector<std::pair<std::string, std::vector<std::string>>>;
+GridAxes readGrid(const nlohmann::json& grid, const std::string& where, size_t& combos) {
+  GridAxes axes;
+  for (auto& [k, v] : grid.items()) {
+    if (!v.is_array() || v.empty())
+      fail("experiment: ", where, ".grid.", k, " = ", v.dump(), " must be a non-empty list of values");
+    std::vector<std::string> values;
+    for (auto& x : v) values.push_back(paramText(x, where + ".grid." + k));
+    axes.emplace_back(k, values);
+  }
+  combos = 1;
+  for (auto& a : axes) {
+    // Checked before multiplying: 16 keys of 16 values would wrap a size_t to 0.
+    if (combos > 10000 / a.second.size())
+      fail("experiment: ", where, ".grid expands to more than 10000 points (", axes.size(),
+           " keys; at most 10000 combinations)");
+    combos *= a.second.size();
+  }
+  return axes;
+}
+
+// Where a point's reference comes from: the method's own "reference" (a method and its set, or
+// another method's counterpart), the experiment's "reference.method", or the method's registry
+// counterpart (the default).
+struct ReferenceChoice {
+  std::string method;
+  std::vector<std::string> set, aovs;
+};
+ReferenceChoice chooseReference(const Experiment& e, const nlohmann::json& ref, const nlohmann::json& mref,
+                                const std::string& where, const MethodInfo& info, const RenderOptions& o,
+                                const nlohmann::json& resolved) {
+  const std::string& method = o.method;
+  ReferenceChoice rc;
+  std::string& rmethod = rc.method;
+  std::vector<std::string>& rset = rc.set;
+  std::vector<std::string>& raovs = rc.aovs;
+  if (mref.contains("method")) {
+    rmethod = stringAt(mref, "method", where + ".reference.method");
+    findMethod(rmethod, "experiment " + where + ".reference.method");
+    const nlohmann::json refSet = mref.value("set", nlohmann::json::object());
+    if (!refSet.is_object()) fail("experiment: ", where, ".reference.set must be an object of parameters");
+    for (auto& [k, v] : refSet.items()) rset.push_back(k + "=" + paramText(v, where + ".reference.set." + k));
+    raovs = e.aovs;
+  } else if (mref.contains("counterpart_of")) {
+    const std::string other = stringAt(mref, "counterpart_of", where + ".reference.counterpart_of");
+    const MethodInfo& oi = findMethod(other, "experiment " + where + ".reference.counterpart_of");
+    if (!oi.counterpart)
+      fail("experiment: ", where, ".reference.counterpart_of: '", other, "' has no counterpart");
+    RenderOptions oo = o;
+    oo.method = other;
+    oo.set.clear();
+    const Counterpart cp = oi.counterpart(resolveParameters(oo));
+    rmethod = cp.method;
+    rset = cp.set;
+    for (auto& a : e.aovs)
+      if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
+  } else if (ref.contains("method")) {
+    rmethod = stringAt(ref, "method", "reference.method");
+    findMethod(rmethod, "experiment reference.method");
+    const nlohmann::json refSet = ref.value("set", nlohmann::json::object());
+    if (!refSet.is_object()) fail("experiment: reference.set must be an object of parameters");
+    for (auto& [k, v] : refSet.items()) rset.push_back(k + "=" + paramText(v, "reference.set." + k));
+    raovs = e.aovs;
+  } else {
+    if (!info.counterpart)
+      fail("experiment: ", where, ": method '", method,
+           "' has no exact counterpart; give "
+           "\"reference\": {\"method\": …}");
+    const Counterpart cp = info.counterpart(resolved);
+    rmethod = cp.method;
+    rset = cp.set;
+    for (auto& a : e.aovs)
+      if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
+  }
+  return rc;
+}
+
+// Registers the reference render of point `pt` (one per distinct render) and its convergence curve:
+// the same integral with the next seed, against the reference, on the point's device (reference's GL
+// twin for a GL method, unless reference.device is "cpu"), what each point's equal-error time is read
+// off. The reference image may come from either device (the same integral). `curveMethods` caches
+// the device choice per method and reference.
+void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const ReferenceChoice& rc,
+                  int refSpp, const std::string& where, std::map<std::string, std::string>& curveMethods) {
+  const std::string &scene = o.scene, &method = o.method, &dir = e.dir;
+  const std::string& rmethod = rc.method;
+  const std::vector<std::string>&rset = rc.set, &raovs = rc.aovs;
+  SweepRender r;
+  r = makeRender(dir, "references", rmethod,
+                 renderArgs(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
+  auto same = std::find_if(e.references.begin(), e.references.end(),
+                           [&](const SweepRender& x) { return x.id == r.id; });
+  if (same == e.references.end()) {
+    RenderOptions ro;
+    ro.scene = scene;
+    ro.method = rmethod;
+    ro.methodGiven = true;
+    ro.set = rset;
+    try {
+      resolveParameters(ro);
+    } catch (const Error& ex) {
+      fail("experiment: reference of ", where, " (", rmethod, " on ", scene, "): ", ex.what());
+    }
+    e.references.push_back(r);
+    pt.reference = e.references.size() - 1;
+  } else {
+    pt.reference = size_t(same - e.references.begin());
+  }
+  // Its own convergence: the same integral with the next seed, against the reference,
+  // on the point's device (reference's GL twin for a GL method, unless reference.device
+  // is "cpu"): what each point's equal-error time is read off. The reference image may
+  // come from either device (the same integral).
+  if (!e.curveCounts.empty()) {
+    const std::string key = method + "\n" + r.id;
+    auto known = curveMethods.find(key);
+    if (known == curveMethods.end())
+      known =
+          curveMethods
+              .emplace(
+                  key,
+                  counterpartOnDevice(o, Counterpart{rmethod, rset, raovs}, e.exactDevice).counterpart.method)
+              .first;
+    const std::string& cmethod = known->second;
+    const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
+    const SweepRender curve =
+        makeRender(dir, "curves", cmethod,
+                   renderArgs(e, scene, cmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
+    auto c = std::find_if(e.curves.begin(), e.curves.end(),
+                          [&](const SweepRender& x) { return x.id == curve.id; });
+    if (c == e.curves.end()) {
+      e.curves.push_back(curve);
+      e.curveReference.push_back(pt.reference);
+      c = e.curves.end() - 1;
+    }
+    pt.curve = int(c - e.curves.begin());
+  }
+}
+
+// What expanding the methods gathers across them.
+struct ExpandState {
   std::map<std::string, std::string> curveMethods;  // method, reference → its curve's method
   std::set<std::string> written;                    // the outputs the methods write
-  for (size_t mi = 0; mi < j["methods"].size(); ++mi) {
-    const nlohmann::json& m = j["methods"][mi];
-    const std::string where = "methods[" + std::to_string(mi) + "]";
-    checkKeys(m, where, {"method", "label", "set", "grid", "spp", "reference"});
-    if (!m.contains("method") || !m["method"].is_string())
-      fail("experiment: ", where, " has no \"method\" name");
-    const std::string method = m["method"].get<std::string>();
-    const MethodInfo& info = findMethod(method, "experiment " + where + ".method");
-    const int spp = m.contains("spp") ? intIn(m["spp"], where + ".spp", 1, 1 << 20) : e.spp;
-    std::vector<int> checkpoints;
-    for (int k : e.checkpoints)
-      if (k < spp) checkpoints.push_back(k);
-    // Its own reference: another method's counterpart (shared with that method's points), or a method.
-    const nlohmann::json mref = m.value("reference", nlohmann::json::object());
-    checkKeys(mref, where + ".reference", {"counterpart_of", "method", "set"});
-    if (m.contains("reference") && mref.contains("counterpart_of") == mref.contains("method"))
-      fail("experiment: ", where, ".reference = ", mref.dump(),
-           " needs one of \"counterpart_of\" or \"method\"");
-    std::vector<std::string> fixed;
-    const nlohmann::json set = m.value("set", nlohmann::json::object()),
-                         grid = m.value("grid", nlohmann::json::object());
-    for (const auto* o : {&set, &grid})
-      if (!o->is_object())
-        fail("experiment: ", where, o == &set ? ".set" : ".grid", " must be an object of parameters, not ",
-             o->dump());
-    for (auto& [k, v] : set.items()) fixed.push_back(k + "=" + paramText(v, where + ".set." + k));
-    // The grid: every combination, keys in the file's (sorted) order.
-    std::vector<std::pair<std::string, std::vector<std::string>>> axes;
-    for (auto& [k, v] : grid.items()) {
-      if (!v.is_array() || v.empty())
-        fail("experiment: ", where, ".grid.", k, " = ", v.dump(), " must be a non-empty list of values");
-      std::vector<std::string> values;
-      for (auto& x : v) values.push_back(paramText(x, where + ".grid." + k));
-      axes.emplace_back(k, values);
-    }
-    size_t combos = 1;
-    for (auto& a : axes) {
-      // Checked before multiplying: 16 keys of 16 values would wrap a size_t to 0.
-      if (combos > 10000 / a.second.size())
-        fail("experiment: ", where, ".grid expands to more than 10000 points (", axes.size(),
-             " keys; at most 10000 combinations)");
-      combos *= a.second.size();
-    }
-    for (const std::string& scene : e.scenes)
-      for (size_t c = 0; c < combos; ++c) {
-        SweepPoint pt;
-        pt.scene = scene;
-        pt.method = method;
-        pt.label = stringAt(m, "label", where + ".label", method);
-        std::vector<std::string> set = fixed;
-        size_t rest = c;
-        pt.params = nlohmann::json::object();
-        for (auto& [k, values] : axes) {
-          const std::string& v = values[rest % values.size()];
-          rest /= values.size();
-          set.push_back(k + "=" + v);
-          pt.params[k] = v;
-        }
-        RenderOptions o;
-        o.scene = scene;
-        o.method = method;
-        o.methodGiven = true;
-        o.set = set;
-        o.width = e.width;
-        o.height = e.height;
-        o.spp = spp;
-        nlohmann::json resolved;
-        std::vector<std::string> outputs;
-        try {
-          resolved =
-              resolveParameters(o, &outputs);  // unknown or out-of-range parameters, a scene that fails
-        } catch (const Error& ex) {
-          fail("experiment: ", where, " (", method, " on ", scene, ", ", pt.params.dump(), "): ", ex.what());
-        }
-        written.insert(outputs.begin(), outputs.end());
-        // Only the outputs this method writes are asked of it.
-        std::vector<std::string> aovs;
-        for (auto& a : e.aovs)
-          if (std::find(outputs.begin(), outputs.end(), a) != outputs.end()) aovs.push_back(a);
-        pt.render =
-            makeRender(dir, "points", method,
-                       renderArgs(e, scene, method, set, spp, aovs, checkpoints, e.seed, e.timeBudgetS));
-        pt.spp = spp;
-        // The reference.
-        SweepRender r;
-        if (ref.contains("file") && !m.contains("reference")) {
-          pt.reference = 0;
-        } else {
-          std::string rmethod;
-          std::vector<std::string> rset, raovs;
-          if (mref.contains("method")) {
-            rmethod = stringAt(mref, "method", where + ".reference.method");
-            findMethod(rmethod, "experiment " + where + ".reference.method");
-            const nlohmann::json refSet = mref.value("set", nlohmann::json::object());
-            if (!refSet.is_object())
-              fail("experiment: ", where, ".reference.set must be an object of parameters");
-            for (auto& [k, v] : refSet.items())
-              rset.push_back(k + "=" + paramText(v, where + ".reference.set." + k));
-            raovs = e.aovs;
-          } else if (mref.contains("counterpart_of")) {
-            const std::string other = stringAt(mref, "counterpart_of", where + ".reference.counterpart_of");
-            const MethodInfo& oi = findMethod(other, "experiment " + where + ".reference.counterpart_of");
-            if (!oi.counterpart)
-              fail("experiment: ", where, ".reference.counterpart_of: '", other, "' has no counterpart");
-            RenderOptions oo = o;
-            oo.method = other;
-            oo.set.clear();
-            const Counterpart cp = oi.counterpart(resolveParameters(oo));
-            rmethod = cp.method;
-            rset = cp.set;
-            for (auto& a : e.aovs)
-              if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
-          } else if (ref.contains("method")) {
-            rmethod = stringAt(ref, "method", "reference.method");
-            findMethod(rmethod, "experiment reference.method");
-            const nlohmann::json refSet = ref.value("set", nlohmann::json::object());
-            if (!refSet.is_object()) fail("experiment: reference.set must be an object of parameters");
-            for (auto& [k, v] : refSet.items()) rset.push_back(k + "=" + paramText(v, "reference.set." + k));
-            raovs = e.aovs;
-          } else {
-            if (!info.counterpart)
-              fail("experiment: ", where, ": method '", method,
-                   "' has no exact counterpart; give "
-                   "\"reference\": {\"method\": …}");
-            const Counterpart cp = info.counterpart(resolved);
-            rmethod = cp.method;
-            rset = cp.set;
-            for (auto& a : e.aovs)
-              if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
-          }
-          r = makeRender(dir, "references", rmethod,
-                         renderArgs(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
-          auto same = std::find_if(e.references.begin(), e.references.end(),
-                                   [&](const SweepRender& x) { return x.id == r.id; });
-          if (same == e.references.end()) {
-            RenderOptions ro;
-            ro.scene = scene;
-            ro.method = rmethod;
-            ro.methodGiven = true;
-            ro.set = rset;
-            try {
-              resolveParameters(ro);
-            } catch (const Error& ex) {
-              fail("experiment: reference of ", where, " (", rmethod, " on ", scene, "): ", ex.what());
-            }
-            e.references.push_back(r);
-            pt.reference = e.references.size() - 1;
-          } else {
-            pt.reference = size_t(same - e.references.begin());
-          }
-          // Its own convergence: the same integral with the next seed, against the reference,
-          // on the point's device (reference's GL twin for a GL method, unless reference.device
-          // is "cpu"): what each point's equal-error time is read off. The reference image may
-          // come from either device (the same integral).
-          if (!e.curveCounts.empty()) {
-            const std::string key = method + "\n" + r.id;
-            auto known = curveMethods.find(key);
-            if (known == curveMethods.end())
-              known =
-                  curveMethods
-                      .emplace(key, counterpartOnDevice(o, Counterpart{rmethod, rset, raovs}, e.exactDevice)
-                                        .counterpart.method)
-                      .first;
-            const std::string& cmethod = known->second;
-            const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
-            const SweepRender curve = makeRender(
-                dir, "curves", cmethod,
-                renderArgs(e, scene, cmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
-            auto c = std::find_if(e.curves.begin(), e.curves.end(),
-                                  [&](const SweepRender& x) { return x.id == curve.id; });
-            if (c == e.curves.end()) {
-              e.curves.push_back(curve);
-              e.curveReference.push_back(pt.reference);
-              c = e.curves.end() - 1;
-            }
-            pt.curve = int(c - e.curves.begin());
-          }
-        }
-        e.points.push_back(std::move(pt));
+};
+
+// Entry `mi` of "methods": its points (scenes × grid combinations), each with its reference and curve.
+void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref, int refSpp, Experiment& e,
+                  ExpandState& st) {
+  const std::string& dir = e.dir;
+  std::map<std::string, std::string>& curveMethods = st.curveMethods;
+  std::set<std::string>& written = st.written;
+  const nlohmann::json& m = j["methods"][mi];
+  const std::string where = "methods[" + std::to_string(mi) + "]";
+  checkKeys(m, where, {"method", "label", "set", "grid", "spp", "reference"});
+  if (!m.contains("method") || !m["method"].is_string())
+    fail("experiment: ", where, " has no \"method\" name");
+  const std::string method = m["method"].get<std::string>();
+  const MethodInfo& info = findMethod(method, "experiment " + where + ".method");
+  const int spp = m.contains("spp") ? intIn(m["spp"], where + ".spp", 1, 1 << 20) : e.spp;
+  std::vector<int> checkpoints;
+  for (int k : e.checkpoints)
+    if (k < spp) checkpoints.push_back(k);
+  // Its own reference: another method's counterpart (shared with that method's points), or a method.
+  const nlohmann::json mref = m.value("reference", nlohmann::json::object());
+  checkKeys(mref, where + ".reference", {"counterpart_of", "method", "set"});
+  if (m.contains("reference") && mref.contains("counterpart_of") == mref.contains("method"))
+    fail("experiment: ", where, ".reference = ", mref.dump(),
+         " needs one of \"counterpart_of\" or \"method\"");
+  std::vector<std::string> fixed;
+  const nlohmann::json set = m.value("set", nlohmann::json::object()),
+                       grid = m.value("grid", nlohmann::json::object());
+  for (const auto* o : {&set, &grid})
+    if (!o->is_object())
+      fail("experiment: ", where, o == &set ? ".set" : ".grid", " must be an object of parameters, not ",
+           o->dump());
+  for (auto& [k, v] : set.items()) fixed.push_back(k + "=" + paramText(v, where + ".set." + k));
+  size_t combos = 1;
+  const GridAxes axes = readGrid(grid, where, combos);
+  for (const std::string& scene : e.scenes)
+    for (size_t c = 0; c < combos; ++c) {
+      SweepPoint pt;
+      pt.scene = scene;
+      pt.method = method;
+      pt.label = stringAt(m, "label", where + ".label", method);
+      std::vector<std::string> set = fixed;
+      size_t rest = c;
+      pt.params = nlohmann::json::object();
+      for (auto& [k, values] : axes) {
+        const std::string& v = values[rest % values.size()];
+        rest /= values.size();
+        set.push_back(k + "=" + v);
+        pt.params[k] = v;
       }
+      RenderOptions o;
+      o.scene = scene;
+      o.method = method;
+      o.methodGiven = true;
+      o.set = set;
+      o.width = e.width;
+      o.height = e.height;
+      o.spp = spp;
+      nlohmann::json resolved;
+      std::vector<std::string> outputs;
+      try {
+        resolved = resolveParameters(o, &outputs);  // unknown or out-of-range parameters, a scene that fails
+      } catch (const Error& ex) {
+        fail("experiment: ", where, " (", method, " on ", scene, ", ", pt.params.dump(), "): ", ex.what());
+      }
+      written.insert(outputs.begin(), outputs.end());
+      // Only the outputs this method writes are asked of it.
+      std::vector<std::string> aovs;
+      for (auto& a : e.aovs)
+        if (std::find(outputs.begin(), outputs.end(), a) != outputs.end()) aovs.push_back(a);
+      pt.render =
+          makeRender(dir, "points", method,
+                     renderArgs(e, scene, method, set, spp, aovs, checkpoints, e.seed, e.timeBudgetS));
+      pt.spp = spp;
+      // The reference.
+      if (ref.contains("file") && !m.contains("reference")) {
+        pt.reference = 0;
+      } else {
+        addReference(e, pt, o, chooseReference(e, ref, mref, where, info, o, resolved), refSpp, where,
+                     curveMethods);
+      }
+      e.points.push_back(std::move(pt));
+    }
+}
+
+Experiment loadExperimentFile(const std::string& path, const std::string& dir) {
+  if (!fs::is_regular_file(path))
+    fail("experiment file '", path, "' does not exist or is not a regular file");
+  nlohmann::json j;
+  {
+    std::ifstream in(path);
+    try {
+      j = nlohmann::json::parse(in);
+    } catch (const std::exception& ex) {
+      fail("experiment file '", path, "': not valid JSON (", ex.what(), ")");
+    }
   }
+  Experiment e;
+  e.path = path;
+  e.dir = dir;
+  readExperimentHead(j, path, e);
+  checkOutputFolder(dir);
+  const nlohmann::json ref = j.value("reference", nlohmann::json::object());
+  const int refSpp = readReference(ref, path, e);
+  if (!j["methods"].is_array() || j["methods"].empty())
+    fail("experiment: 'methods' must be a non-empty list of {\"method\": …}");
+  ExpandState st;
+  for (size_t mi = 0; mi < j["methods"].size(); ++mi) expandMethod(j, mi, ref, refSpp, e, st);
+  const std::set<std::string>& written = st.written;
   // An output no method writes would be a column of blanks: refused before anything renders.
   for (const std::string& a : e.aovs)
     if (!written.count(a)) {
