@@ -11,6 +11,48 @@
 
 namespace vgi {
 
+namespace {
+// visibility, voxels, offset: the voxel-visibility stage of nearfield and path (CPU only).
+template <class Check>
+void readVisibility(ParamSet& params, ExactParams& e, const char* method, bool voxelsSupported, Check check) {
+  const bool nearField = e.integrator == ExactIntegrator::NearField;
+  const char* visDoc =
+      voxelsSupported
+          ? "nearfield/path: exact, or voxels (bounce rays' first hits through an exact voxelization)"
+          : "nearfield/path: exact (visibility=voxels, the voxel-visibility stage, runs in `reference` on "
+            "the CPU)";
+  const char* voxDoc = "nearfield/path, visibility=voxels: grid resolution N or WxHxD";
+  const char* offDoc =
+      "nearfield/path, visibility=voxels: ray start offset along the normal, voxel diagonals";
+  if (check(nearField || e.integrator == ExactIntegrator::Path, "visibility")) {
+    std::string v;
+    try {
+      v = params.getString(
+          "visibility", "exact", visDoc,
+          voxelsSupported ? std::vector<std::string>{"exact", "voxels"} : std::vector<std::string>{"exact"});
+    } catch (const Error& ex) {
+      if (voxelsSupported) throw;
+      fail(ex.what(), ": ", method,
+           " traces exact triangles only; the voxel-visibility stage is `reference --set visibility=voxels` "
+           "(CPU)");
+    }
+    e.voxelVisibility = v == "voxels";
+  } else {
+    params.declare("visibility", "string", "exact", visDoc);
+  }
+  if (check(e.voxelVisibility, "voxels")) {
+    e.voxels = parseResolution(params.getString("voxels", "128", voxDoc), "parameter 'voxels'");
+    checkGridMemory(e.voxels, 2);
+  } else {
+    params.declare("voxels", "string", "128", voxDoc);
+  }
+  if (check(e.voxelVisibility, "offset"))
+    e.offset = params.getFloat("offset", 1.0f, offDoc, 0.0f, 100.0f);
+  else
+    params.declare("offset", "float", "1.0", offDoc);
+}
+}  // namespace
+
 ExactParams readExactParams(ParamSet& params, const Scene& scene, const char* method, bool voxelsSupported) {
   ExactParams e;
   const std::string name =
@@ -58,40 +100,7 @@ ExactParams readExactParams(ParamSet& params, const Scene& scene, const char* me
     e.env = params.getBool("env", true, envDoc);
   else
     params.declare("env", "bool", "true", envDoc);
-  const char* visDoc =
-      voxelsSupported
-          ? "nearfield/path: exact, or voxels (bounce rays' first hits through an exact voxelization)"
-          : "nearfield/path: exact (visibility=voxels, the voxel-visibility stage, runs in `reference` on "
-            "the CPU)";
-  const char* voxDoc = "nearfield/path, visibility=voxels: grid resolution N or WxHxD";
-  const char* offDoc =
-      "nearfield/path, visibility=voxels: ray start offset along the normal, voxel diagonals";
-  if (check(nearField || e.integrator == ExactIntegrator::Path, "visibility")) {
-    std::string v;
-    try {
-      v = params.getString(
-          "visibility", "exact", visDoc,
-          voxelsSupported ? std::vector<std::string>{"exact", "voxels"} : std::vector<std::string>{"exact"});
-    } catch (const Error& ex) {
-      if (voxelsSupported) throw;
-      fail(ex.what(), ": ", method,
-           " traces exact triangles only; the voxel-visibility stage is `reference --set visibility=voxels` "
-           "(CPU)");
-    }
-    e.voxelVisibility = v == "voxels";
-  } else {
-    params.declare("visibility", "string", "exact", visDoc);
-  }
-  if (check(e.voxelVisibility, "voxels")) {
-    e.voxels = parseResolution(params.getString("voxels", "128", voxDoc), "parameter 'voxels'");
-    checkGridMemory(e.voxels, 2);
-  } else {
-    params.declare("voxels", "string", "128", voxDoc);
-  }
-  if (check(e.voxelVisibility, "offset"))
-    e.offset = params.getFloat("offset", 1.0f, offDoc, 0.0f, 100.0f);
-  else
-    params.declare("offset", "float", "1.0", offDoc);
+  readVisibility(params, e, method, voxelsSupported, check);
   const char* emDoc = "path/direct/nearfield: area lights sampled by mis (light + BRDF), light or brdf";
   if (check(e.integrator != ExactIntegrator::Ao, "emitter_sampling")) {
     const std::string s = params.getString("emitter_sampling", "mis", emDoc, {"mis", "light", "brdf"});
