@@ -18,6 +18,7 @@
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "core/error.h"
@@ -177,6 +178,15 @@ class Viewer {
   bool attempt(const std::string& what, F&& f, bool action = true);
   void setParameter(const std::string& key, const std::string& value);
   void switchMethod(const std::string& name);
+  // The method and parameters before a change, until the change has rendered a sample: if its
+  // resources cannot be built, frame() restores them.
+  struct Setting {
+    std::string method;
+    std::vector<std::string> set, aovs;
+  };
+  std::optional<Setting> previous_;
+  void rememberSetting();
+  void restorePreviousSetting();
   void show(const std::string& channel);
   // The light maps' channels the resources hold, as "rsm.<channel>" (reflective
   // shadow maps) or "shadow_map.distance"; empty without light maps.
@@ -302,12 +312,31 @@ void Viewer::restart() {
   stalled_ = false;
 }
 
+void Viewer::rememberSetting() {
+  if (!previous_) previous_ = Setting{job_->info().name, job_->options().set, job_->options().aovs};
+}
+
+void Viewer::restorePreviousSetting() {
+  const std::string failed = error_;
+  const Setting back = *previous_;
+  previous_.reset();
+  attempt("restoring " + back.method, [&] {
+    job_->setMethod(back.method, back.set, back.aovs);
+    session_.reset();
+  });
+  error_ = failed + " (kept the previous setting)";
+  std::fprintf(stderr, "vgi view: kept the previous setting (%s)\n", back.method.c_str());
+  dirty_ = true;
+  stalled_ = false;
+}
+
 void Viewer::setParameter(const std::string& key, const std::string& value) {
   attempt("parameter " + key + "=" + value, [&] {
     std::vector<std::string> set;
     for (auto& kv : job_->options().set)
       if (kv.substr(0, kv.find('=')) != key) set.push_back(kv);
     set.push_back(key + "=" + value);
+    rememberSetting();
     job_->setMethod(job_->info().name, set, job_->options().aovs);
     session_.reset();  // it refers to the method and resources the job replaced
     dirty_ = true;
@@ -317,6 +346,7 @@ void Viewer::setParameter(const std::string& key, const std::string& value) {
 void Viewer::switchMethod(const std::string& name) {
   attempt("method " + name, [&] {
     findMethod(name, "method");
+    rememberSetting();
     job_->setMethod(name, {}, {});
     session_.reset();  // it refers to the method and resources the job replaced
     channel_ = "image";
@@ -786,19 +816,29 @@ void Viewer::frame() {
     dirty_ = true;
   }
   panel();
-  if (dirty_ && !attempt(
-                    "render", [&] { restart(); }, false))
-    stalled_ = true;
+  // A change whose resources cannot be built (a grid the atlas cannot fit, a light map beyond the
+  // device) falls back to the setting before it, which renders in the same frame.
+  for (int attemptNo = 0; attemptNo < 2; ++attemptNo) {
+    bool failed = dirty_ && !attempt(
+                                "render", [&] { restart(); }, false);
+    if (!failed && !stalled_ && session_ && session_->samples() < req_.spp) {
+      failed = !attempt(
+          "render",
+          [&] {
+            session_->addSample();
+            prof_->resolve(false);
+          },
+          false);
+      if (!failed) previous_.reset();  // the change stands
+    }
+    if (!failed) break;
+    if (!previous_) {
+      stalled_ = true;  // until something changes
+      break;
+    }
+    restorePreviousSetting();
+  }
   Image shown;
-  if (!stalled_ && session_ && session_->samples() < req_.spp)
-    if (!attempt(
-            "render",
-            [&] {
-              session_->addSample();
-              prof_->resolve(false);
-            },
-            false))
-      stalled_ = true;                                                   // until something changes
   if (showingLightMap() && lightMapViews().empty()) channel_ = "image";  // another scene or method
   if (session_ && session_->samples() > 0) {
     if (showingLightMap() && lightFace_ >= lightFaces())  // a face set before the maps were built

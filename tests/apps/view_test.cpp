@@ -163,6 +163,38 @@ TEST(View, CtrlCWritesWhatWasAccumulatedAndExits130) {
   for (const glm::vec3& p : readImage(shot).pixels) ASSERT_TRUE(std::isfinite(p.x));
 }
 
+// A setting whose resources cannot be built (a grid the atlas cannot fit; an AVG beyond the
+// device's largest storage buffer) keeps the setting before it, which goes on rendering: the next screenshot is of it, and is
+// the image `vgi render` makes with the kept parameters.
+TEST(View, ASettingThatCannotBeBuiltKeepsThePreviousOne) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = freshDir("view_keep_previous");
+  const std::string script = dir + "/script.json";
+  std::ofstream(script) << "[{\"frames\": 1}, {\"set\": {\"voxels\": \"8192x8192x128\"}}, {\"frames\": 2}, "
+                        << "{\"screenshot\": \"" << dir
+                        << "/kept.exr\"}, {\"method\": \"avg\"}, {\"frames\": 1}, "
+                        << "{\"set\": {\"grid\": 256}}, {\"frames\": 2}, {\"screenshot\": \"" << dir
+                        << "/avg.exr\"}]";
+  CliRun v = underXvfb("--size 32x32 --script " + script);
+  ASSERT_EQ(v.code, 0) << v.output;
+  EXPECT_NE(v.output.find("atlas"), std::string::npos) << v.output;
+  EXPECT_NE(v.output.find("kept the previous setting"), std::string::npos) << v.output;
+  EXPECT_EQ(v.output.find("internal"), std::string::npos) << v.output;
+  EXPECT_EQ(v.output.find("nothing rendered yet"), std::string::npos) << v.output;
+  const nlohmann::json kept = stats(dir + "/kept.json");
+  EXPECT_EQ(kept["params"]["voxels"], "128") << kept.dump();
+  EXPECT_EQ(kept["method"], "nearfield");
+  const nlohmann::json avg = stats(dir + "/avg.json");  // grid 256 needs a larger SSBO than llvmpipe's
+  EXPECT_EQ(avg["method"], "avg");
+  EXPECT_EQ(avg["params"]["grid"], 64);
+  for (const char* name : {"kept", "avg"}) {
+    CliRun r = vgi(stats(dir + "/" + name + ".json")["command"].get<std::string>().substr(4) +
+                   " --quiet -o " + dir + "/" + name + "_render.exr");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(difference(dir + "/" + name + ".exr", dir + "/" + name + "_render.exr").relMae, 0.0) << name;
+  }
+}
+
 // What a script or the command line gets wrong is refused before the window opens, naming it.
 TEST(View, BadInputIsRefusedWithItsName) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
