@@ -4,7 +4,7 @@
 //
 // A resource kind (illum/resources/kinds.cpp lists them: the GPU scene, light
 // maps, the binary grid, its OR-mip pyramid, value grids, the Embree BVH, the
-// occluders, the cone volume) has a spec type, the kinds its spec depends on,
+// occluders, the cone volume, the GPU BVH, the GPU emitters) has a spec type, the kinds its spec depends on,
 // checks, and a Resource that builds, updates (animation time) and relights.
 // A method's needs() returns specs; two specs with the same key are one
 // resource. SceneResources builds the needs and their dependencies in
