@@ -17,10 +17,10 @@
 namespace vgi {
 
 struct BvhBuildOptions {
-  unsigned width = 2;             // children per node: 2 (Aila & Laine) or 4 (a wide BVH)
-  unsigned maxLeafSize = 4;       // triangles per leaf at most
-  float traversalCost = 1.0f;     // SAH: a node's cost against
-  float intersectionCost = 1.0f;  // a triangle's
+  unsigned width = shared::kBvhDefaultWidth;  // children per node: 2 (Aila & Laine) or 4 (a wide BVH)
+  unsigned maxLeafSize = 4;                   // triangles per leaf at most
+  float traversalCost = 1.0f;                 // SAH: a node's cost against
+  float intersectionCost = 1.0f;              // a triangle's
 };
 
 struct BvhArrays {

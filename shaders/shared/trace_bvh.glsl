@@ -42,6 +42,9 @@ SHARED_BEGIN
 const int kBvhStackSize = 64;
 const uint kBvhMaxDepth = 60u;
 const uint kBvhMaxWidth = 4u;
+// The width the scene resource builds (illum/resources/gpu_bvh) and a program traces unless it is
+// compiled with another BVH_WIDTH (traverse/gpu_bvh.h, addBvhDefine): one constant for both sides.
+const uint kBvhDefaultWidth = 2u;
 SHARED_FN uint bvhMaxDepth(uint width) {
   return min(kBvhMaxDepth, (uint(kBvhStackSize) - 4u) / (width - 1u));
 }
@@ -353,7 +356,7 @@ SHARED_FN BvhHit traceBvhWidth(vec3 origin, vec3 dir, float tmax, bool anyHit, u
 #ifndef __cplusplus
 // The GLSL entry point: the BVH's width is a define of the program (BVH_WIDTH, 2 by default).
 #ifndef BVH_WIDTH
-#define BVH_WIDTH 2u
+#define BVH_WIDTH kBvhDefaultWidth
 #endif
 BvhHit traceBvh(vec3 origin, vec3 dir, float tmax, bool anyHit) {
   return traceBvhWidth(origin, dir, tmax, anyHit, BVH_WIDTH);
