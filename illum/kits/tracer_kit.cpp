@@ -1,7 +1,9 @@
 #include "illum/kits/tracer_kit.h"
 
+#include "core/error.h"
 #include "illum/resources/gpu_bvh.h"
 #include "illum/resources/or_mip_pyramid.h"
+#include "shaders/shared/bindings.glsl"
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/gpu_bvh.h"
 
@@ -16,5 +18,38 @@ void bindTracer(const SceneResources& res, ShaderLibrary& shaders, unsigned prog
   res.get<GlPyramid>().bind(shaders, program);
   if (const GpuBvh* bvh = res.tryGet<GpuBvh>()) bvh->bind();
 }
+
+namespace {
+
+int constantOf(const std::string& name, std::initializer_list<std::pair<const char*, int>> table,
+               const char* what) {
+  for (const auto& [n, c] : table)
+    if (name == n) return c;
+  fail("unknown ", what, " '", name, "'");
+}
+
+}  // namespace
+
+int hitPointConstant(const std::string& name) {
+  return constantOf(name,
+                    {{"entry", shared::VOXEL_HIT_ENTRY},
+                     {"centre", shared::VOXEL_HIT_CENTRE},
+                     {"plane", shared::VOXEL_HIT_PLANE}},
+                    "hitpoint");
+}
+
+int backProjectionConstant(const std::string& name) {
+  return constantOf(name,
+                    {{"entry", shared::BACK_PROJECTION_ENTRY}, {"plane", shared::BACK_PROJECTION_PLANE}},
+                    "backprojection");
+}
+
+void VoxelHits::set(unsigned program, const shared::VoxelHitParams& params) {
+  checkBlockLayout(program, "VoxelHits", sizeof params, "illum/voxel_hits.glsl");
+  block_.value = params;
+  block_.upload();
+}
+
+void VoxelHits::bind() const { block_.buffer().bind(UBO_VOXEL_HITS); }
 
 }  // namespace vgi

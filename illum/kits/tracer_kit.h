@@ -8,7 +8,9 @@
 #pragma once
 #include <string>
 
+#include "illum/framework/compute_pass.h"
 #include "illum/resources/binary_grid.h"
+#include "shaders/illum/voxel_hit_params.glsl"
 
 namespace vgi {
 
@@ -18,5 +20,22 @@ class ShaderLibrary;
 void addTracerNeeds(SceneNeeds& needs, const BinaryGridNeed& grid, const std::string& tracer);
 // Binds what addTracerNeeds declared for `program` (in use).
 void bindTracer(const SceneResources& resources, ShaderLibrary& shaders, unsigned program);
+
+// The GLSL constant of a `hitpoint` (entry, centre, plane) or `backprojection`
+// (entry, plane) choice: shaders/illum/voxel_hit_params.glsl.
+int hitPointConstant(const std::string& name);
+int backProjectionConstant(const std::string& name);
+
+// The parameters of illum/voxel_hits.glsl (the path-vertex rules voxelpath
+// and vpl share) as their uniform block: set() checks the block's layout in
+// `program` and uploads them, bind() binds them at UBO_VOXEL_HITS.
+class VoxelHits {
+ public:
+  void set(unsigned program, const shared::VoxelHitParams& params);
+  void bind() const;
+
+ private:
+  UniformBlock<shared::VoxelHitParams> block_;
+};
 
 }  // namespace vgi

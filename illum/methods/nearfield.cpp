@@ -64,6 +64,7 @@
 #include "illum/kits/tracer_kit.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/or_mip_pyramid.h"
+#include "shaders/illum/nearfield/params.glsl"
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gl_ray_tracer.h"
 #include "voxelize/voxelizer.h"
@@ -135,7 +136,7 @@ class NearFieldMethod : public Method {
   // Per frame (prepareFrame).
   GatherKit kit_;
   std::unique_ptr<DirectPass> direct_;
-  unsigned indirectProg_ = 0;
+  ComputePass<shared::NearFieldPassParams> indirect_;
   float voxelDiagonal_ = 0;
 };
 
@@ -147,16 +148,17 @@ void NearFieldMethod::prepareFrame(Frame& f) {
                                          p_.shadow.normalOffset);
   ShaderDefines defs;
   addTracerDefine(defs, p_.tracer);
-  indirectProg_ = shaders.program({"illum/nearfield/indirect.comp.glsl"}, defs);
+  indirect_.create(f, {"illum/nearfield/indirect.comp.glsl"}, defs,
+                   kPassScene | kPassLightMaps | kPassGBuffer);
   // What stays the same over the frame's samples.
-  const unsigned ip = indirectProg_;
-  kit_.setFrameUniforms(shaders, ip);
-  shaders.setUniform(ip, "uRadius", p_.radius);
-  shaders.setUniform(ip, "uOffset", p_.offset * voxelDiagonal_);
-  shaders.setUniform(ip, "uVoxelDiagonal", voxelDiagonal_);
-  shaders.setUniform(ip, "uEnv", p_.env ? 1 : 0);
-  shaders.setUniform(ip, "uRefine", p_.backProjection == "plane" ? 1 : 0);
-  shaders.setUniform(ip, "uPassThrough", p_.passThrough ? 1 : 0);
+  kit_.setFrameUniforms(shaders, indirect_.program());
+  shared::NearFieldPassParams& ip = indirect_.params();
+  ip.radius = p_.radius;
+  ip.offset = p_.offset * voxelDiagonal_;
+  ip.voxelDiagonal = voxelDiagonal_;
+  ip.env = p_.env ? 1 : 0;
+  ip.backProjection = backProjectionConstant(p_.backProjection);
+  ip.passThrough = p_.passThrough ? 1 : 0;
 }
 
 bool NearFieldMethod::addSample(Frame& f, int k) {
@@ -166,13 +168,10 @@ bool NearFieldMethod::addSample(Frame& f, int k) {
   }
   {
     auto s = f.profiler.scope("indirect");
-    glUseProgram(indirectProg_);
-    f.resources.get<GpuScene>().bind(f.shaders(), indirectProg_);
-    f.resources.get<LightMaps>().bind();
-    bindTracer(f.resources, f.shaders(), indirectProg_);
-    f.gbuffer().bind();
-    kit_.setSampleUniforms(f.shaders(), indirectProg_, k);
-    kit_.dispatchGather(f.shaders(), indirectProg_, kit_.settings().rays, GatherKit::kRaysPerDispatch);
+    indirect_.use(f);
+    bindTracer(f.resources, f.shaders(), indirect_.program());
+    kit_.setSampleUniforms(f.shaders(), indirect_.program(), k);
+    kit_.dispatchGather(f.shaders(), indirect_.program(), kit_.settings().rays, GatherKit::kRaysPerDispatch);
   }
   kit_.resolve(f);
   return true;

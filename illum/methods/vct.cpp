@@ -62,12 +62,14 @@
 #include "core/error.h"
 #include "core/gpu_scene.h"
 #include "core/shader_library.h"
+#include "illum/framework/compute_pass.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/cone_kit.h"
 #include "illum/kits/gather_kit.h"
 #include "illum/kits/shared_params.h"
 #include "illum/resources/light_maps.h"
+#include "shaders/illum/vct/params.glsl"
 #include "shaders/shared/bindings.glsl"
 
 namespace vgi {
@@ -129,41 +131,41 @@ class VctMethod : public Method {
                                            vol_.shadow.normalOffset);
     ShaderDefines defs;
     vol_.addDefines(defs);
-    diffuseProg_ = shaders.program({"illum/vct/diffuse.comp.glsl"}, defs);
-    shadeProg_ = shaders.program({"illum/vct/shade.comp.glsl"}, defs);
+    diffusePass_.create(f, {"illum/vct/diffuse.comp.glsl"}, defs, kPassScene | kPassGBuffer);
+    shade_.create(f, {"illum/vct/shade.comp.glsl"}, defs, kPassScene | kPassLightMaps | kPassGBuffer);
     const float diag = f.resources.get<GridBox>().voxelDiagonal();
-    const unsigned d = diffuseProg_, s = shadeProg_;
-    shaders.setUniform(d, "uScale", kit_.scale());
-    if (!constellation_.empty())
-      shaders.setUniformArray(d, "uCones", constellation_.data(), int(constellation_.size()));
-    shaders.setUniform(d, "uTanHalf", std::tan(glm::radians(aperture_) * 0.5f));
-    shaders.setUniform(d, "uMaxDistance", maxDistance_);
-    shaders.setUniform(d, "uOffset", offset_ * diag);
-    shaders.setUniform(d, "uAoRadius", aoRadius_);
-    shaders.setUniform(d, "uFalloff", falloff_);
-    shaders.setUniform(d, "uEnv", env_ ? 1 : 0);
-    shaders.setUniform(d, "uDiffuse", diffuse_ ? 1.0f : 0.0f);
-    shaders.setUniform(d, "uGuard", guard_ ? 1 : 0);
-    shaders.setUniform(s, "uGuard", guard_ ? 1 : 0);
+    shaders.setUniform(diffusePass_.program(), "uScale", kit_.scale());
+    shared::VctDiffuseParams& d = diffusePass_.params();
+    VGI_CHECK(constellation_.size() <= std::size(d.cones));
+    std::copy(constellation_.begin(), constellation_.end(), d.cones);
+    d.tanHalf = std::tan(glm::radians(aperture_) * 0.5f);
+    d.maxDistance = maxDistance_;
+    d.offset = offset_ * diag;
+    d.aoRadius = aoRadius_;
+    d.falloff = falloff_;
+    d.env = env_ ? 1 : 0;
+    d.diffuse = diffuse_ ? 1.0f : 0.0f;
+    d.guard = guard_ ? 1 : 0;
     const int ring = std::max(1, cones_ - 1);
-    shaders.setUniform(d, "uSets", gather_.interleave);
-    shaders.setUniform(d, "uSetTurn",
-                       2.0f * float(M_PI) / float(ring) / float(gather_.interleave * gather_.interleave));
-    shaders.setUniform(s, "uSpecular", specular_ ? 1 : 0);
-    shaders.setUniform(s, "uShadows", shadows_ ? 1 : 0);
-    shaders.setUniform(s, "uSkipEmpty", skipEmpty_ ? 1 : 0);
-    shaders.setUniform(s, "uEnv", env_ ? 1 : 0);
-    shaders.setUniform(s, "uShadowBias", vol_.shadow.bias);
-    shaders.setUniform(s, "uNormalOffset", vol_.shadow.normalOffset);
-    shaders.setUniform(s, "uShadowTanHalf", std::tan(glm::radians(shadowAperture_) * 0.5f));
-    shaders.setUniform(s, "uOffset", offset_ * diag);
-    shaders.setUniform(s, "uMaxDistance", maxDistance_);
-    shaders.setUniform(s, "uVoxelDiagonal", diag);
-    shaders.setUniform(s, "uShadowStop", shadowStop_);
-    shaders.setUniform(s, "uWriteIndirect", f.wants("indirect") ? 1 : 0);
-    shaders.setUniform(s, "uWriteDirect", f.wants("direct") ? 1 : 0);
-    shaders.setUniform(s, "uWriteAo", f.wants("ao") ? 1 : 0);
-    shaders.setUniform(s, "uWriteSpecular", f.wants("specular") ? 1 : 0);
+    d.sets = gather_.interleave;
+    d.setTurn = 2.0f * float(M_PI) / float(ring) / float(gather_.interleave * gather_.interleave);
+    shared::VctShadeParams& s = shade_.params();
+    s.guard = guard_ ? 1 : 0;
+    s.specular = specular_ ? 1 : 0;
+    s.shadows = shadows_ ? 1 : 0;
+    s.skipEmpty = skipEmpty_ ? 1 : 0;
+    s.env = env_ ? 1 : 0;
+    s.shadowBias = vol_.shadow.bias;
+    s.normalOffset = vol_.shadow.normalOffset;
+    s.shadowTanHalf = std::tan(glm::radians(shadowAperture_) * 0.5f);
+    s.offset = offset_ * diag;
+    s.maxDistance = maxDistance_;
+    s.voxelDiagonal = diag;
+    s.shadowStop = shadowStop_;
+    s.writeIndirect = f.wants("indirect") ? 1 : 0;
+    s.writeDirect = f.wants("direct") ? 1 : 0;
+    s.writeAo = f.wants("ao") ? 1 : 0;
+    s.writeSpecular = f.wants("specular") ? 1 : 0;
     aoLow_ = f.scratchTexture("vct_ao", kit_.width(), kit_.height(), GL_RGBA32F);
     aoFull_ = f.scratchTexture("vct_ao_full", f.width(), f.height(), GL_RGBA32F);
   }
@@ -178,24 +180,19 @@ class VctMethod : public Method {
     const float turn = k == 0 ? 0.0f : 2.0f * float(M_PI) / float(ring) * halton(k, 3);
     {
       auto s = f.profiler.scope("diffuse_cones");
-      glUseProgram(diffuseProg_);
-      f.resources.get<GpuScene>().bind(shaders, diffuseProg_);
-      volume.bind(shaders, diffuseProg_, vol_.step);
-      f.gbuffer().bind();
-      shaders.setUniform(diffuseProg_, "uTurn", turn);
+      diffusePass_.params().turn = turn;
+      diffusePass_.use(f);
+      volume.bind(shaders, diffusePass_.program(), vol_.step);
       glBindImageTexture(IMAGE_OUTPUT2, aoLow_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-      kit_.dispatchGather(shaders, diffuseProg_, cones_, kConesPerDispatch);
+      kit_.dispatchGather(shaders, diffusePass_.program(), cones_, kConesPerDispatch);
     }
     kit_.resolve(f);
     if (ao_ && f.wants("ao")) kit_.resolveValue(f, aoLow_, aoFull_, "ao");
     {
       auto s = f.profiler.scope("cones_full");
-      glUseProgram(shadeProg_);
-      f.resources.get<GpuScene>().bind(shaders, shadeProg_);
-      f.resources.get<LightMaps>().bind();
-      volume.bind(shaders, shadeProg_, vol_.step);
-      f.gbuffer().bind();
-      shaders.setUniform(shadeProg_, "uCameraPosition", f.camera.position);
+      shade_.params().cameraPosition = glm::vec4(f.camera.position, 1.0f);
+      shade_.use(f);
+      volume.bind(shaders, shade_.program(), vol_.step);
       glBindTextureUnit(TEXUNIT_PASS_INPUT, aoFull_);
       bindSampleAndSplitImages(f);
       const char* extra[2] = {"ao", "specular"};
@@ -203,8 +200,7 @@ class VctMethod : public Method {
       for (int i = 0; i < 2; ++i)
         glBindImageTexture(units[i], f.sampleImage(f.wants(extra[i]) ? extra[i] : "image"), 0, GL_FALSE, 0,
                            GL_READ_WRITE, GL_RGBA32F);
-      glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
-      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      shade_.dispatch(f.width(), f.height());
     }
     return true;
   }
@@ -231,7 +227,9 @@ class VctMethod : public Method {
   std::vector<glm::vec4> constellation_;
   GatherKit kit_;
   std::unique_ptr<DirectPass> direct_;
-  unsigned diffuseProg_ = 0, shadeProg_ = 0, aoLow_ = 0, aoFull_ = 0;
+  ComputePass<shared::VctDiffuseParams> diffusePass_;
+  ComputePass<shared::VctShadeParams> shade_;
+  unsigned aoLow_ = 0, aoFull_ = 0;
 };
 
 }  // namespace

@@ -45,6 +45,7 @@
 
 #include "core/gpu_scene.h"
 #include "core/shader_library.h"
+#include "illum/framework/compute_pass.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/shared_params.h"
@@ -52,6 +53,7 @@
 #include "illum/resources/light_maps.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "illum/resources/value_grids.h"
+#include "shaders/illum/voxelpath/params.glsl"
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gl_ray_tracer.h"
 #include "voxelize/value_textures.h"
@@ -112,23 +114,27 @@ class VoxelPathMethod : public Method {
                                            shadow_.normalOffset);
     ShaderDefines defs;
     addTracerDefine(defs, tracer_);
-    prog_ = shaders.program({"illum/voxelpath/path.comp.glsl"}, defs);
-    shaders.setUniform(prog_, "uMaxDepth", maxDepth_);
-    shaders.setUniform(prog_, "uRrDepth", rrDepth_);
-    shaders.setUniform(prog_, "uOffset", offset_ * voxelDiagonal_);
-    shaders.setUniform(prog_, "uVoxelDiagonal", voxelDiagonal_);
-    shaders.setUniform(prog_, "uTraceLength", traceLength_);
-    shaders.setUniform(prog_, "uClamp", clamp_);
-    shaders.setUniform(prog_, "uEnv", env_ ? 1 : 0);
-    shaders.setUniform(prog_, "uGlossy", glossy_ ? 1 : 0);
-    shaders.setUniform(prog_, "uRefine", backProjection_ == "plane" ? 1 : 0);
-    shaders.setUniform(prog_, "uPassThrough", passThrough_ ? 1 : 0);
-    shaders.setUniform(prog_, "uHitPoint", hitPoint_ == "entry" ? 0 : hitPoint_ == "centre" ? 1 : 2);
-    shaders.setUniform(prog_, "uShadowBias", shadow_.bias);
-    shaders.setUniform(prog_, "uNormalOffset", shadow_.normalOffset);
-    shaders.setUniform(prog_, "uSeed", f.request.seed);
-    shaders.setUniform(prog_, "uWriteDirect", f.wants("direct") ? 1 : 0);
-    shaders.setUniform(prog_, "uWriteIndirect", f.wants("indirect") ? 1 : 0);
+    path_.create(f, {"illum/voxelpath/path.comp.glsl"}, defs,
+                 kPassScene | kPassLightMaps | kPassValueTextures | kPassGBuffer);
+    shared::VoxelPathParams& p = path_.params();
+    p.maxDepth = maxDepth_;
+    p.rrDepth = rrDepth_;
+    p.clampMax = clamp_;
+    p.env = env_ ? 1 : 0;
+    p.shadowBias = shadow_.bias;
+    p.normalOffset = shadow_.normalOffset;
+    p.seed = f.request.seed;
+    p.writeDirect = f.wants("direct") ? 1 : 0;
+    p.writeIndirect = f.wants("indirect") ? 1 : 0;
+    shared::VoxelHitParams h{};
+    h.offset = offset_ * voxelDiagonal_;
+    h.voxelDiagonal = voxelDiagonal_;
+    h.traceLength = traceLength_;
+    h.glossy = glossy_ ? 1 : 0;
+    h.backProjection = backProjectionConstant(backProjection_);
+    h.passThrough = passThrough_ ? 1 : 0;
+    h.hitPoint = hitPointConstant(hitPoint_);
+    hits_.set(path_.program(), h);
   }
   bool addSample(Frame& f, int k) override {
     const unsigned sample = f.sampleImage("image");
@@ -138,19 +144,14 @@ class VoxelPathMethod : public Method {
     }
     {
       auto s = f.profiler.scope("paths");
-      ShaderLibrary& shaders = f.shaders();
-      glUseProgram(prog_);
-      f.resources.get<GpuScene>().bind(shaders, prog_);
-      f.resources.get<LightMaps>().bind();
-      bindTracer(f.resources, shaders, prog_);
-      f.resources.get<ValueTextures>().bind();
-      f.gbuffer().bind();
-      shaders.setUniform(prog_, "uCameraPosition", f.camera.position);
-      shaders.setUniform(prog_, "uSampleIndex", uint32_t(k));
+      path_.params().cameraPosition = glm::vec4(f.camera.position, 1.0f);
+      path_.params().sampleIndex = uint32_t(k);
+      path_.use(f);
+      bindTracer(f.resources, f.shaders(), path_.program());
+      hits_.bind();
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
       bindSampleAndSplitImages(f);
-      glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
-      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      path_.dispatch(f.width(), f.height());
     }
     return true;
   }
@@ -170,7 +171,8 @@ class VoxelPathMethod : public Method {
   BinaryGridNeed grid_;
   ShadowParams shadow_;
   std::unique_ptr<DirectPass> direct_;
-  unsigned prog_ = 0;
+  ComputePass<shared::VoxelPathParams> path_;
+  VoxelHits hits_;
 };
 
 }  // namespace

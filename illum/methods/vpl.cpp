@@ -137,13 +137,15 @@ class VplMethod : public Method {
     shaders.setUniform(genProg_, "uBounces", s_.bounces);
     shaders.setUniform(genProg_, "uSeed", f.request.seed);
     // The bounce rays: voxelpath's first-hit rule and hit vertex (illum/voxel_hits.glsl), diffuse.
-    shaders.setUniform(genProg_, "uOffset", bounceOffset_ * voxelDiagonal_);
-    shaders.setUniform(genProg_, "uVoxelDiagonal", voxelDiagonal_);
-    shaders.setUniform(genProg_, "uTraceLength", 4.0f * diagonal_ + 1e-6f);
-    shaders.setUniform(genProg_, "uGlossy", 0);
-    shaders.setUniform(genProg_, "uRefine", 1);
-    shaders.setUniform(genProg_, "uPassThrough", 1);
-    shaders.setUniform(genProg_, "uHitPoint", 0);
+    shared::VoxelHitParams h{};
+    h.offset = bounceOffset_ * voxelDiagonal_;
+    h.voxelDiagonal = voxelDiagonal_;
+    h.traceLength = 4.0f * diagonal_ + 1e-6f;
+    h.glossy = 0;
+    h.backProjection = shared::BACK_PROJECTION_PLANE;
+    h.passThrough = 1;
+    h.hitPoint = shared::VOXEL_HIT_ENTRY;
+    hits_.set(genProg_, h);
   }
   bool addSample(Frame& f, int k) override {
     ShaderLibrary& shaders = f.shaders();
@@ -162,6 +164,7 @@ class VplMethod : public Method {
       auto s = f.profiler.scope("vpls");
       glUseProgram(genProg_);
       bindGrid(f, genProg_);
+      hits_.bind();
       shaders.setUniform(genProg_, "uSampleIndex", uint32_t(k));
       shaders.setUniform(genProg_, "uRotation", vplRotation(k, f.request.seed));
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, kit_.vplBuffer());
@@ -219,6 +222,7 @@ class VplMethod : public Method {
   std::unique_ptr<DirectPass> direct_;
   VplKit kit_;
   unsigned fluxProg_ = 0, genProg_ = 0, res_ = 0;
+  VoxelHits hits_;
   GlBuffer flux_;
   size_t fluxFloats_ = 0;
   uint64_t fluxRenders_ = ~uint64_t(0);

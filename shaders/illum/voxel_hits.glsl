@@ -3,13 +3,8 @@
 // bounce VPLs): the first hit with the own-band pass rule (trace) and the hit
 // vertex from the multi-valued grids (hitVertex). Include after
 // traverse/tracer.glsl, shared/light_maps.glsl and shared/value_textures.glsl.
-uniform float uOffset;        // ray start offset along the normal, world units
-uniform float uVoxelDiagonal;
-uniform float uTraceLength;   // longer than any ray through the grid
-uniform int uGlossy;          // 0: the Phong lobes are dropped (diffuse only)
-uniform int uRefine;          // back-projection: 0 the voxel entry (VGI), 1 the RSM surface's plane
-uniform int uPassThrough;     // pass hits in the start's own band (see trace())
-uniform int uHitPoint;        // 0 voxel entry, 1 voxel centre, 2 on the plane of the voxel's mean normal
+#include "voxel_hit_params.glsl"
+layout(std140, binding = UBO_VOXEL_HITS) uniform VoxelHits { VoxelHitParams hits; };
 
 // A path vertex as the grid knows it.
 struct Vertex {
@@ -18,7 +13,7 @@ struct Vertex {
 };
 
 // The first voxel hit along (o, d), and its RSM back-projection. With
-// uPassThrough the ray goes on past a hit (up to kMaxPasses times) within a
+// hits.passThrough the ray goes on past a hit (up to kMaxPasses times) within a
 // voxel diagonal of the start's tangent plane — the start is only half a
 // diagonal off its surface, so it may be the start's own voxel — when the
 // cell's mean normal is the start's up to sign (the grid keeps the mesh's
@@ -28,17 +23,17 @@ struct Vertex {
 // pass of voxels a light sees through loses 7 % on the Cornell box (a path
 // that passes them goes on past real, unlit surfaces); this rule: 1.1 % (room) to 1.5 % (Cornell box).
 bool trace(vec3 o, vec3 d, vec3 n, out float t, out uvec3 voxel, out BackProjection b) {
-  ResumableRay ray = resumableRay(o, d, uTraceLength);
+  ResumableRay ray = resumableRay(o, d, hits.traceLength);
   while (nextHit(ray)) {
     t = hitDistance(ray);
     voxel = ray.hit.voxel;
-    precise float height = dot(d, n) * t + uOffset;
-    bool band = uPassThrough != 0 && height < uVoxelDiagonal;
+    precise float height = dot(d, n) * t + hits.offset;
+    bool band = hits.passThrough != 0 && height < hits.voxelDiagonal;
     // The normal rule needs no back-projection: a band hit it passes costs one fetch.
     vec4 nv = band ? texelFetch(valueNormal, ivec3(voxel), 0) : vec4(0.0f);
-    if (band && abs(dot(nv.xyz, n)) > 0.8f * length(nv.xyz) && passHit(ray, uVoxelDiagonal)) continue;
-    b = rsmBackProject(o, d, t, uVoxelDiagonal, uTraceLength, uRefine != 0);
-    if (band && b.radiance == vec3(0.0f) && passHit(ray, uVoxelDiagonal)) continue;
+    if (band && abs(dot(nv.xyz, n)) > 0.8f * length(nv.xyz) && passHit(ray, hits.voxelDiagonal)) continue;
+    b = rsmBackProject(o, d, t, hits.voxelDiagonal, hits.traceLength, hits.backProjection == BACK_PROJECTION_PLANE);
+    if (band && b.radiance == vec3(0.0f) && passHit(ray, hits.voxelDiagonal)) continue;
     return true;
   }
   return false;
@@ -59,19 +54,19 @@ bool hitVertex(vec3 o, vec3 d, float t, uvec3 voxel, out Vertex v) {
   v.n = n;
   v.brdf.albedo = texelFetch(valueAlbedo, c, 0).xyz / occ;
   vec4 g = texelFetch(valueGlossy, c, 0) / occ;
-  v.brdf.ks = uGlossy != 0 ? vec3(g.x, g.y, g.z) : vec3(0.0f);
+  v.brdf.ks = hits.glossy != 0 ? vec3(g.x, g.y, g.z) : vec3(0.0f);
   v.brdf.exponent = decodeExponent(g.w);
   precise vec3 entry = o + t * d;
   v.p = entry;
-  if (uHitPoint != 0) {
+  if (hits.hitPoint != VOXEL_HIT_ENTRY) {
     GridParams grid = gridFromUniforms();
     vec3 centre = gridToWorld(grid, vec3(voxel) + vec3(0.5f));
     v.p = centre;
-    if (uHitPoint == 2) {
+    if (hits.hitPoint == VOXEL_HIT_PLANE) {
       // The plane through the centre with the mean normal, met within the voxel.
       float cd = dot(d, n);
       if (cd < -1e-3f) {
-        float ts = clamp(dot(centre - o, n) / cd, t, t + uVoxelDiagonal);
+        float ts = clamp(dot(centre - o, n) / cd, t, t + hits.voxelDiagonal);
         v.p = o + ts * d;
       } else {
         v.p = entry;

@@ -1,8 +1,8 @@
 // Every SSBO, texture and image unit the GL code binds, in one table read by
 // C++ (glBind*) and GLSL (layout(binding = …)). Units may repeat only between
-// resources no pass binds together: tests/core/bindings_test.cpp compiles every
-// program and checks, from GL's own introspection, that no two resources one
-// program uses share a unit, and that each unit is within this GL's limits.
+// resources no pass binds together: ShaderLibrary::checkBindings checks every
+// program the library links, from GL's own introspection, that no two resources
+// one program uses share a unit, and that each unit is within this GL's limits.
 #ifdef __cplusplus
 #pragma once
 #endif
@@ -34,6 +34,10 @@
 #define BINDING_EMITTERS 23        // SSBO PackedEmitter[] (shared/emitters.glsl; illum/resources/gpu_emitters.h)
 #define BINDING_EMITTER_OF 24      // SSBO int[]: per triangle (scene order) its emitter, or -1
 #define BINDING_SCENE_VERTICES 25  // SSBO float[]: the GPU scene's vertex buffer (core/gpu_scene.h, per corner)
+
+// ---- uniform buffers (std140 blocks of params structs: illum/framework/compute_pass.h)
+#define UBO_PASS 0         // a compute pass's own parameters: `uniform Pass { T p; }`
+#define UBO_VOXEL_HITS 1   // the voxel-hit rules of illum/voxel_hits.glsl (VoxelHitParams)
 
 // ---- textures (samplers)
 #define TEXUNIT_GBUFFER_POSITION 0          // world position, w = 1 where a surface was seen

@@ -1,6 +1,6 @@
 // VGI §5.1 near-field gathering, one invocation per indirect-buffer pixel:
 // N cosine-distributed rays from the G-buffer point of the pixel's
-// representative full-resolution texel, started `uOffset` world units along
+// representative full-resolution texel, started `offset` world units along
 // the normal (half a voxel diagonal by default; VGI's full diagonal clears
 // every cell the local plane touches, at the cost of contact light — here
 // the receiver's own voxels are passed instead, see main()),
@@ -8,7 +8,7 @@
 // back-projected into every reflective shadow map and receives the stored
 // radiance where the RSM sees the same surface (the ε rule, rsmBackProject in
 // shared/light_maps.glsl); rays that leave r
-// read the environment (directional occlusion) when uEnv is set.
+// read the environment (directional occlusion) when env is set.
 // Directions: the gather kit's interleaved sets (../gather/gather.glsl).
 //
 // Output: rgb = mean radiance arriving along the rays (so the reflected
@@ -23,16 +23,12 @@
 #include "../../traverse/tracer.glsl"
 #define GATHER_DIRECTIONS
 #include "../gather/gather.glsl"
+#include "params.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uIndirect;
 
-uniform float uRadius;       // r, world units
-uniform float uOffset;       // start offset along the normal, world units
-uniform float uVoxelDiagonal;
-uniform int uEnv;
-uniform int uPassThrough;     // 1: rays go on past empty-looking and own voxels (see main)
-uniform int uRefine;          // back-projection: 0 the voxel entry (VGI), 1 the RSM surface's plane
+layout(std140, binding = UBO_PASS) uniform Pass { NearFieldPassParams pass; };
 
 
 void main() {
@@ -45,11 +41,11 @@ void main() {
     return;
   }
   Basis frame = makeBasis(n);
-  vec3 origin = p + n * uOffset;
+  vec3 origin = p + n * pass.offset;
   vec3 sum = vec3(0.0f);
   for (int r = uBatchFirst; r < uBatchEnd; ++r) {
     vec3 d = gatherDirection(q, r, frame);
-    // With uPassThrough the ray goes on past a hit voxel, up to three times,
+    // With pass.passThrough the ray goes on past a hit voxel, up to three times,
     // when (a) a light sees through its entry point — nothing is there (a
     // conservatively set voxel of a thin feature) — or (b) it lies within a
     // voxel diagonal of the receiver's tangent plane and gives no light: it may
@@ -60,18 +56,18 @@ void main() {
     // few pixels, though the tracers agree on such rays in tests/traverse — an
     // open question, see NearField.TracerIsAParameter….) A ray passed on
     // beyond the radius reads the environment, like one that met nothing.
-    ResumableRay ray = resumableRay(origin, d, uRadius);
+    ResumableRay ray = resumableRay(origin, d, pass.radius);
     while (true) {
       if (!nextHit(ray)) {
-        if (uEnv != 0) sum += gpuEnvironmentRadiance(d);
+        if (pass.env != 0) sum += gpuEnvironmentRadiance(d);
         break;
       }
       precise float t = hitDistance(ray);
-      BackProjection b = rsmBackProject(origin, d, t, uVoxelDiagonal, uRadius, uRefine != 0);
+      BackProjection b = rsmBackProject(origin, d, t, pass.voxelDiagonal, pass.radius, pass.backProjection == BACK_PROJECTION_PLANE);
       sum += b.radiance;
-      precise float height = dot(d, n) * t + uOffset;  // of the hit above the receiver's plane
-      bool ownBand = height < uVoxelDiagonal && b.radiance == vec3(0.0f);
-      if (uPassThrough == 0 || !(b.seenThrough || ownBand) || !passHit(ray, uVoxelDiagonal)) break;
+      precise float height = dot(d, n) * t + pass.offset;  // of the hit above the receiver's plane
+      bool ownBand = height < pass.voxelDiagonal && b.radiance == vec3(0.0f);
+      if (pass.passThrough == 0 || !(b.seenThrough || ownBand) || !passHit(ray, pass.voxelDiagonal)) break;
     }
   }
   imageStore(uIndirect, q, vec4(gatheredBefore(uIndirect, q).xyz + sum / float(uRays), 1.0f));

@@ -72,7 +72,7 @@ void main() {
         vec3 n = v.normal.xyz;
         vec2 w = vec2(rngNext(rng), rngNext(rng));
         vec3 d = basisToWorld(makeBasis(n), cosineSampleHemisphere(w));
-        vec3 o = v.position.xyz + n * uOffset;
+        vec3 o = v.position.xyz + n * hits.offset;
         float th;
         uvec3 voxel;
         BackProjection bp;
