@@ -2,9 +2,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 
 #include "apps/commands.h"
 #include "core/error.h"
+#include "core/json_text.h"
 #include "core/progress.h"
 #include "illum/framework/render_job.h"
 
@@ -53,6 +55,11 @@ void applyRenderArgs(const RenderArgs& args, RenderOptions& opt) {
     fail("--accumulate '", args.accumulate, "': expected compensated or plain");
 }
 
+namespace {
+// What may be given beside --job: where the outputs go, not what is rendered.
+const std::set<std::string> kJobCompanions = {"--job", "--print-job", "--output", "--stats", "--exposure"};
+}  // namespace
+
 void addRenderCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a scene with a method to EXR + PNG + JSON stats");
   auto opt = std::make_shared<RenderOptions>();
@@ -78,6 +85,12 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--aov", *aovs,
                   "extra outputs, comma-separated (e.g. indirect,direct): <stem>.<aov>.exr/.png");
   cmd->add_option("--help-module", *helpModule, "print a method's parameters and exit");
+  auto job = std::make_shared<std::string>();
+  auto printJob = std::make_shared<bool>(false);
+  cmd->add_option("--job", *job,
+                  "the render's options from a job JSON (or a render's stats JSON: its \"job\"); no other "
+                  "render option may be given with it");
+  cmd->add_flag("--print-job", *printJob, "print the job these options make (JSON) and exit");
   auto checkpoints = std::make_shared<std::string>();
   cmd->add_option(
       "--checkpoints", *checkpoints,
@@ -92,13 +105,26 @@ void addRenderCommand(CLI::App& app) {
       return;
     }
     if (!(*exposure > 0.0f) || *exposure > 1e6f) fail("--exposure ", *exposure, ": must be in (0, 1e6]");
-    applyRenderArgs(*args, *opt);
-    opt->aovs = splitList(*aovs);
-    for (auto& c : splitList(*checkpoints)) {
-      char* end = nullptr;
-      const long v = std::strtol(c.c_str(), &end, 10);
-      if (c.empty() || *end || c.size() > 9) fail("--checkpoints: '", c, "' is not a sample count");
-      opt->checkpoints.push_back(int(v));  // runRender checks the range against --spp
+    if (!job->empty()) {
+      for (const CLI::Option* o : cmd->get_options())
+        if (o->count() > 0 && !kJobCompanions.count(o->get_name()))
+          fail("--job '", *job, "' gives the render's options: ", o->get_name(), " may not be given with it");
+      *opt = readRenderJob(readJsonFile(*job, "--job"), "'" + *job + "'");
+    } else {
+      applyRenderArgs(*args, *opt);
+      opt->aovs = splitList(*aovs);
+      for (auto& c : splitList(*checkpoints)) {
+        char* end = nullptr;
+        const long v = std::strtol(c.c_str(), &end, 10);
+        if (c.empty() || *end || c.size() > 9) fail("--checkpoints: '", c, "' is not a sample count");
+        opt->checkpoints.push_back(int(v));  // runRender checks the range against --spp
+      }
+      opt->methodGiven = cmd->count("--method") > 0;
+    }
+    if (*printJob) {
+      checkRenderOptions(*opt);
+      std::printf("%s\n", jsonText(renderJobJson(*opt), 2).c_str());
+      return;
     }
     checkOutputPath(*out);
     if (!stats->empty()) {
@@ -109,7 +135,6 @@ void addRenderCommand(CLI::App& app) {
           fail("--stats '", *stats, "' is also a file this render writes for -o '", *out, "' (", f,
                "): give another path");
     }
-    opt->methodGiven = cmd->count("--method") > 0;
     installInterruptHandler();
     std::vector<std::string> files;
     RenderOutput result;

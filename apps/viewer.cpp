@@ -25,6 +25,7 @@
 #include "core/gl_context.h"
 #include "core/gl_handles.h"
 #include "core/image.h"
+#include "core/json_text.h"
 #include "core/output_files.h"
 #include "core/params.h"
 #include "core/profiler.h"
@@ -76,13 +77,7 @@ struct ScriptEvent {
 };
 
 std::vector<ScriptEvent> loadScript(const std::string& path) {
-  if (!fs::is_regular_file(path)) fail("--script '", path, "' does not exist or is not a regular file");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(std::ifstream(path));
-  } catch (const std::exception& e) {
-    fail("--script '", path, "': not valid JSON (", e.what(), ")");
-  }
+  const nlohmann::json j = readJsonFile(path, "--script");
   if (!j.is_array()) fail("--script '", path, "': expected a JSON list of events");
   static const std::vector<std::string> kinds = {
       "frames", "orbit",      "move",  "reset_camera",      "method",     "set",  "show",
@@ -496,17 +491,22 @@ void Viewer::screenshot(const std::string& path) {
                            {"errors_reported", failures_},
                            {"resources_kept", job_->resources().adopted()}};
     if (showingLightMap()) out.stats["viewer"]["light_face"] = lightFace_;
-    // The `vgi render` command that renders this image again.
-    std::string cmd = "vgi render --scene '" + job_->options().scene + "' --method " + job_->info().name;
-    for (auto& kv : job_->options().set) cmd += " --set '" + kv + "'";
-    cmd += " --size " + std::to_string(req_.width) + "x" + std::to_string(req_.height) + " --spp " +
-           std::to_string(session_->samples()) + " --seed " + std::to_string(req_.seed);
-    char t[32];
-    std::snprintf(t, sizeof t, "%.9g", time_);
-    cmd += std::string(" --time ") + t + " --camera '" + cameraText(job_->scene().camera) + "'";
-    for (int i : movedLights_)
-      cmd += " --light '" + lightPositionText(i, job_->scene().lights[size_t(i)].position) + "'";
-    out.stats["command"] = cmd;
+    // The job (and the `vgi render` command) that renders this image again.
+    RenderOptions shot = job_->options();
+    shot.method = job_->info().name;
+    shot.methodGiven = true;
+    shot.width = req_.width;
+    shot.height = req_.height;
+    shot.spp = session_->samples();
+    shot.seed = req_.seed;
+    shot.time = time_;
+    shot.frames = 1;
+    shot.progress = true;
+    shot.camera = job_->scene().camera;
+    shot.lightPositions.clear();
+    for (int i : movedLights_) shot.lightPositions.emplace_back(i, job_->scene().lights[size_t(i)].position);
+    out.stats["job"] = renderJobJson(shot);
+    out.stats["command"] = renderCommandLine(shot);
     for (auto& f : writeRenderOutputs(out, path, exposure_)) std::fprintf(stderr, "wrote %s\n", f.c_str());
     ++shotCount_;
   });

@@ -1,6 +1,9 @@
 #include "core/json_text.h"
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/error.h"
 
@@ -54,6 +57,17 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& origin)
   } catch (const nlohmann::json::parse_error& e) {
     fail(origin, ": malformed JSON: ", e.what());
   }
+}
+
+nlohmann::json readJsonFile(const std::string& path, const std::string& what) {
+  const std::string origin = what + " '" + path + "'";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) fail(origin, ": does not exist or is not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) fail(origin, ": cannot be read");
+  return parseJsonText(text.str(), origin);
 }
 
 }  // namespace vgi

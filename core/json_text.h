@@ -24,4 +24,9 @@ constexpr int kMaxJsonDepth = 64;
 // vgi::Error naming `origin`.
 nlohmann::json parseJsonText(const std::string& text, const std::string& origin);
 
+// The JSON file at `path`, read as parseJsonText reads text; throws vgi::Error
+// naming `what` and the path when it is not a regular file, cannot be read or
+// is not JSON (e.g. readJsonFile(p, "--script") → "--script 'p': …").
+nlohmann::json readJsonFile(const std::string& path, const std::string& what);
+
 }  // namespace vgi

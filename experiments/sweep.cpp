@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/image.h"
+#include "core/json_text.h"
 #include "core/output_files.h"
 #include "core/params.h"
 #include "experiments/compare.h"
@@ -81,55 +82,43 @@ double positive(const nlohmann::json& v, const std::string& key) {
 
 std::string stemOfRender(const SweepRender& r) { return fs::path(r.stem).replace_extension("").string(); }
 
-// Render arguments shared by points, references and counterpart curves.
-std::vector<std::string> renderArgs(const Experiment& e, const std::string& scene, const std::string& method,
-                                    const std::vector<std::string>& set, int spp,
-                                    const std::vector<std::string>& aovs, const std::vector<int>& checkpoints,
-                                    uint32_t seed, double timeLimitS) {
-  std::vector<std::string> a = {"render", "--scene", scene, "--method", method};
-  for (auto& s : set) a.insert(a.end(), {"--set", s});
-  a.insert(a.end(), {"--size", std::to_string(e.width) + "x" + std::to_string(e.height), "--spp",
-                     std::to_string(spp), "--seed", std::to_string(seed), "--quiet"});
-  if (!checkpoints.empty()) {
-    std::string c;
-    for (int k : checkpoints) c += (c.empty() ? "" : ",") + std::to_string(k);
-    a.insert(a.end(), {"--checkpoints", c});
-  }
-  if (timeLimitS > 0) {
-    char t[32];
-    std::snprintf(t, sizeof t, "%.9g", timeLimitS);
-    a.insert(a.end(), {"--time-limit", t});
-  }
-  if (!aovs.empty()) {
-    std::string c;
-    for (auto& k : aovs) c += (c.empty() ? "" : ",") + k;
-    a.insert(a.end(), {"--aov", c});
-  }
-  return a;
+// The render options of points, references and counterpart curves.
+RenderOptions sweepRenderOptions(const Experiment& e, const std::string& scene, const std::string& method,
+                                 const std::vector<std::string>& set, int spp,
+                                 const std::vector<std::string>& aovs, const std::vector<int>& checkpoints,
+                                 uint32_t seed, double timeLimitS) {
+  RenderOptions o;
+  o.scene = scene;
+  o.method = method;
+  o.methodGiven = true;
+  o.set = set;
+  o.width = e.width;
+  o.height = e.height;
+  o.spp = spp;
+  o.seed = seed;
+  o.progress = false;
+  o.aovs = aovs;
+  o.checkpoints = checkpoints;
+  o.timeLimitS = timeLimitS;
+  return o;
 }
 
 SweepRender makeRender(const std::string& dir, const std::string& kind, const std::string& name,
-                       std::vector<std::string> args) {
+                       const RenderOptions& options) {
   SweepRender r;
+  std::vector<std::string> args = {"render"};
+  for (std::string& a : renderArgs(options)) args.push_back(std::move(a));
   r.id = name + "-" + hashId(args);
   r.dir = dir + "/" + kind + "/" + r.id;
   r.stem = r.dir + (kind == "references" ? "/ref.exr" : "/render.exr");
   args.insert(args.end(), {"-o", r.stem});
   r.args = std::move(args);
+  r.options = options;
   return r;
 }
 
-// The method a render runs (its `--method` argument).
-std::string renderMethod(const SweepRender& r) {
-  const auto it = std::find(r.args.begin(), r.args.end(), "--method");
-  return it != r.args.end() && it + 1 != r.args.end() ? *(it + 1) : r.id;
-}
-
-std::string shellQuote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
+// The method a render runs.
+std::string renderMethod(const SweepRender& r) { return r.args.empty() ? r.id : r.options.method; }
 
 std::string machineName() {
   char host[256] = {0};
@@ -342,17 +331,12 @@ void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const R
   const std::vector<std::string>&rset = rc.set, &raovs = rc.aovs;
   SweepRender r;
   r = makeRender(dir, "references", rmethod,
-                 renderArgs(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
+                 sweepRenderOptions(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
   auto same = std::find_if(e.references.begin(), e.references.end(),
                            [&](const SweepRender& x) { return x.id == r.id; });
   if (same == e.references.end()) {
-    RenderOptions ro;
-    ro.scene = scene;
-    ro.method = rmethod;
-    ro.methodGiven = true;
-    ro.set = rset;
     try {
-      resolveParameters(ro);
+      resolveParameters(r.options);
     } catch (const Error& ex) {
       fail("experiment: reference of ", where, " (", rmethod, " on ", scene, "): ", ex.what());
     }
@@ -377,9 +361,9 @@ void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const R
               .first;
     const std::string& cmethod = known->second;
     const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
-    const SweepRender curve =
-        makeRender(dir, "curves", cmethod,
-                   renderArgs(e, scene, cmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
+    const SweepRender curve = makeRender(
+        dir, "curves", cmethod,
+        sweepRenderOptions(e, scene, cmethod, rset, e.curveCounts.back(), raovs, below, e.seed + 1, 0));
     auto c = std::find_if(e.curves.begin(), e.curves.end(),
                           [&](const SweepRender& x) { return x.id == curve.id; });
     if (c == e.curves.end()) {
@@ -445,14 +429,8 @@ void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref,
         set.push_back(k + "=" + v);
         pt.params[k] = v;
       }
-      RenderOptions o;
-      o.scene = scene;
-      o.method = method;
-      o.methodGiven = true;
-      o.set = set;
-      o.width = e.width;
-      o.height = e.height;
-      o.spp = spp;
+      RenderOptions o =
+          sweepRenderOptions(e, scene, method, set, spp, {}, checkpoints, e.seed, e.timeBudgetS);
       nlohmann::json resolved;
       std::vector<std::string> outputs;
       try {
@@ -465,9 +443,8 @@ void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref,
       std::vector<std::string> aovs;
       for (auto& a : e.aovs)
         if (std::find(outputs.begin(), outputs.end(), a) != outputs.end()) aovs.push_back(a);
-      pt.render =
-          makeRender(dir, "points", method,
-                     renderArgs(e, scene, method, set, spp, aovs, checkpoints, e.seed, e.timeBudgetS));
+      o.aovs = aovs;
+      pt.render = makeRender(dir, "points", method, o);
       pt.spp = spp;
       // The reference.
       if (ref.contains("file") && !m.contains("reference")) {
@@ -481,17 +458,7 @@ void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref,
 }
 
 Experiment loadExperimentFile(const std::string& path, const std::string& dir) {
-  if (!fs::is_regular_file(path))
-    fail("experiment file '", path, "' does not exist or is not a regular file");
-  nlohmann::json j;
-  {
-    std::ifstream in(path);
-    try {
-      j = nlohmann::json::parse(in);
-    } catch (const std::exception& ex) {
-      fail("experiment file '", path, "': not valid JSON (", ex.what(), ")");
-    }
-  }
+  const nlohmann::json j = readJsonFile(path, "experiment file");
   Experiment e;
   e.path = path;
   e.dir = dir;
@@ -528,10 +495,7 @@ bool sweepRenderDone(const SweepRender& r, int spp) {
   return s.is_object() && (s.value("spp_completed", 0) >= spp || s.value("time_limited", false));
 }
 
-int sweepRenderSpp(const SweepRender& r) {
-  const auto it = std::find(r.args.begin(), r.args.end(), "--spp");
-  return it != r.args.end() && it + 1 != r.args.end() ? std::atoi((it + 1)->c_str()) : 1;
-}
+int sweepRenderSpp(const SweepRender& r) { return r.args.empty() ? 1 : r.options.spp; }
 
 int runSweep(const Experiment& e, const std::string& vgi) {
   std::vector<std::pair<const SweepRender*, int>> todo;
@@ -666,8 +630,7 @@ nlohmann::json collectSweep(const Experiment& e) {
     const SweepRender& curve = e.curves[i];
     const std::string method = renderMethod(curve);
     std::string label = method;  // with its parameters: two counterparts of one scene differ in them
-    for (size_t a = 0; a + 1 < curve.args.size(); ++a)
-      if (curve.args[a] == "--set") label += " " + curve.args[a + 1];
+    for (const std::string& kv : curve.options.set) label += " " + kv;
     const nlohmann::json base = {{"scene", scene},
                                  {"method", method},
                                  {"label", label + " (exact, seed " + std::to_string(e.seed + 1) + ")"},

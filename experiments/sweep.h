@@ -43,6 +43,7 @@
 
 #include "core/image_metrics.h"
 #include "experiments/compare.h"
+#include "illum/framework/render_options.h"
 
 namespace vgi {
 
@@ -50,7 +51,8 @@ struct SweepRender {
   std::string id;                 // stable: a hash of its arguments
   std::string dir;                // DIR/points/<id> or DIR/references/<id>
   std::string stem;               // dir/render.exr or dir/ref.exr
-  std::vector<std::string> args;  // `vgi` arguments (render …)
+  std::vector<std::string> args;  // `vgi` arguments (render …: renderArgs(options), -o stem)
+  RenderOptions options;          // what it renders (args empty: none)
   std::string file;               // a reference given as an existing image (no args)
 };
 

@@ -23,27 +23,6 @@ namespace fs = std::filesystem;
 
 namespace vgi {
 
-void parseSize(const std::string& text, int& w, int& h) {
-  auto x = text.find('x');
-  // Each side parsed from a string that outlives the check of `end` (a
-  // substr() temporary would be destroyed before *end is read).
-  auto side = [](const std::string& digits) {
-    if (digits.empty() || digits.size() > 9) return -1L;
-    char* end = nullptr;
-    long v = std::strtol(digits.c_str(), &end, 10);
-    return *end ? -1L : v;
-  };
-  long a = -1, b = -1;
-  if (x != std::string::npos) {
-    a = side(text.substr(0, x));
-    b = side(text.substr(x + 1));
-  }
-  if (a < 1 || b < 1 || a > 16384 || b > 16384)
-    fail("--size '", text, "': expected WxH with 1 <= W, H <= 16384 (e.g. 512x512)");
-  w = int(a);
-  h = int(b);
-}
-
 void checkOutputPath(const std::string& path) {
   fs::path p(path);
   std::string ext = p.extension().string();
@@ -129,65 +108,6 @@ nlohmann::json resolveParameters(const RenderOptions& opt, std::vector<std::stri
   return params.resolved();
 }
 
-std::string cameraText(const Camera& c) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.position.x,
-                c.position.y, c.position.z, c.target.x, c.target.y, c.target.z, c.up.x, c.up.y, c.up.z,
-                c.fovYDeg);
-  return buf;
-}
-
-Camera parseCamera(const std::string& text) {
-  std::vector<float> v;
-  std::stringstream ss(text);
-  for (std::string item; std::getline(ss, item, ',');) {
-    char* end = nullptr;
-    const float x = std::strtof(item.c_str(), &end);
-    if (item.empty() || *end || !std::isfinite(x))
-      fail("--camera '", text, "': '", item, "' is not a finite number");
-    v.push_back(x);
-  }
-  if (v.size() != 9 && v.size() != 10)
-    fail("--camera '", text, "': expected px,py,pz,tx,ty,tz,ux,uy,uz[,fov_y_deg] (", v.size(),
-         " numbers given)");
-  Camera c;
-  c.position = {v[0], v[1], v[2]};
-  c.target = {v[3], v[4], v[5]};
-  c.up = {v[6], v[7], v[8]};
-  if (v.size() == 10) c.fovYDeg = v[9];
-  if (glm::length(c.target - c.position) < 1e-12f)
-    fail("--camera '", text, "': the position and the target coincide");
-  if (glm::length(glm::cross(c.target - c.position, c.up)) < 1e-12f * glm::length(c.target - c.position))
-    fail("--camera '", text, "': the up vector is parallel to the view direction (or zero)");
-  if (!(c.fovYDeg > 0.0f && c.fovYDeg < 180.0f))
-    fail("--camera '", text, "': the vertical field of view ", c.fovYDeg, " must be in (0, 180) degrees");
-  return c;
-}
-
-std::pair<int, glm::vec3> parseLightPosition(const std::string& text) {
-  const size_t eq = text.find('=');
-  char* end = nullptr;
-  const long index = eq == std::string::npos ? -1 : std::strtol(text.c_str(), &end, 10);
-  if (eq == std::string::npos || eq == 0 || end != text.c_str() + eq || index < 0 || index > 1000000)
-    fail("--light '", text, "': expected I=x,y,z (I: the light's index in the scene, from 0)");
-  std::vector<float> v;
-  std::stringstream ss(text.substr(eq + 1));
-  for (std::string item; std::getline(ss, item, ',');) {
-    const float x = std::strtof(item.c_str(), &end);
-    if (item.empty() || *end || !std::isfinite(x))
-      fail("--light '", text, "': '", item, "' is not a finite number");
-    v.push_back(x);
-  }
-  if (v.size() != 3) fail("--light '", text, "': expected I=x,y,z (", v.size(), " numbers given)");
-  return {int(index), glm::vec3(v[0], v[1], v[2])};
-}
-
-std::string lightPositionText(int index, glm::vec3 p) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "%d=%.9g,%.9g,%.9g", index, p.x, p.y, p.z);
-  return buf;
-}
-
 void placeLight(std::vector<Light>& lights, int index, glm::vec3 position) {
   if (index < 0 || index >= int(lights.size()))
     fail("light ", index, " does not exist: the scene has ", lights.size(), " delta lights",
@@ -195,31 +115,6 @@ void placeLight(std::vector<Light>& lights, int index, glm::vec3 position) {
   if (lights[size_t(index)].type == LightType::Directional)
     fail("light ", index, " is directional (it has no position)");
   lights[size_t(index)].position = position;
-}
-
-void checkRenderOptions(const RenderOptions& opt) {
-  if (opt.spp < 1 || opt.spp > 1 << 20) fail("--spp ", opt.spp, ": must be in [1, 1048576]");
-  if (opt.width < 1 || opt.height < 1 || opt.width > 16384 || opt.height > 16384)
-    fail("--size ", opt.width, "x", opt.height, ": each side must be in [1, 16384]");
-  if (opt.threads < 0 || opt.threads > 1024) fail("--threads ", opt.threads, ": must be in [0, 1024]");
-  if (opt.frames < 1 || opt.frames > 100000) fail("--frames ", opt.frames, ": must be in [1, 100000]");
-  if (!std::isfinite(opt.time) || !std::isfinite(opt.timeStep))
-    fail("--time ", opt.time, " / --time-step ", opt.timeStep, ": must be finite numbers");
-  // Each frame's time, as frameTimes() computes it in float, must be finite too.
-  const float last = opt.time + float(opt.frames - 1) * opt.timeStep;
-  if (!std::isfinite(last))
-    fail("--time ", opt.time, " / --time-step ", opt.timeStep, " / --frames ", opt.frames,
-         ": the last frame's time (", double(opt.time) + double(opt.frames - 1) * double(opt.timeStep),
-         ") is beyond a 32-bit float");
-  if (!(opt.timeLimitS >= 0) || !std::isfinite(opt.timeLimitS))
-    fail("--time-limit ", opt.timeLimitS, ": must be a finite number of seconds >= 0 (0 = no limit)");
-  if (opt.timeLimitS > 0 && opt.frames > 1)
-    fail("--time-limit applies to a still; --frames ", opt.frames, " renders an animation");
-  if (!opt.checkpoints.empty() && opt.frames > 1)
-    fail("--checkpoints applies to a still; --frames ", opt.frames, " renders an animation");
-  for (int c : opt.checkpoints)
-    if (c < 1 || c > opt.spp)
-      fail("--checkpoints: ", c, " is not a sample count in [1, --spp ", opt.spp, "]");
 }
 
 RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options) {
@@ -361,6 +256,10 @@ nlohmann::json RenderJob::describe() const {
   run["needs"] = needs.names();
   run["accumulation"] = opt_.accumulation == Accumulation::Compensated ? "compensated" : "plain";
   run["aovs"] = opt_.aovs;
+  // What renders this again: `vgi render --job THIS.json` (the method as resolved, a preset's included).
+  RenderOptions job = opt_;
+  job.method = info_->name;
+  run["job"] = renderJobJson(job);
   return run;
 }
 

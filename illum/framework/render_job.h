@@ -12,54 +12,19 @@
 #include "core/gl_context.h"
 #include "core/output_files.h"
 #include "illum/framework/method.h"
+#include "illum/framework/render_options.h"
 #include "illum/framework/sample_loop.h"
 
 namespace vgi {
-
-struct RenderOptions {
-  std::string scene = "builtin:cornell";
-  std::string method = defaultMethodName();
-  bool methodGiven = false;      // --method was on the command line (a preset may name its method otherwise)
-  std::vector<std::string> set;  // key=value
-  std::string preset;            // scene preset name, applied before `set`
-  int width = 512, height = 512;
-  int spp = 16;
-  uint32_t seed = 1;
-  int threads = 0;
-  float time = 0;
-  int frames = 1;  // > 1: an animation from `time`, `timeStep` apart
-  float timeStep = 1.0f / 30.0f;
-  GlBackend gl = GlBackend::Auto;
-  bool progress = true;
-  std::vector<std::string> aovs;                          // --aov: extra output channels
-  Accumulation accumulation = Accumulation::Compensated;  // --accumulate
-  std::vector<int> checkpoints;  // --checkpoints: sample counts to write the image at (a still)
-  double timeLimitS = 0;         // --time-limit: a still stops accumulating after this wall time
-  std::optional<Camera> camera;  // --camera: replaces the scene's
-  // --light I=x,y,z: light I (scene order) placed at x,y,z (point and spot lights)
-  std::vector<std::pair<int, glm::vec3>> lightPositions;
-};
 
 struct RenderOutput {
   RenderResult result;
   nlohmann::json stats;
 };
 
-// Parses "WxH" (each 1..16384); throws naming the option and value.
-void parseSize(const std::string& text, int& width, int& height);
-// --camera text: "px,py,pz,tx,ty,tz,ux,uy,uz[,fov_y_deg]" (the stats JSON's camera.option);
-// throws naming the value when it is not a camera.
-Camera parseCamera(const std::string& text);
-std::string cameraText(const Camera& camera);
-// --light text: "I=x,y,z" (index, position); throws naming the value.
-std::pair<int, glm::vec3> parseLightPosition(const std::string& text);
-std::string lightPositionText(int index, glm::vec3 position);
 // Places point or spot light `index` at `position`; throws naming the index if there is no such light
 // or it is directional.
 void placeLight(std::vector<Light>& lights, int index, glm::vec3 position);
-// Throws naming the option when a value of `options` is out of range.
-void checkRenderOptions(const RenderOptions& options);
-
 // What a render is made of, built from its options: the scene (its camera
 // replaced by --camera), the method with its parameters (preset, then --set),
 // a GL context if the method needs one (or the caller's: the viewer's

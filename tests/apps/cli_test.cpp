@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_util.h"
+#include "core/json_text.h"
+#include "illum/framework/render_options.h"
 
 namespace vgi {
 
@@ -98,6 +100,67 @@ TEST(Cli, CompareRendersTheExactCounterpartWithTheSameParameters) {
   CliRun spp = vgi("compare --ref-spp 0 --size 8x8 -o " + tmp("x.exr"));
   EXPECT_EQ(spp.code, 2);
   EXPECT_NE(spp.output.find("--ref-spp 0"), std::string::npos) << spp.output;
+}
+
+// One serialization of a render job: every option renderArgs spells is parsed by the real `vgi render`
+// into the same job (a renamed flag fails here, not in a sweep at run time), and the job JSON, given
+// back with --job, is the same job again.
+TEST(Cli, RenderArgsAndTheJobJsonRoundTripThroughTheCommandLine) {
+  RenderOptions still;  // every option away from its default
+  still.scene = "scenes/leak-rooms-lit.json";
+  still.method = "vct";
+  still.set = {"grid=64", "aperture=50"};
+  still.preset = "fast";
+  still.width = 40;
+  still.height = 30;
+  still.spp = 7;
+  still.seed = 9;
+  still.threads = 2;
+  still.time = 0.25f;
+  still.gl = GlBackend::Osmesa;
+  still.aovs = {"indirect", "ao"};
+  still.accumulation = Accumulation::Plain;
+  still.checkpoints = {1, 3};
+  still.timeLimitS = 2.5;
+  Camera c;
+  c.position = {0.1f, 0.2f, 3.0f};
+  c.target = {0.0f, 0.3f, 0.0f};
+  c.up = {0.0f, 1.0f, 0.0f};
+  c.fovYDeg = 33.0f;
+  still.camera = c;
+  still.lightPositions = {{0, {0.1f, 0.2f, 0.3f}}, {2, {-1.0f, 0.5f, 0.25f}}};
+  still.progress = false;
+  RenderOptions animation;
+  animation.method = "nearfield";
+  animation.frames = 3;
+  animation.timeStep = 0.125f;
+  for (const RenderOptions& o : {still, animation, RenderOptions{}}) {
+    const nlohmann::json want = renderJobJson(o);
+    std::string args;
+    for (const std::string& a : renderArgs(o)) args += " " + shellQuote(a);
+    CliRun r = vgi("render" + args + " --print-job");
+    ASSERT_EQ(r.code, 0) << args << "\n" << r.output;
+    EXPECT_EQ(parseJsonText(r.output, "--print-job"), want) << args;
+    const std::string file = tmp("job.json");
+    std::ofstream(file) << jsonText(want, 2);
+    CliRun j = vgi("render --job " + file + " --print-job");
+    ASSERT_EQ(j.code, 0) << j.output;
+    EXPECT_EQ(parseJsonText(j.output, "--job"), want);
+    EXPECT_EQ(renderJobJson(readRenderJob(want, "test")), want);
+  }
+  // --job gives the options: another render option beside it is refused by name.
+  CliRun both = vgi("render --job " + tmp("job.json") + " --spp 4 --print-job");
+  EXPECT_EQ(both.code, 2) << both.output;
+  EXPECT_NE(both.output.find("--spp may not be given with it"), std::string::npos) << both.output;
+  // A job's keys are typed and named.
+  std::ofstream(tmp("bad_job.json")) << R"({"method": "direct", "spp": "many"})";
+  CliRun bad = vgi("render --job " + tmp("bad_job.json") + " --print-job");
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("'spp' = \"many\" must be an integer"), std::string::npos) << bad.output;
+  std::ofstream(tmp("typo_job.json")) << R"({"methd": "direct"})";
+  CliRun typo = vgi("render --job " + tmp("typo_job.json") + " --print-job");
+  EXPECT_EQ(typo.code, 2) << typo.output;
+  EXPECT_NE(typo.output.find("unknown key 'methd'"), std::string::npos) << typo.output;
 }
 
 TEST(Cli, BadArgumentsFailWithClearMessages) {

@@ -68,6 +68,11 @@ void expectSameAsRender(const std::string& dir, const std::string& name) {
   ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
   EXPECT_EQ(difference(dir + "/" + name + ".exr", dir + "/" + name + "_again.exr").relMae, 0.0)
       << name << ": bit-identical to " << cmd;
+  // The same from the screenshot's stats JSON as a job.
+  CliRun j = vgi("render --job " + dir + "/" + name + ".json -o " + dir + "/" + name + "_job.exr");
+  ASSERT_EQ(j.code, 0) << j.output;
+  EXPECT_EQ(difference(dir + "/" + name + ".exr", dir + "/" + name + "_job.exr").relMae, 0.0)
+      << name << ": bit-identical from --job";
 }
 
 // Whether the viewer kept `resource` across the change before screenshot DIR/NAME.
