@@ -46,8 +46,12 @@ class BinaryGridResource : public Resource {
     vreq.threads = res.threads();
     vreq.gl = res.gl();
     vreq.shaders = res.gl() ? &res.shaders() : nullptr;
-    vreq.atlasCacheDir = defaultAtlasCacheDir();
+    vreq.atlasCacheDir = need_.atlasCache ? defaultAtlasCacheDir() : "";
     vreq.valueGrids = need_.values;
+    vreq.texelsPerVoxel = need_.texelsPerVoxel;
+    vreq.atlasResolution = need_.atlasResolution;
+    vreq.atlasFootprint = need_.atlasFootprint;
+    vreq.hybridCutoff = need_.hybridCutoff;
     counted_ = false;
     if (res.gl() && need_.voxelizer == "atlas") {
       // The atlas voxelizer keeps the static meshes' grid on the GPU and re-inserts the dynamic ones.

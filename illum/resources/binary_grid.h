@@ -14,6 +14,7 @@
 
 #include "illum/framework/resources.h"
 #include "voxelize/voxel_grid.h"
+#include "voxelize/voxelizer.h"
 
 namespace vgi {
 
@@ -29,11 +30,22 @@ struct BinaryGridNeed {
   // Channels of valueChannelNames() the atlas insertion accumulates as well
   // (normal, albedo, glossy, radiance): what value grids over it can resolve.
   std::vector<std::string> values;
+  // The voxelizers' own settings (VoxelizeRequest's; `vgi voxelize` options, the methods keep the defaults).
+  float texelsPerVoxel = kAutoTexelsPerVoxel;  // atlas
+  int atlasResolution = 0;                     // atlas: per mesh, 0 = from texelsPerVoxel
+  float atlasFootprint = 1.0f;                 // atlas
+  float hybridCutoff = 4.0f;                   // hybrid
+  bool atlasCache = true;                      // atlas: read and write the atlas cache
   nlohmann::json key() const {
     return {{"resolution", {resolution.x, resolution.y, resolution.z}},
             {"voxelizer", voxelizer},
             {"cubic_cells", cubicCells},
-            {"values", values}};
+            {"values", values},
+            {"texels_per_voxel", texelsPerVoxel},
+            {"atlas_resolution", atlasResolution},
+            {"atlas_footprint", atlasFootprint},
+            {"hybrid_cutoff", hybridCutoff},
+            {"atlas_cache", atlasCache}};
   }
 };
 
