@@ -119,16 +119,42 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
                                std::vector<AtlasSamples>* atlasPoints)
     : request_(req) {
   VGI_CHECK(req.gl && req.shaders);
+  if (!(req.atlasFootprint >= 0.0f && req.atlasFootprint <= 4.0f))
+    fail("atlas footprint ", req.atlasFootprint, ": must be in [0, 4] texels");
+  createPrograms();
+  createGrids();
   GLint maxTex = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTex);
   const float texel = autoTexelWorld(req.box.voxelSize(), req.texelsPerVoxel);
+  nlohmann::json atlases = nlohmann::json::array();
+  double atlasMs = 0;
+  int staticCount = 0, dynamicCount = 0;
+  for (const Mesh& mesh : req.scene->meshes) {
+    atlases.push_back(addMesh(mesh, texel, maxTex, prof, atlasMs));
+    (meshes_.back()->dynamic ? dynamicCount : staticCount)++;
+  }
+  createTargets();
+  const glm::ivec2 coverage = insertStaticMeshes(prof, atlases, atlasPoints);
+  stats_["atlas_resolution"] = maxResolution_;
+  stats_["atlases"] = atlases;
+  stats_["atlas_build_ms"] = atlasMs;
+  stats_["texel_world"] = texel;
+  stats_["texels_per_voxel"] = req.texelsPerVoxel;
+  stats_["atlas_footprint_texels"] = req.atlasFootprint;
+  stats_["triangles_without_texels"] = coverage.x;
+  stats_["triangles_sampled_by_neighbours"] = coverage.y;
+  stats_["static_meshes"] = staticCount;
+  stats_["dynamic_meshes"] = dynamicCount;
+}
+
+// The render and insertion programs (and, for multi-valued grids, the value and radiance ones).
+void AtlasVoxelizer::createPrograms() {
+  const VoxelizeRequest& req = request_;
   const bool values = !req.valueGrids.empty();
   ShaderDefines renderDefs{{"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}};
   if (values) renderDefs["MULTI_VALUED"] = "1";
   renderProg_ = req.shaders->program({"voxelize/atlas_render.vert.glsl", "voxelize/atlas_render.frag.glsl"},
                                      renderDefs);
-  if (!(req.atlasFootprint >= 0.0f && req.atlasFootprint <= 4.0f))
-    fail("atlas footprint ", req.atlasFootprint, ": must be in [0, 4] texels");
   insertProg_ = req.shaders->program({"voxelize/atlas_insert.comp.glsl"},
                                      {{"ATLAS_VERTEX_FLOATS", std::to_string(kVertexFloats)}});
   setGridUniforms(*req.shaders, insertProg_, req.box);
@@ -170,6 +196,11 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     frameValues_ = std::make_unique<ValueBuffers>(size_t(cells), req.valueGrids);
     materials_ = std::make_unique<GpuScene>(*req.scene, 0.0f);
   }
+}
+
+// The static and frame grids (and value sums) and their point counters.
+void AtlasVoxelizer::createGrids() {
+  const VoxelizeRequest& req = request_;
   static_ = std::make_unique<GpuGridBuffer>(req.box);
   frame_ = std::make_unique<GpuGridBuffer>(req.box);
   const uint32_t zero = 0;
@@ -177,90 +208,97 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     glCreateBuffers(1, counter);
     glNamedBufferStorage(*counter, 4, &zero, GL_DYNAMIC_STORAGE_BIT);
   }
+}
 
-  nlohmann::json atlases = nlohmann::json::array();
-  double atlasMs = 0;
-  int staticCount = 0, dynamicCount = 0;
-  for (const Mesh& mesh : req.scene->meshes) {
-    auto m = std::make_unique<MeshGpu>();
-    m->name = mesh.name;
-    m->mesh = &mesh;
-    m->material = mesh.material;
-    m->dynamic = mesh.dynamic && !mesh.keyframes.empty();
-    (m->dynamic ? dynamicCount : staticCount)++;
-    // The atlas comes from the mesh at time 0: rigid motion keeps lengths, so a
-    // dynamic mesh keeps its (cached) atlas while it moves.
-    m->model0 = mesh.objectToWorld(0.0f);
-    std::vector<glm::vec3> p0(mesh.positions.size());
-    for (size_t i = 0; i < p0.size(); ++i) p0[i] = glm::vec3(m->model0 * glm::vec4(mesh.positions[i], 1.0f));
-    AtlasOptions ao;
-    ao.texelWorld = texel;
-    ao.resolution = req.atlasResolution;
-    ao.cacheDir = req.atlasCacheDir;
-    MeshAtlas atlas;
-    {
-      auto s = prof.scope("atlas_build");
-      atlas = buildAtlas(p0, mesh.triangles, ao, maxTex);
-    }
-    atlasMs += atlas.ms;
-    m->resolution = atlas.resolution;
-    m->uv = atlas.uv;
-    m->texelWorld = atlas.texelWorld;
-    // Position (RGBA32F) + triangle id (R32I) per texel; refuse before GL's allocation fails.
-    const double bytes = double(atlas.resolution) * atlas.resolution * 20.0;
-    if (bytes > double(1u << 31))
-      fail("atlas voxelizer: mesh '", mesh.name, "' needs a ", atlas.resolution, "x", atlas.resolution,
-           " atlas (", bytes / (1 << 20),
-           " MiB of render targets, limit 2048 MiB); lower --texels-per-voxel (", req.texelsPerVoxel,
-           ") or the grid resolution, or set --atlas-resolution");
-    maxResolution_ = std::max(maxResolution_, atlas.resolution);
-    nlohmann::json aj = atlas.toJson();
-    aj["mesh"] = mesh.name;
-    aj["triangles"] = mesh.triangles.size();
-    aj["dynamic"] = m->dynamic;
-    atlases.push_back(aj);
-
-    std::vector<float> verts;
-    verts.reserve(mesh.triangles.size() * 3 * kVertexFloats);
-    std::vector<uint32_t> lines;
-    lines.reserve(mesh.triangles.size() * 6);
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const glm::uvec3& tri = mesh.triangles[t];
-      glm::vec3 face = glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
-                                  mesh.positions[tri[2]] - mesh.positions[tri[0]]);
-      for (int k = 0; k < 3; ++k) {
-        const glm::vec3& p = mesh.positions[tri[k]];
-        const glm::vec2& uv = atlas.uv[3 * t + size_t(k)];
-        glm::vec3 n =
-            mesh.normals.empty() || mesh.normals[tri[k]] == glm::vec3(0.0f) ? face : mesh.normals[tri[k]];
-        glm::vec2 tex = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[tri[k]];
-        verts.insert(verts.end(), {p.x, p.y, p.z, uv.x, uv.y, float(t), n.x, n.y, n.z, tex.x, tex.y});
-      }
-      uint32_t b = uint32_t(3 * t);
-      lines.insert(lines.end(), {b, b + 1, b + 1, b + 2, b + 2, b});
-    }
-    m->corners = GLsizei(3 * mesh.triangles.size());
-    m->lineIndices = GLsizei(lines.size());
-    glCreateVertexArrays(1, &m->vao);
-    glCreateBuffers(1, &m->vbo);
-    glCreateBuffers(1, &m->ebo);
-    glNamedBufferStorage(m->vbo, GLsizeiptr(std::max<size_t>(verts.size(), 1) * sizeof(float)), verts.data(),
-                         0);
-    glNamedBufferStorage(m->ebo, GLsizeiptr(std::max<size_t>(lines.size(), 1) * sizeof(uint32_t)),
-                         lines.data(), 0);
-    glVertexArrayVertexBuffer(m->vao, 0, m->vbo, 0, kVertexFloats * sizeof(float));
-    glVertexArrayElementBuffer(m->vao, m->ebo);
-    const int sizes[5] = {3, 2, 1, 3, 2}, offsets[5] = {0, 3, 5, 6, 9};
-    for (unsigned a = 0; a < 5; ++a) {
-      glEnableVertexArrayAttrib(m->vao, a);
-      glVertexArrayAttribFormat(m->vao, a, sizes[a], GL_FLOAT, GL_FALSE,
-                                unsigned(offsets[a]) * sizeof(float));
-      glVertexArrayAttribBinding(m->vao, a, 0);
-    }
-    meshes_.push_back(std::move(m));
+// Builds (or reads from the cache) the mesh's atlas at time 0 and uploads its
+// corners; returns the atlas's stats.
+nlohmann::json AtlasVoxelizer::addMesh(const Mesh& mesh, float texel, int maxTex, Profiler& prof,
+                                       double& atlasMs) {
+  const VoxelizeRequest& req = request_;
+  auto m = std::make_unique<MeshGpu>();
+  m->name = mesh.name;
+  m->mesh = &mesh;
+  m->material = mesh.material;
+  m->dynamic = mesh.dynamic && !mesh.keyframes.empty();
+  // The atlas comes from the mesh at time 0: rigid motion keeps lengths, so a
+  // dynamic mesh keeps its (cached) atlas while it moves.
+  m->model0 = mesh.objectToWorld(0.0f);
+  std::vector<glm::vec3> p0(mesh.positions.size());
+  for (size_t i = 0; i < p0.size(); ++i) p0[i] = glm::vec3(m->model0 * glm::vec4(mesh.positions[i], 1.0f));
+  AtlasOptions ao;
+  ao.texelWorld = texel;
+  ao.resolution = req.atlasResolution;
+  ao.cacheDir = req.atlasCacheDir;
+  MeshAtlas atlas;
+  {
+    auto s = prof.scope("atlas_build");
+    atlas = buildAtlas(p0, mesh.triangles, ao, maxTex);
   }
+  atlasMs += atlas.ms;
+  m->resolution = atlas.resolution;
+  m->uv = atlas.uv;
+  m->texelWorld = atlas.texelWorld;
+  // Position (RGBA32F) + triangle id (R32I) per texel; refuse before GL's allocation fails.
+  const double bytes = double(atlas.resolution) * atlas.resolution * 20.0;
+  if (bytes > double(1u << 31))
+    fail("atlas voxelizer: mesh '", mesh.name, "' needs a ", atlas.resolution, "x", atlas.resolution,
+         " atlas (", bytes / (1 << 20), " MiB of render targets, limit 2048 MiB); lower --texels-per-voxel (",
+         req.texelsPerVoxel, ") or the grid resolution, or set --atlas-resolution");
+  maxResolution_ = std::max(maxResolution_, atlas.resolution);
+  nlohmann::json aj = atlas.toJson();
+  aj["mesh"] = mesh.name;
+  aj["triangles"] = mesh.triangles.size();
+  aj["dynamic"] = m->dynamic;
 
-  // One atlas target, as large as the largest atlas; each mesh uses its corner.
+  uploadCorners(*m);
+  meshes_.push_back(std::move(m));
+  return aj;
+}
+
+// The mesh's corners (position, atlas uv, triangle id, normal, texture uv) and its atlas edges, uploaded.
+void AtlasVoxelizer::uploadCorners(MeshGpu& m) const {
+  const Mesh& mesh = *m.mesh;
+  std::vector<float> verts;
+  verts.reserve(mesh.triangles.size() * 3 * kVertexFloats);
+  std::vector<uint32_t> lines;
+  lines.reserve(mesh.triangles.size() * 6);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const glm::uvec3& tri = mesh.triangles[t];
+    glm::vec3 face = glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
+                                mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3& p = mesh.positions[tri[k]];
+      const glm::vec2& uv = m.uv[3 * t + size_t(k)];
+      glm::vec3 n =
+          mesh.normals.empty() || mesh.normals[tri[k]] == glm::vec3(0.0f) ? face : mesh.normals[tri[k]];
+      glm::vec2 tex = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[tri[k]];
+      verts.insert(verts.end(), {p.x, p.y, p.z, uv.x, uv.y, float(t), n.x, n.y, n.z, tex.x, tex.y});
+    }
+    uint32_t b = uint32_t(3 * t);
+    lines.insert(lines.end(), {b, b + 1, b + 1, b + 2, b + 2, b});
+  }
+  m.corners = GLsizei(3 * mesh.triangles.size());
+  m.lineIndices = GLsizei(lines.size());
+  glCreateVertexArrays(1, &m.vao);
+  glCreateBuffers(1, &m.vbo);
+  glCreateBuffers(1, &m.ebo);
+  glNamedBufferStorage(m.vbo, GLsizeiptr(std::max<size_t>(verts.size(), 1) * sizeof(float)), verts.data(), 0);
+  glNamedBufferStorage(m.ebo, GLsizeiptr(std::max<size_t>(lines.size(), 1) * sizeof(uint32_t)), lines.data(),
+                       0);
+  glVertexArrayVertexBuffer(m.vao, 0, m.vbo, 0, kVertexFloats * sizeof(float));
+  glVertexArrayElementBuffer(m.vao, m.ebo);
+  const int sizes[5] = {3, 2, 1, 3, 2}, offsets[5] = {0, 3, 5, 6, 9};
+  for (unsigned a = 0; a < 5; ++a) {
+    glEnableVertexArrayAttrib(m.vao, a);
+    glVertexArrayAttribFormat(m.vao, a, sizes[a], GL_FLOAT, GL_FALSE, unsigned(offsets[a]) * sizeof(float));
+    glVertexArrayAttribBinding(m.vao, a, 0);
+  }
+}
+
+// One atlas target, as large as the largest atlas; each mesh uses its corner.
+void AtlasVoxelizer::createTargets() {
+  const VoxelizeRequest& req = request_;
+  const bool values = !req.valueGrids.empty();
   const int R = std::max(maxResolution_, 1);
   glCreateTextures(GL_TEXTURE_2D, 2, targets_);
   glTextureStorage2D(targets_[0], 1, GL_RGBA32F, R, R);
@@ -291,8 +329,14 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
   glNamedFramebufferDrawBuffers(fbo_, values ? 5 : 2, bufs);
   if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     fail("atlas voxelizer: the ", R, "x", R, " atlas framebuffer is incomplete on ", req.gl->renderer());
+}
 
-  // Static meshes into the static grid, once; every mesh's texel coverage is measured here.
+// Static meshes into the static grid, once; every mesh's texel coverage is
+// measured here (into `atlases`); returns the triangles without texels and
+// those sampled by their neighbours' texels.
+glm::ivec2 AtlasVoxelizer::insertStaticMeshes(Profiler& prof, nlohmann::json& atlases,
+                                              std::vector<AtlasSamples>* atlasPoints) {
+  const VoxelizeRequest& req = request_;
   long lost = 0, sharedTotal = 0;
   for (size_t i = 0; i < meshes_.size(); ++i) {
     const MeshGpu& m = *meshes_[i];
@@ -331,16 +375,7 @@ AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
     lost += meshLost;
     sharedTotal += sharing;
   }
-  stats_["atlas_resolution"] = maxResolution_;
-  stats_["atlases"] = atlases;
-  stats_["atlas_build_ms"] = atlasMs;
-  stats_["texel_world"] = texel;
-  stats_["texels_per_voxel"] = req.texelsPerVoxel;
-  stats_["atlas_footprint_texels"] = req.atlasFootprint;
-  stats_["triangles_without_texels"] = lost;
-  stats_["triangles_sampled_by_neighbours"] = sharedTotal;
-  stats_["static_meshes"] = staticCount;
-  stats_["dynamic_meshes"] = dynamicCount;
+  return {int(lost), int(sharedTotal)};
 }
 
 AtlasVoxelizer::~AtlasVoxelizer() {

@@ -64,6 +64,15 @@ class AtlasVoxelizer {
                        const ValueBuffers* values, unsigned counter, Profiler& profiler,
                        std::vector<int>* ids, AtlasSamples* points);
   void setPointCellInputs(unsigned program, const MeshGpu& mesh, float time) const;
+  // The constructor's steps.
+  void createPrograms();
+  void createGrids();
+  nlohmann::json addMesh(const struct Mesh& mesh, float texel, int maxTex, Profiler& profiler,
+                         double& atlasMs);
+  void uploadCorners(MeshGpu& mesh) const;
+  void createTargets();
+  glm::ivec2 insertStaticMeshes(Profiler& profiler, nlohmann::json& atlases,
+                                std::vector<AtlasSamples>* atlasPoints);
   // Draws the mesh's atlas at `time` with `program` into the first `targets` attachments.
   void renderAtlas(const MeshGpu& mesh, float time, unsigned program, int targets) const;
   VoxelizeRequest request_;
