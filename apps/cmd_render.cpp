@@ -56,131 +56,153 @@ void applyRenderArgs(const RenderArgs& args, RenderOptions& opt) {
 }
 
 namespace {
+
 // What may be given beside --job: where the outputs go, not what is rendered.
 const std::set<std::string> kJobCompanions = {"--job", "--print-job", "--output", "--stats", "--exposure"};
+
+// The command's values as CLI11 fills them; options() resolves them into the render's options.
+struct RenderCommand {
+  RenderOptions opt;
+  RenderArgs args;
+  std::string out = "out.exr", stats, helpModule, aovs, checkpoints, job;
+  float exposure = 1.0f;
+  bool printJob = false;
+};
+
+void addRenderOnlyOptions(CLI::App* cmd, RenderCommand& c) {
+  cmd->add_option("--frames", c.opt.frames,
+                  "render an animation of N frames from --time: <stem>_NNNN.exr/.png per frame, one "
+                  "<stem>.json with per-frame stats")
+      ->capture_default_str();
+  cmd->add_option("--time-step", c.opt.timeStep, "time between frames")->capture_default_str();
+  cmd->add_option("-o,--output", c.out, "output image (.exr or .png; both are written, plus .json)")
+      ->capture_default_str();
+  cmd->add_option("--stats", c.stats, "also write the stats JSON here");
+  cmd->add_option("--exposure", c.exposure, "PNG exposure multiplier")->capture_default_str();
+  cmd->add_option("--aov", c.aovs,
+                  "extra outputs, comma-separated (e.g. indirect,direct): <stem>.<aov>.exr/.png");
+  cmd->add_option("--help-module", c.helpModule, "print a method's parameters and exit");
+  cmd->add_option("--job", c.job,
+                  "the render's options from a job JSON (or a render's stats JSON: its \"job\"); no other "
+                  "render option may be given with it");
+  cmd->add_flag("--print-job", c.printJob, "print the job these options make (JSON) and exit");
+  cmd->add_option(
+      "--checkpoints", c.checkpoints,
+      "sample counts (comma-separated, e.g. 1,4,16,64) at which the image so far and its stats are "
+      "written too: <stem>.sppNNNNN.exr/.png/.json (convergence plots)");
+  cmd->add_option("--time-limit", c.opt.timeLimitS,
+                  "seconds: stop accumulating once the render (set-up included) has taken this long, after "
+                  "at least one sample; --spp is then the most samples (equal-time comparisons)");
+}
+
+// The render's options: from --job, or from the flags.
+RenderOptions resolveOptions(const CLI::App* cmd, const RenderCommand& c) {
+  if (!c.job.empty()) {
+    for (const CLI::Option* o : cmd->get_options())
+      if (o->count() > 0 && !kJobCompanions.count(o->get_name()))
+        fail("--job '", c.job, "' gives the render's options: ", o->get_name(), " may not be given with it");
+    return readRenderJob(readJsonFile(c.job, "--job"), "'" + c.job + "'");
+  }
+  RenderOptions opt = c.opt;
+  applyRenderArgs(c.args, opt);
+  opt.aovs = splitList(c.aovs);
+  for (auto& k : splitList(c.checkpoints)) {
+    char* end = nullptr;
+    const long v = std::strtol(k.c_str(), &end, 10);
+    if (k.empty() || *end || k.size() > 9) fail("--checkpoints: '", k, "' is not a sample count");
+    opt.checkpoints.push_back(int(v));  // runRender checks the range against --spp
+  }
+  opt.methodGiven = cmd->count("--method") > 0;
+  return opt;
+}
+
+// -o and --stats can be written, and --stats is none of the render's own files.
+void checkOutputs(const RenderCommand& c, const RenderOptions& opt) {
+  checkOutputPath(c.out);
+  if (c.stats.empty()) return;
+  checkOutputFile(c.stats, "--stats");
+  for (const std::string& f : renderOutputNames(c.out, opt))
+    if (std::filesystem::weakly_canonical(f) == std::filesystem::weakly_canonical(c.stats))
+      fail("--stats '", c.stats, "' is also a file this render writes for -o '", c.out, "' (", f,
+           "): give another path");
+}
+
+// A still: its checkpoints as they come, then the image; `files` lists what was written.
+RenderOutput renderStill(const RenderOptions& opt, const RenderCommand& c, std::vector<std::string>& files) {
+  RenderOutput result = runRender(opt, {}, [&](int spp, const RenderOutput& k) {
+    for (auto& file : writeCheckpointOutputs(k, c.out, spp, c.exposure)) files.push_back(file);
+  });
+  if (result.result.sppCompleted == 0) {
+    std::fprintf(stderr, "interrupted before the first sample of every pixel was done: nothing written\n");
+    throw Interrupted{};
+  }
+  std::vector<std::string> last = writeRenderOutputs(result, c.out, c.exposure);
+  files.insert(files.begin(), last.begin(), last.end());
+  if (result.result.interrupted)
+    std::fprintf(stderr, "interrupted: wrote %d of %d samples per pixel\n", result.result.sppCompleted,
+                 opt.spp);
+  if (result.result.timeLimited)
+    std::fprintf(stderr, "--time-limit %g s reached after %d of %d samples per pixel\n", opt.timeLimitS,
+                 result.result.sppCompleted, opt.spp);
+  std::fprintf(stderr, "%s %s %dx%d %d spp: %.1f ms (%s)\n", opt.method.c_str(), opt.scene.c_str(), opt.width,
+               opt.height, result.result.sppCompleted, result.stats["wall_ms"].get<double>(),
+               result.stats["gl_renderer"].get<std::string>().c_str());
+  return result;
+}
+
+// An animation: each frame written as soon as it is done (an interrupted one keeps its frames), then
+// one stats JSON.
+RenderOutput renderAnimation(const RenderOptions& opt, const RenderCommand& c,
+                             std::vector<std::string>& files) {
+  RenderOutput result = runRender(opt, [&](int frame, const RenderOutput& f) {
+    for (auto& file : writeFrameImages(f, c.out, frame, c.exposure)) files.push_back(file);
+  });
+  files.insert(files.begin(), writeAnimationStats(result, c.out, files, c.exposure));
+  const int done = result.stats["frames_completed"].get<int>();
+  if (result.stats["interrupted"].get<bool>())
+    std::fprintf(stderr, "interrupted: wrote %d of %d frames\n", done, opt.frames);
+  std::fprintf(stderr, "%s %s %dx%d %d spp, %d frames: %.1f ms (%s)\n", opt.method.c_str(), opt.scene.c_str(),
+               opt.width, opt.height, opt.spp, done, result.stats["wall_ms"].get<double>(),
+               result.stats["gl_renderer"].get<std::string>().c_str());
+  return result;
+}
+
+void runRenderCommand(const CLI::App* cmd, const RenderCommand& c) {
+  if (!c.helpModule.empty()) {
+    std::printf("%s", describeMethod(c.helpModule, c.opt.scene).c_str());
+    return;
+  }
+  if (!(c.exposure > 0.0f) || c.exposure > 1e6f) fail("--exposure ", c.exposure, ": must be in (0, 1e6]");
+  const RenderOptions opt = resolveOptions(cmd, c);
+  if (c.printJob) {
+    checkRenderOptions(opt);
+    std::printf("%s\n", jsonText(renderJobJson(opt), 2).c_str());
+    return;
+  }
+  checkOutputs(c, opt);
+  installInterruptHandler();
+  std::vector<std::string> files;
+  const RenderOutput result = opt.frames == 1 ? renderStill(opt, c, files) : renderAnimation(opt, c, files);
+  if (!c.stats.empty()) writeJsonFile(result.stats, c.stats);
+  if (opt.frames > 1) {
+    std::fprintf(stderr, "wrote %s and %zu frame files\n", files[0].c_str(), files.size() - 1);
+    if (result.stats["interrupted"].get<bool>()) throw Interrupted{};
+    return;
+  }
+  for (auto& f : files) std::fprintf(stderr, "wrote %s\n", f.c_str());
+  if (result.result.interrupted) throw Interrupted{};
+}
+
 }  // namespace
 
 void addRenderCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("render", "Render a scene with a method to EXR + PNG + JSON stats");
-  auto opt = std::make_shared<RenderOptions>();
-  auto args = std::make_shared<RenderArgs>();
-  auto out = std::make_shared<std::string>("out.exr");
-  auto stats = std::make_shared<std::string>();
-  auto helpModule = std::make_shared<std::string>();
-  auto exposure = std::make_shared<float>(1.0f);
-  opt->method = defaultMethodName();
-  args->size = "512x512";
-  addRenderOptions(cmd, *opt, *args);
-  cmd->add_option(
-         "--frames", opt->frames,
-         "render an animation of N frames from --time: <stem>_NNNN.exr/.png per frame, one <stem>.json "
-         "with per-frame stats")
-      ->capture_default_str();
-  cmd->add_option("--time-step", opt->timeStep, "time between frames")->capture_default_str();
-  cmd->add_option("-o,--output", *out, "output image (.exr or .png; both are written, plus .json)")
-      ->capture_default_str();
-  cmd->add_option("--stats", *stats, "also write the stats JSON here");
-  cmd->add_option("--exposure", *exposure, "PNG exposure multiplier")->capture_default_str();
-  auto aovs = std::make_shared<std::string>();
-  cmd->add_option("--aov", *aovs,
-                  "extra outputs, comma-separated (e.g. indirect,direct): <stem>.<aov>.exr/.png");
-  cmd->add_option("--help-module", *helpModule, "print a method's parameters and exit");
-  auto job = std::make_shared<std::string>();
-  auto printJob = std::make_shared<bool>(false);
-  cmd->add_option("--job", *job,
-                  "the render's options from a job JSON (or a render's stats JSON: its \"job\"); no other "
-                  "render option may be given with it");
-  cmd->add_flag("--print-job", *printJob, "print the job these options make (JSON) and exit");
-  auto checkpoints = std::make_shared<std::string>();
-  cmd->add_option(
-      "--checkpoints", *checkpoints,
-      "sample counts (comma-separated, e.g. 1,4,16,64) at which the image so far and its stats are "
-      "written too: <stem>.sppNNNNN.exr/.png/.json (convergence plots)");
-  cmd->add_option("--time-limit", opt->timeLimitS,
-                  "seconds: stop accumulating once the render (set-up included) has taken this long, after "
-                  "at least one sample; --spp is then the most samples (equal-time comparisons)");
-  cmd->callback([=] {
-    if (!helpModule->empty()) {
-      std::printf("%s", describeMethod(*helpModule, opt->scene).c_str());
-      return;
-    }
-    if (!(*exposure > 0.0f) || *exposure > 1e6f) fail("--exposure ", *exposure, ": must be in (0, 1e6]");
-    if (!job->empty()) {
-      for (const CLI::Option* o : cmd->get_options())
-        if (o->count() > 0 && !kJobCompanions.count(o->get_name()))
-          fail("--job '", *job, "' gives the render's options: ", o->get_name(), " may not be given with it");
-      *opt = readRenderJob(readJsonFile(*job, "--job"), "'" + *job + "'");
-    } else {
-      applyRenderArgs(*args, *opt);
-      opt->aovs = splitList(*aovs);
-      for (auto& c : splitList(*checkpoints)) {
-        char* end = nullptr;
-        const long v = std::strtol(c.c_str(), &end, 10);
-        if (c.empty() || *end || c.size() > 9) fail("--checkpoints: '", c, "' is not a sample count");
-        opt->checkpoints.push_back(int(v));  // runRender checks the range against --spp
-      }
-      opt->methodGiven = cmd->count("--method") > 0;
-    }
-    if (*printJob) {
-      checkRenderOptions(*opt);
-      std::printf("%s\n", jsonText(renderJobJson(*opt), 2).c_str());
-      return;
-    }
-    checkOutputPath(*out);
-    if (!stats->empty()) {
-      checkOutputFile(*stats, "--stats");
-      // The stats JSON must not replace one of the render's own files.
-      for (const std::string& f : renderOutputNames(*out, *opt))
-        if (std::filesystem::weakly_canonical(f) == std::filesystem::weakly_canonical(*stats))
-          fail("--stats '", *stats, "' is also a file this render writes for -o '", *out, "' (", f,
-               "): give another path");
-    }
-    installInterruptHandler();
-    std::vector<std::string> files;
-    RenderOutput result;
-    if (opt->frames == 1) {
-      result = runRender(*opt, {}, [&](int spp, const RenderOutput& c) {
-        for (auto& file : writeCheckpointOutputs(c, *out, spp, *exposure)) files.push_back(file);
-      });
-      if (result.result.sppCompleted == 0) {
-        std::fprintf(stderr,
-                     "interrupted before the first sample of every pixel was done: nothing written\n");
-        throw Interrupted{};
-      }
-      std::vector<std::string> last = writeRenderOutputs(result, *out, *exposure);
-      files.insert(files.begin(), last.begin(), last.end());
-    } else {
-      // Each frame is written as soon as it is done: an interrupted animation keeps its frames.
-      result = runRender(*opt, [&](int frame, const RenderOutput& f) {
-        for (auto& file : writeFrameImages(f, *out, frame, *exposure)) files.push_back(file);
-      });
-      files.insert(files.begin(), writeAnimationStats(result, *out, files, *exposure));
-    }
-    if (!stats->empty()) writeJsonFile(result.stats, *stats);
-    if (opt->frames > 1) {
-      if (result.stats["interrupted"].get<bool>())
-        std::fprintf(stderr, "interrupted: wrote %d of %d frames\n",
-                     result.stats["frames_completed"].get<int>(), opt->frames);
-      std::fprintf(stderr, "%s %s %dx%d %d spp, %d frames: %.1f ms (%s)\n", opt->method.c_str(),
-                   opt->scene.c_str(), opt->width, opt->height, opt->spp,
-                   result.stats["frames_completed"].get<int>(), result.stats["wall_ms"].get<double>(),
-                   result.stats["gl_renderer"].get<std::string>().c_str());
-      std::fprintf(stderr, "wrote %s and %zu frame files\n", files[0].c_str(), files.size() - 1);
-      if (result.stats["interrupted"].get<bool>()) throw Interrupted{};
-      return;
-    }
-    if (result.result.interrupted)
-      std::fprintf(stderr, "interrupted: wrote %d of %d samples per pixel\n", result.result.sppCompleted,
-                   opt->spp);
-    if (result.result.timeLimited)
-      std::fprintf(stderr, "--time-limit %g s reached after %d of %d samples per pixel\n", opt->timeLimitS,
-                   result.result.sppCompleted, opt->spp);
-    std::fprintf(stderr, "%s %s %dx%d %d spp: %.1f ms (%s)\n", opt->method.c_str(), opt->scene.c_str(),
-                 opt->width, opt->height, result.result.sppCompleted, result.stats["wall_ms"].get<double>(),
-                 result.stats["gl_renderer"].get<std::string>().c_str());
-    for (auto& f : files) std::fprintf(stderr, "wrote %s\n", f.c_str());
-    if (result.result.interrupted) throw Interrupted{};
-  });
+  auto c = std::make_shared<RenderCommand>();
+  c->opt.method = defaultMethodName();
+  c->args.size = "512x512";
+  addRenderOptions(cmd, c->opt, c->args);
+  addRenderOnlyOptions(cmd, *c);
+  cmd->callback([cmd, c] { runRenderCommand(cmd, *c); });
 }
 
 }  // namespace vgi::app
