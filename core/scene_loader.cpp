@@ -273,84 +273,76 @@ void finishScene(Scene& scene, const std::string& origin, bool haveLights, bool 
     fail(origin, ": camera 'up' is parallel to the viewing direction");
 }
 
-Scene loadSceneJson(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("cannot open scene file '", path, "'");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail("cannot read scene file '", path, "'");
-  const json root = parseJsonText(text, path);
-  JsonCtx c{path};
-  c.checkKeys(root, "top level",
-              {"meshes", "materials", "lights", "environment", "camera", "presets", "two_sided_emission"});
-  fs::path dir = fs::path(path).parent_path();
-  Scene scene;
-  scene.name = fs::path(path).stem().string();
-  std::vector<Light> builtinLights;
-  Camera builtinCamera;
-  bool haveBuiltinCamera = false;
-
-  if (!root.contains("meshes") || !root["meshes"].is_array() || root["meshes"].empty())
-    c.error("meshes", "expected a non-empty array of meshes");
-  static const json noMaterials = json::object();  // a reference either way: never a copy of the scene's
-  const json& materialsJson = root.contains("materials") ? root["materials"] : noMaterials;
-  if (!materialsJson.is_object()) c.error("materials", "expected an object of name → material");
-
-  for (size_t i = 0; i < root["meshes"].size(); ++i) {
-    const json& mj = root["meshes"][i];
-    std::string where = "meshes[" + std::to_string(i) + "]";
-    c.checkKeys(mj, where, {"path", "transform", "material", "dynamic", "keyframes"});
-    if (!mj.contains("path")) c.error(where, "missing \"path\"");
-    std::string p = c.string(mj["path"], where + ".path");
-    size_t first = scene.meshes.size();
-    if (p.rfind("builtin:", 0) == 0) {
-      appendBuiltin(p.substr(8), scene, builtinLights, builtinCamera);
-      haveBuiltinCamera = true;
-    } else {
-      appendModelFile((dir / p).string(), scene);
-    }
-    glm::mat4 T(1.0f);
-    if (mj.contains("transform")) T = readTransform(c, mj["transform"], where + ".transform");
-    int forcedMaterial = -1;
-    if (mj.contains("material")) {
-      std::string name = c.string(mj["material"], where + ".material");
-      for (size_t k = 0; k < scene.materials.size(); ++k)
-        if (scene.materials[k].name == name) forcedMaterial = int(k);
-      if (forcedMaterial < 0) {
-        if (!materialsJson.contains(name))
-          c.error(where + ".material", "no material named '" + name + "' (define it under \"materials\")");
-        Material m;
-        m.name = name;
-        scene.materials.push_back(m);
-        forcedMaterial = int(scene.materials.size()) - 1;
-      }
-    }
-    bool dynamic = mj.contains("dynamic") && c.boolean(mj["dynamic"], where + ".dynamic");
-    std::vector<Keyframe> keys;
-    if (mj.contains("keyframes")) {
-      const json& kj = mj["keyframes"];
-      if (!kj.is_array()) c.error(where + ".keyframes", "expected an array");
-      if (!dynamic) c.error(where + ".keyframes", "keyframes need \"dynamic\": true");
-      for (size_t k = 0; k < kj.size(); ++k) {
-        std::string kw = where + ".keyframes[" + std::to_string(k) + "]";
-        c.checkKeys(kj[k], kw, {"time", "translate", "rotate", "scale"});
-        if (!kj[k].contains("time")) c.error(kw, "missing \"time\"");
-        Keyframe key = readTrs(c, kj[k], kw);
-        key.time = c.number(kj[k]["time"], kw + ".time");
-        if (!keys.empty() && key.time <= keys.back().time)
-          c.error(kw + ".time", "keyframe times must increase");
-        keys.push_back(key);
-      }
-    }
-    for (size_t m = first; m < scene.meshes.size(); ++m) {
-      scene.meshes[m].transform = T * scene.meshes[m].transform;
-      scene.meshes[m].dynamic = dynamic;
-      scene.meshes[m].keyframes = keys;
-      if (forcedMaterial >= 0) scene.meshes[m].material = forcedMaterial;
-    }
+// A mesh entry's keyframes (it must be dynamic), times increasing.
+std::vector<Keyframe> readKeyframes(JsonCtx& c, const json& mj, const std::string& where, bool dynamic) {
+  std::vector<Keyframe> keys;
+  if (!mj.contains("keyframes")) return keys;
+  const json& kj = mj["keyframes"];
+  if (!kj.is_array()) c.error(where + ".keyframes", "expected an array");
+  if (!dynamic) c.error(where + ".keyframes", "keyframes need \"dynamic\": true");
+  for (size_t k = 0; k < kj.size(); ++k) {
+    std::string kw = where + ".keyframes[" + std::to_string(k) + "]";
+    c.checkKeys(kj[k], kw, {"time", "translate", "rotate", "scale"});
+    if (!kj[k].contains("time")) c.error(kw, "missing \"time\"");
+    Keyframe key = readTrs(c, kj[k], kw);
+    key.time = c.number(kj[k]["time"], kw + ".time");
+    if (!keys.empty() && key.time <= keys.back().time) c.error(kw + ".time", "keyframe times must increase");
+    keys.push_back(key);
   }
+  return keys;
+}
 
-  // An entry overrides every loaded material of that name (files may share
-  // names), or defines a new material.
+// What the builtin scenes of a scene file bring beside their meshes.
+struct BuiltinExtras {
+  std::vector<Light> lights;
+  Camera camera;
+  bool haveCamera = false;
+};
+
+// The material a mesh entry names: a loaded one, or a new one defined under "materials".
+int readMeshMaterial(JsonCtx& c, const json& mj, const std::string& where, Scene& scene,
+                     const json& materialsJson) {
+  if (!mj.contains("material")) return -1;
+  std::string name = c.string(mj["material"], where + ".material");
+  for (size_t k = scene.materials.size(); k-- > 0;)  // the last of that name (files may share names)
+    if (scene.materials[k].name == name) return int(k);
+  if (!materialsJson.contains(name))
+    c.error(where + ".material", "no material named '" + name + "' (define it under \"materials\")");
+  Material m;
+  m.name = name;
+  scene.materials.push_back(m);
+  return int(scene.materials.size()) - 1;
+}
+
+// One entry of "meshes": its file (or builtin scene), transform, material, motion.
+void readMeshEntry(JsonCtx& c, const json& mj, const std::string& where, const fs::path& dir, Scene& scene,
+                   const json& materialsJson, BuiltinExtras& builtin) {
+  c.checkKeys(mj, where, {"path", "transform", "material", "dynamic", "keyframes"});
+  if (!mj.contains("path")) c.error(where, "missing \"path\"");
+  std::string p = c.string(mj["path"], where + ".path");
+  size_t first = scene.meshes.size();
+  if (p.rfind("builtin:", 0) == 0) {
+    appendBuiltin(p.substr(8), scene, builtin.lights, builtin.camera);
+    builtin.haveCamera = true;
+  } else {
+    appendModelFile((dir / p).string(), scene);
+  }
+  glm::mat4 T(1.0f);
+  if (mj.contains("transform")) T = readTransform(c, mj["transform"], where + ".transform");
+  const int forcedMaterial = readMeshMaterial(c, mj, where, scene, materialsJson);
+  bool dynamic = mj.contains("dynamic") && c.boolean(mj["dynamic"], where + ".dynamic");
+  const std::vector<Keyframe> keys = readKeyframes(c, mj, where, dynamic);
+  for (size_t m = first; m < scene.meshes.size(); ++m) {
+    scene.meshes[m].transform = T * scene.meshes[m].transform;
+    scene.meshes[m].dynamic = dynamic;
+    scene.meshes[m].keyframes = keys;
+    if (forcedMaterial >= 0) scene.meshes[m].material = forcedMaterial;
+  }
+}
+
+// An entry of "materials" overrides every loaded material of that name (files
+// may share names), or defines a new material.
+void applyMaterialEntries(JsonCtx& c, const json& materialsJson, Scene& scene, const fs::path& dir) {
   for (auto& [name, mj] : materialsJson.items()) {
     bool found = false;
     for (size_t k = 0; k < scene.materials.size(); ++k)
@@ -367,7 +359,79 @@ Scene loadSceneJson(const std::string& path) {
       scene.materials.push_back(m);
     }
   }
+}
 
+void readEnvironment(JsonCtx& c, const json& ej, Scene& scene, const fs::path& dir) {
+  c.checkKeys(ej, "environment", {"color", "map", "scale"});
+  if (ej.contains("color")) scene.environment.color = c.color(ej["color"], "environment.color");
+  if (ej.contains("scale")) {
+    scene.environment.scale = c.number(ej["scale"], "environment.scale");
+    if (scene.environment.scale < 0) c.error("environment.scale", "must not be negative");
+  }
+  if (ej.contains("map")) {
+    std::string p = (dir / c.string(ej["map"], "environment.map")).string();
+    try {
+      scene.textures.push_back(loadTexture(p, "environment map"));
+      scene.environment.mapTexture = int(scene.textures.size()) - 1;
+    } catch (const Error& e) {
+      scene.report.warnings.push_back(std::string(e.what()) + " (environment uses its constant colour)");
+    }
+  }
+}
+
+Camera readCamera(JsonCtx& c, const json& cj) {
+  c.checkKeys(cj, "camera", {"position", "target", "up", "fov_deg"});
+  Camera cam;
+  if (!cj.contains("position") || !cj.contains("target"))
+    c.error("camera", "needs \"position\" and \"target\"");
+  cam.position = c.vec3(cj["position"], "camera.position");
+  cam.target = c.vec3(cj["target"], "camera.target");
+  if (cj.contains("up")) cam.up = c.direction(cj["up"], "camera.up");
+  if (cj.contains("fov_deg")) {
+    cam.fovYDeg = c.number(cj["fov_deg"], "camera.fov_deg");
+    if (cam.fovYDeg <= 0 || cam.fovYDeg >= 180)
+      c.error("camera.fov_deg", "must be in (0, 180), got " + jsonExcerpt(cj["fov_deg"]));
+  }
+  return cam;
+}
+
+void readPresets(JsonCtx& c, const json& pj, Scene& scene) {
+  if (!pj.is_object()) c.error("presets", "expected an object of name → {key: value}");
+  for (auto& [name, kv] : pj.items()) {
+    if (!kv.is_object()) c.error("presets." + name, "expected an object of key → value");
+    for (auto& [k, v] : kv.items()) {
+      if (v.is_string())
+        scene.presets[name][k] = v.get<std::string>();
+      else if (v.is_number() || v.is_boolean())
+        scene.presets[name][k] = jsonText(v);
+      else
+        c.error("presets." + name + "." + k, "expected a string, number or boolean, got " + jsonExcerpt(v));
+    }
+  }
+}
+
+Scene loadSceneJson(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("cannot open scene file '", path, "'");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail("cannot read scene file '", path, "'");
+  const json root = parseJsonText(text, path);
+  JsonCtx c{path};
+  c.checkKeys(root, "top level",
+              {"meshes", "materials", "lights", "environment", "camera", "presets", "two_sided_emission"});
+  fs::path dir = fs::path(path).parent_path();
+  Scene scene;
+  scene.name = fs::path(path).stem().string();
+  if (!root.contains("meshes") || !root["meshes"].is_array() || root["meshes"].empty())
+    c.error("meshes", "expected a non-empty array of meshes");
+  static const json noMaterials = json::object();  // a reference either way: never a copy of the scene's
+  const json& materialsJson = root.contains("materials") ? root["materials"] : noMaterials;
+  if (!materialsJson.is_object()) c.error("materials", "expected an object of name → material");
+  BuiltinExtras builtin;
+  for (size_t i = 0; i < root["meshes"].size(); ++i)
+    readMeshEntry(c, root["meshes"][i], "meshes[" + std::to_string(i) + "]", dir, scene, materialsJson,
+                  builtin);
+  applyMaterialEntries(c, materialsJson, scene, dir);
   bool haveLights = false;
   if (root.contains("lights")) {
     const json& lj = root["lights"];
@@ -376,67 +440,19 @@ Scene loadSceneJson(const std::string& path) {
       scene.lights.push_back(readLight(c, lj[i], "lights[" + std::to_string(i) + "]"));
     haveLights = true;
   } else {
-    scene.lights = builtinLights;
-    haveLights = !builtinLights.empty();
+    scene.lights = builtin.lights;
+    haveLights = !builtin.lights.empty();
   }
-
   if (root.contains("two_sided_emission"))
     scene.twoSidedEmission = c.boolean(root["two_sided_emission"], "two_sided_emission");
-
-  if (root.contains("environment")) {
-    const json& ej = root["environment"];
-    c.checkKeys(ej, "environment", {"color", "map", "scale"});
-    if (ej.contains("color")) scene.environment.color = c.color(ej["color"], "environment.color");
-    if (ej.contains("scale")) {
-      scene.environment.scale = c.number(ej["scale"], "environment.scale");
-      if (scene.environment.scale < 0) c.error("environment.scale", "must not be negative");
-    }
-    if (ej.contains("map")) {
-      std::string p = (dir / c.string(ej["map"], "environment.map")).string();
-      try {
-        scene.textures.push_back(loadTexture(p, "environment map"));
-        scene.environment.mapTexture = int(scene.textures.size()) - 1;
-      } catch (const Error& e) {
-        scene.report.warnings.push_back(std::string(e.what()) + " (environment uses its constant colour)");
-      }
-    }
-  }
-
-  bool haveCamera = haveBuiltinCamera;
-  scene.camera = builtinCamera;
+  if (root.contains("environment")) readEnvironment(c, root["environment"], scene, dir);
+  bool haveCamera = builtin.haveCamera;
+  scene.camera = builtin.camera;
   if (root.contains("camera")) {
-    const json& cj = root["camera"];
-    c.checkKeys(cj, "camera", {"position", "target", "up", "fov_deg"});
-    Camera cam;
-    if (!cj.contains("position") || !cj.contains("target"))
-      c.error("camera", "needs \"position\" and \"target\"");
-    cam.position = c.vec3(cj["position"], "camera.position");
-    cam.target = c.vec3(cj["target"], "camera.target");
-    if (cj.contains("up")) cam.up = c.direction(cj["up"], "camera.up");
-    if (cj.contains("fov_deg")) {
-      cam.fovYDeg = c.number(cj["fov_deg"], "camera.fov_deg");
-      if (cam.fovYDeg <= 0 || cam.fovYDeg >= 180)
-        c.error("camera.fov_deg", "must be in (0, 180), got " + jsonExcerpt(cj["fov_deg"]));
-    }
-    scene.camera = cam;
+    scene.camera = readCamera(c, root["camera"]);
     haveCamera = true;
   }
-
-  if (root.contains("presets")) {
-    const json& pj = root["presets"];
-    if (!pj.is_object()) c.error("presets", "expected an object of name → {key: value}");
-    for (auto& [name, kv] : pj.items()) {
-      if (!kv.is_object()) c.error("presets." + name, "expected an object of key → value");
-      for (auto& [k, v] : kv.items()) {
-        if (v.is_string())
-          scene.presets[name][k] = v.get<std::string>();
-        else if (v.is_number() || v.is_boolean())
-          scene.presets[name][k] = jsonText(v);
-        else
-          c.error("presets." + name + "." + k, "expected a string, number or boolean, got " + jsonExcerpt(v));
-      }
-    }
-  }
+  if (root.contains("presets")) readPresets(c, root["presets"], scene);
   finishScene(scene, path, haveLights, haveCamera);
   return scene;
 }
