@@ -1,6 +1,7 @@
 #include "illum/kits/shared_params.h"
 
 #include "core/params.h"
+#include "shaders/illum/voxel_hit_params.glsl"
 
 namespace vgi {
 
@@ -12,6 +13,36 @@ void readShadowParams(ParamSet& p, ShadowParams& s) {
                       0.0f, 100.0f);
   s.normalOffset =
       p.getFloat("normal_offset", 0.0f, "lookup offset along the normal, in texels", 0.0f, 100.0f);
+}
+
+float readOffset(ParamSet& p, float def, const std::string& why) {
+  const std::string doc =
+      "start offset of the rays or cones along the normal, in voxel diagonals: the guard against the "
+      "receiver's own voxels" +
+      (why.empty() ? std::string() : " (" + why + ")");
+  return p.getFloat("offset", def, doc, 0.0f, 100.0f);
+}
+
+bool readEnv(ParamSet& p) {
+  return p.getBool("env", true,
+                   "what leaves the grid (nearfield: the radius) reads the scene's environment; a scene "
+                   "without one has a black environment, so true adds nothing there");
+}
+
+bool readPassThrough(ParamSet& p, const std::string& rule) {
+  return p.getBool("passthrough", true,
+                   "rays go on past a hit that may be the start's own voxel (within a voxel diagonal of its "
+                   "tangent plane) when " +
+                       rule);
+}
+
+int readBackProjection(ParamSet& p) {
+  const std::string b =
+      p.getString("backprojection", "plane",
+                  "hit -> RSM: plane (the ray meets the plane of the surface the RSM sees "
+                  "there) or entry (VGI: the voxel entry point, epsilon >= a voxel diagonal)",
+                  {"plane", "entry"});
+  return b == "entry" ? shared::BACK_PROJECTION_ENTRY : shared::BACK_PROJECTION_PLANE;
 }
 
 }  // namespace vgi

@@ -1,7 +1,10 @@
 // Parameters several methods share, read and documented once: the light
-// maps' shadow test, and the default radii an approximate method and its
-// exact counterpart (reference) must agree on.
+// maps' shadow test, the start offset of rays and cones, the environment
+// beyond them, the own-voxel pass rule, the back-projection, and the default
+// radii an approximate method and its exact counterpart (reference) must
+// agree on.
 #pragma once
+#include <string>
 
 namespace vgi {
 
@@ -13,6 +16,22 @@ struct ShadowParams {
   float bias = 1.0f, normalOffset = 0.0f;
 };
 void readShadowParams(ParamSet& params, ShadowParams& shadow);
+
+// `offset`: how far along the normal the rays (or cones) of a voxel-tracing
+// method start, in voxel diagonals — the guard against the receiver's own
+// voxels. kDefaultOffset unless the method says why it differs (`why` joins
+// the documentation).
+constexpr float kDefaultOffset = 0.5f;
+float readOffset(ParamSet& params, float def = kDefaultOffset, const std::string& why = "");
+// `env`: whether what leaves the grid (nearfield: the radius) reads the scene's environment.
+bool readEnv(ParamSet& params);
+// `passthrough`: whether rays go on past a hit that may be the start's own
+// voxel (within a voxel diagonal of its tangent plane); `rule`: the method's
+// test for which hits those are.
+bool readPassThrough(ParamSet& params, const std::string& rule);
+// `backprojection`: the GLSL constant (shaders/illum/voxel_hit_params.glsl) of
+// how a hit finds its RSM texel: plane (default) or entry (VGI).
+int readBackProjection(ParamSet& params);
 
 // The near-field radius r as a fraction of the scene's diagonal, when not
 // given: nearfield's and its exact counterpart's (reference integrator=nearfield).

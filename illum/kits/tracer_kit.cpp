@@ -38,12 +38,6 @@ int hitPointConstant(const std::string& name) {
                     "hitpoint");
 }
 
-int backProjectionConstant(const std::string& name) {
-  return constantOf(name,
-                    {{"entry", shared::BACK_PROJECTION_ENTRY}, {"plane", shared::BACK_PROJECTION_PLANE}},
-                    "backprojection");
-}
-
 void VoxelHits::set(unsigned program, const shared::VoxelHitParams& params) {
   checkBlockLayout(program, "VoxelHits", sizeof params, "illum/voxel_hits.glsl");
   block_.value = params;

@@ -21,10 +21,8 @@ void addTracerNeeds(SceneNeeds& needs, const BinaryGridNeed& grid, const std::st
 // Binds what addTracerNeeds declared for `program` (in use).
 void bindTracer(const SceneResources& resources, ShaderLibrary& shaders, unsigned program);
 
-// The GLSL constant of a `hitpoint` (entry, centre, plane) or `backprojection`
-// (entry, plane) choice: shaders/illum/voxel_hit_params.glsl.
+// The GLSL constant of a `hitpoint` choice (entry, centre, plane): shaders/illum/voxel_hit_params.glsl.
 int hitPointConstant(const std::string& name);
-int backProjectionConstant(const std::string& name);
 
 // The parameters of illum/voxel_hits.glsl (the path-vertex rules voxelpath
 // and vpl share) as their uniform block: set() checks the block's layout in

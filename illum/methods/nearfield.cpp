@@ -77,7 +77,8 @@ struct NearFieldParams {
   GatherSettings gather;
   float radius = 0, offset = 0.5f;
   bool env = true, passThrough = true;
-  std::string tracer = "hierarchical", backProjection = "plane";
+  std::string tracer = "hierarchical";
+  int backProjection = shared::BACK_PROJECTION_PLANE;
   BinaryGridNeed grid;
   ShadowParams shadow;
 };
@@ -93,28 +94,17 @@ class NearFieldMethod : public Method {
     q.radius = p.getFloat("radius", kDefaultNearFieldRadius * scene.bounds().diagonal(),
                           "ray length r in world units (default 0.5 x scene diagonal)", 1e-30f, 1e30f);
     q.tracer = readTracerParam(p);
-    q.env =
-        p.getBool("env", true,
-                  "rays that leave the radius read the environment (directional occlusion); a scene without "
-                  "an environment has a black one, so there env=true adds nothing");
-    q.backProjection =
-        p.getString("backprojection", "plane",
-                    "hit -> RSM: plane (the ray meets the plane of the surface the RSM sees there) "
-                    "or entry (VGI: the voxel entry point, epsilon >= a voxel diagonal)",
-                    {"plane", "entry"});
+    q.env = readEnv(p);  // rays that leave the radius: directional occlusion
+    q.backProjection = readBackProjection(p);
     // VGI's entry test takes light from any surface within ε ≥ a voxel diagonal, the receiver's own
     // voxels included, so with `entry` the rays start VGI's full diagonal off.
-    const bool entry = q.backProjection == "entry";
-    q.offset = p.getFloat("offset", entry ? 1.0f : 0.5f,
-                          "ray start offset along the normal, in voxel diagonals (default 0.5; 1 with "
-                          "backprojection=entry, as VGI; with passthrough, voxels within a diagonal of the "
-                          "receiver's plane that give no light are passed)",
-                          0.0f, 100.0f);
-    q.passThrough =
-        p.getBool("passthrough", true,
-                  "rays go on past a hit voxel whose entry point a light sees through (empty there), "
-                  "or that lies within a voxel diagonal of the receiver's plane and gives no light "
-                  "(it may be the receiver's own)");
+    const bool entry = q.backProjection == shared::BACK_PROJECTION_ENTRY;
+    q.offset = readOffset(p, entry ? 1.0f : kDefaultOffset,
+                          "1 with backprojection=entry: its test takes light from the receiver's own voxels "
+                          "unless the rays start a full diagonal off, as VGI's do");
+    q.passThrough = readPassThrough(p,
+                                    "a light sees through the hit voxel's entry point (empty there), or the "
+                                    "voxel gives no light");
 
     q.grid = readBinaryGridParams(p, 4);  // static + frame grid (atlas), the pyramid (≈ 4/3 of a grid)
     readShadowParams(p, q.shadow);
@@ -157,7 +147,7 @@ void NearFieldMethod::prepareFrame(Frame& f) {
   ip.offset = p_.offset * voxelDiagonal_;
   ip.voxelDiagonal = voxelDiagonal_;
   ip.env = p_.env ? 1 : 0;
-  ip.backProjection = backProjectionConstant(p_.backProjection);
+  ip.backProjection = p_.backProjection;
   ip.passThrough = p_.passThrough ? 1 : 0;
 }
 

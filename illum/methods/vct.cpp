@@ -52,7 +52,7 @@
 // | shadow_stop   | float  | 4                | shadow cones end this many widths before the light |
 // | env           | bool   | true             | cones leaving the grid see the environment      |
 // | resolution, interleave, blur |  | 0.5, 2, true | the gather kit's (diffuse cones and AO)      |
-// | shadow_res, shadow_bias, shadow_normal_offset |  |  | the light maps'                        |
+// | shadow_res, shadow_bias, normal_offset |  |  | the light maps'                              |
 #include "illum/methods/vct.h"
 
 #include <glad/gl.h>
@@ -91,7 +91,10 @@ class VctMethod : public Method {
     guard_ = p.getBool("plane_guard", true,
                        "cap a cone sample's mip level so it cannot reach the receiver's tangent plane (ours; "
                        "false: the thesis' cones)");
-    offset_ = p.getFloat("offset", 1.0f, "cone apex offset along the normal, voxel diagonals", 0.0f, 100.0f);
+    offset_ =
+        readOffset(p, 1.0f,
+                   "1 for cones: an apex a diagonal off lies outside the voxel of the receiver's point, "
+                   "which a cone's first sample would read");
     diffuse_ = p.getBool("diffuse", true,
                          "diffuse indirect light from the diffuse cones (false: they give the AO only)");
     specular_ = p.getBool("specular", true, "specular cone along the reflected view direction (ks > 0)");
@@ -109,7 +112,7 @@ class VctMethod : public Method {
     shadowStop_ = p.getFloat(
         "shadow_stop", 4.0f,
         "shadow cones end this many cone widths (at least voxel diagonals) before the light", 0.0f, 100.0f);
-    env_ = p.getBool("env", true, "cones leaving the grid see the environment");
+    env_ = readEnv(p);
     gather_ = readGatherParams(p, "diffuse cone", true, false, 2);
     constellation_ = ringConstellation(true, cones_ - 1, glm::degrees(std::atan(2.0f)));
   }

@@ -84,8 +84,9 @@ class VctAoMethod : public Method {
     guard_ = p.getBool("plane_guard", true,
                        "cap a cone sample's mip level so it cannot reach the receiver's tangent plane (ours; "
                        "false: the thesis' cones)");
-    offset_ =
-        p.getFloat("offset", 1.5f, "cone origin offset along the normal, voxel diagonals", 0.0f, 100.0f);
+    offset_ = readOffset(p, 1.5f,
+                         "1.5, as the VCT-AO thesis (§6.2): enough to keep its cones from stopping early on "
+                         "self-occlusion");
     vol_ = readConeVolumeParams(p, false, true, false, 0.5f);
     gather_ = readGatherParams(p, "AO cone", false, false, 2);
     constellation_ = cones_ == 3   ? ringConstellation(false, 3, 45.0f)

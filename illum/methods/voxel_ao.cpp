@@ -56,12 +56,8 @@ class VoxelAoMethod : public Method {
                    1e-30f, 1e30f);
     gather_ = readGatherParams(p, "AO", false);
     tracer_ = readTracerParam(p);
-    offset_ =
-        p.getFloat("offset", 0.5f, "ray start offset along the normal, in voxel diagonals", 0.0f, 100.0f);
-    passThrough_ =
-        p.getBool("passthrough", true,
-                  "rays go on past a hit within a voxel diagonal of the receiver's plane (it may be "
-                  "the receiver's own voxel)");
+    offset_ = readOffset(p);
+    passThrough_ = readPassThrough(p, "it lies within a voxel diagonal of the receiver's plane");
     grid_ = readBinaryGridParams(p, 4);  // static + frame grid (atlas), the pyramid (≈ 4/3 of a grid)
   }
   SceneNeeds needs() const override {

@@ -71,26 +71,20 @@ class VoxelPathMethod : public Method {
                          1, 64);
     rrDepth_ = p.getInt("rr_depth", 3, "bounces before Russian roulette (as reference)", 0, 10000);
     tracer_ = readTracerParam(p);
-    offset_ =
-        p.getFloat("offset", 0.5f, "ray start offset along the normal, in voxel diagonals", 0.0f, 100.0f);
+    offset_ = readOffset(p);
     passThrough_ =
-        p.getBool("passthrough", true,
-                  "rays go on past a hit within a voxel diagonal of the start's plane whose mean normal "
-                  "is the start's or that gives no light (it may be the start's own voxel)");
+        readPassThrough(p, "the hit voxel's mean normal is the start's (up to sign), or it gives no light");
     hitPoint_ =
         p.getString("hitpoint", "entry",
                     "hit vertex: entry (where the ray enters the voxel), centre (the voxel centre) "
                     "or plane (the ray meets the plane of the voxel's mean normal through its centre)",
                     {"entry", "centre", "plane"});
-    backProjection_ = p.getString("backprojection", "plane",
-                                  "hit -> RSM: plane (the ray meets the plane of the surface the RSM sees "
-                                  "there) or entry (VGI: the voxel entry point, epsilon >= a voxel diagonal)",
-                                  {"plane", "entry"});
+    backProjection_ = readBackProjection(p);
     glossy_ = p.getBool("glossy", true, "sample and light the Phong lobes (false: diffuse only)");
     clamp_ = p.getFloat("clamp", 0.0f,
                         "firefly clamp: each vertex's contribution clamped to this (max component); 0 = off",
                         0.0f, 1e30f);
-    env_ = p.getBool("env", true, "rays that leave the grid read the environment");
+    env_ = readEnv(p);
     // Static + frame grid, the pyramid (≈ 4/3 of a grid); the value grids (≈ 3 more) are checked when built.
     grid_ = readBinaryGridParams(p, 4, true);
     readShadowParams(p, shadow_);
@@ -131,7 +125,7 @@ class VoxelPathMethod : public Method {
     h.voxelDiagonal = voxelDiagonal_;
     h.traceLength = traceLength_;
     h.glossy = glossy_ ? 1 : 0;
-    h.backProjection = backProjectionConstant(backProjection_);
+    h.backProjection = backProjection_;
     h.passThrough = passThrough_ ? 1 : 0;
     h.hitPoint = hitPointConstant(hitPoint_);
     hits_.set(path_.program(), h);
@@ -167,7 +161,8 @@ class VoxelPathMethod : public Method {
   int maxDepth_ = 3, rrDepth_ = 3;
   float offset_ = 0.5f, clamp_ = 0, traceLength_ = 0, voxelDiagonal_ = 0;
   bool passThrough_ = true, glossy_ = true, env_ = true;
-  std::string tracer_, hitPoint_, backProjection_;
+  std::string tracer_, hitPoint_;
+  int backProjection_ = shared::BACK_PROJECTION_PLANE;
   BinaryGridNeed grid_;
   ShadowParams shadow_;
   std::unique_ptr<DirectPass> direct_;

@@ -1,5 +1,5 @@
 // Makes the files in shaders/shared/ compile as C++ (with GLM) as well as GLSL 4.50.
-// Rules for shared code (see STYLE.md): no swizzles, no out/inout (return
+// Rules for shared code: no swizzles, no out/inout (return
 // structs), no struct constructors (assign fields), float literals with an f
 // suffix (GLM has no vec3 * double), const uint instead of enums, and no shift by
 // 32 or more. The GLSL side gets the same macros from ShaderLibrary's prelude.

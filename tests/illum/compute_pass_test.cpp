@@ -32,7 +32,7 @@ TEST(ComputePass, ParamsReachTheShaderAtTheirCppPlaces) {
   const size_t words = sizeof(ProbeParams) / 4;
   std::vector<uint32_t> pattern(words);
   for (size_t i = 0; i < words; ++i) pattern[i] = 0x3f800000u + uint32_t(i) * 977u;  // finite floats
-  std::memcpy(&block.value, pattern.data(), sizeof(ProbeParams));
+  std::memcpy(static_cast<void*>(&block.value), pattern.data(), sizeof(ProbeParams));
   block.upload();
   unsigned buf = 0;
   glCreateBuffers(1, &buf);
