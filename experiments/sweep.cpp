@@ -285,6 +285,17 @@ ReferenceChoice chooseReference(const Experiment& e, const nlohmann::json& ref, 
     if (!refSet.is_object()) fail("experiment: ", where, ".reference.set must be an object of parameters");
     for (auto& [k, v] : refSet.items()) rset.push_back(k + "=" + paramText(v, where + ".reference.set." + k));
     raovs = e.aovs;
+  } else if (mref.contains("variant")) {
+    // The point itself with a few parameters changed (one stage made exact: an error split).
+    const nlohmann::json& variant = mref["variant"];
+    if (!variant.is_object() || variant.empty())
+      fail("experiment: ", where, ".reference.variant must be an object of the parameters to change");
+    rmethod = method;
+    for (const std::string& kv : o.set)
+      if (!variant.contains(kv.substr(0, kv.find('=')))) rset.push_back(kv);
+    for (auto& [k, v] : variant.items())
+      rset.push_back(k + "=" + paramText(v, where + ".reference.variant." + k));
+    raovs = e.aovs;
   } else if (mref.contains("counterpart_of")) {
     const std::string other = stringAt(mref, "counterpart_of", where + ".reference.counterpart_of");
     const MethodInfo& oi = findMethod(other, "experiment " + where + ".reference.counterpart_of");
@@ -400,10 +411,14 @@ void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref,
     if (k < spp) checkpoints.push_back(k);
   // Its own reference: another method's counterpart (shared with that method's points), or a method.
   const nlohmann::json mref = m.value("reference", nlohmann::json::object());
-  checkKeys(mref, where + ".reference", {"counterpart_of", "method", "set"});
-  if (m.contains("reference") && mref.contains("counterpart_of") == mref.contains("method"))
-    fail("experiment: ", where, ".reference = ", mref.dump(),
-         " needs one of \"counterpart_of\" or \"method\"");
+  checkKeys(mref, where + ".reference", {"counterpart_of", "method", "set", "variant"});
+  if (m.contains("reference") &&
+      int(mref.contains("counterpart_of")) + int(mref.contains("method")) + int(mref.contains("variant")) !=
+          1)
+    fail("experiment: ", where, ".reference = ", jsonExcerpt(mref),
+         " needs one of \"counterpart_of\", \"method\" or \"variant\"");
+  if (mref.contains("set") && !mref.contains("method"))
+    fail("experiment: ", where, ".reference.set goes with \"method\" (a variant's changes are its value)");
   std::vector<std::string> fixed;
   const nlohmann::json set = m.value("set", nlohmann::json::object()),
                        grid = m.value("grid", nlohmann::json::object());

@@ -29,7 +29,9 @@
 //                   "grid": {"voxels": [64, 128], "rays": [4, 16]},   // every combination
 //                   "spp": 512,                           // optional: this method's samples
 //                   "reference": {"counterpart_of": "nearfield"}   // optional: its own reference,
-//                              | {"method": "reference", "set": {…}}} ]  // (spp: the experiment's)
+//                              | {"method": "reference", "set": {…}}   // (spp: the experiment's)
+//                              | {"variant": {"visibility": "exact"}}} ]  // the point itself with these
+//                                             // parameters changed (an error split by stage)
 //   }
 // Layout of the output folder DIR: DIR/references/<id>/ref.*, DIR/curves/<id>/render.* (the
 // counterparts' convergence renders), DIR/points/<id>/render.*

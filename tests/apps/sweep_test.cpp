@@ -173,6 +173,32 @@ TEST(Sweep, AMethodCanShareAnotherMethodsCounterpart) {
   EXPECT_EQ(countOf(list.output, "'--spp' '8'"), 2u) << "the reference and the second point: " << list.output;
 }
 
+// An error split by stage: a point's reference is the point itself with some parameters changed
+// ("variant"), so it follows the point's grid values; the variant's keys replace the point's.
+TEST(Sweep, AVariantReferenceIsThePointWithThoseParametersChanged) {
+  const std::string file = tmp("sweep_variant.json"), dir = tmp("sweep_variant");
+  std::filesystem::remove_all(dir);
+  std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 2,
+    "reference": {"spp": 8},
+    "methods": [{"method": "vpl", "set": {"bounces": 1, "clamp": 0.5}, "grid": {"vpls": [64, 256]},
+                 "reference": {"variant": {"visibility": "exact", "clamp": 0}}}]})";
+  CliRun list = vgi("sweep " + file + " -o " + dir + " --print-commands");
+  ASSERT_EQ(list.code, 0) << list.output;
+  EXPECT_EQ(lines(list.output).size(), 4u) << "two points, a reference each: " << list.output;
+  for (const char* n : {"64", "256"}) {
+    const std::string ref = "'--method' 'vpl' '--set' 'bounces=1' '--set' 'vpls=" + std::string(n) +
+                            "' '--set' 'clamp=0' '--set' 'visibility=exact' '--size' '16x16' '--spp' '8'";
+    EXPECT_EQ(countOf(list.output, ref), 1u) << ref << " in " << list.output;
+  }
+  EXPECT_EQ(countOf(list.output, "clamp=0.5"), 2u) << "only the points keep their clamp: " << list.output;
+  std::ofstream(tmp("sweep_variant_bad.json"))
+      << R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 2,
+    "methods": [{"method": "vpl", "reference": {"variant": {"visibility": "exact"}, "method": "reference"}}]})";
+  CliRun bad = vgi("sweep " + tmp("sweep_variant_bad.json") + " -o " + dir);
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("needs one of"), std::string::npos) << bad.output;
+}
+
 // The convergence curves, what the equal-error time is read off, run on the device of the method
 // whose points they serve (reference_gl for a GL method, reference for a CPU one, each once while
 // the two share the reference image), or with "device": "cpu" on the CPU for all.

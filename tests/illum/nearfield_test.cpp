@@ -57,7 +57,7 @@ TEST(NearField, EscapingRaysReadTheEnvironmentExactly) {
 // Cornell box, full resolution, no interleaving or blur, enough frames to
 // converge: the combined image and the indirect light against the exact
 // integral. Thresholds sit above the values measured at this size (README of
-// the bench: scripts/bench_nearfield.sh) with room for the references' noise.
+// the bench: scenes/experiments/nearfield-resolution.json) with room for the references' noise.
 TEST(NearField, CornellBoxMatchesTheExactNearFieldIntegral) {
   // A short radius (0.1 × the diagonal, the default's fifth): the harder case,
   // where position errors of a voxel matter most.
