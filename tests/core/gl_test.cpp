@@ -32,6 +32,22 @@ TEST(GlContext, EglAndOsmesaGiveGl45Core) {
   test::expectError([] { parseGlBackend("vulkan"); }, {"--gl", "vulkan"});
 }
 
+// libOSMesa is loaded when the OSMesa backend is chosen, not linked: a process that renders through
+// EGL never maps it (a GPU node needs no Mesa), and the binary's dependencies do not name it.
+TEST(GlContext, OsmesaIsLoadedWhenChosenNotLinked) {
+  auto mapped = [] {
+    std::ifstream maps("/proc/self/maps");
+    const std::string text((std::istreambuf_iterator<char>(maps)), {});
+    return text.find("libOSMesa") != std::string::npos;
+  };
+  if (mapped()) GTEST_SKIP() << "an earlier test of this process chose OSMesa (ctest runs each alone)";
+  { auto egl = GlContext::create(GlBackend::Egl); }
+  EXPECT_FALSE(mapped()) << "libOSMesa mapped before the OSMesa backend was chosen";
+  auto ctx = GlContext::create(GlBackend::Osmesa);
+  EXPECT_TRUE(mapped());
+  EXPECT_EQ(ctx->backendName(), "osmesa");
+}
+
 TEST(GlContext, DebugCallbackCountsErrors) {
   auto ctx = GlContext::create();
   glBindBuffer(GL_ARRAY_BUFFER, 987654u);  // not a buffer name: GL_INVALID_OPERATION
