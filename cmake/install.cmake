@@ -9,7 +9,11 @@ set_target_properties(vgi_voxelize PROPERTIES EXPORT_NAME voxelize)
 set_target_properties(vgi_traverse PROPERTIES EXPORT_NAME traverse)
 set_target_properties(vgi_illum PROPERTIES EXPORT_NAME illum)
 set_target_properties(vgi_experiments PROPERTIES EXPORT_NAME experiments)
-install(TARGETS vgi_glad vgi_core vgi_voxelize vgi_traverse vgi_illum vgi_experiments vgi
+set(_vgi_installed vgi_glad vgi_core vgi_voxelize vgi_traverse vgi_illum vgi_experiments vgi)
+if(VGI_LEAN_IMAGES)
+  list(APPEND _vgi_installed vgi_image_lean)  # vgi_core's image layer in the lean build
+endif()
+install(TARGETS ${_vgi_installed}
         EXPORT vgiTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

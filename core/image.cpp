@@ -1,12 +1,11 @@
 #include "core/image.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/image_io.h"
 #include "core/scene_loader.h"
 
 namespace vgi {
@@ -19,21 +18,14 @@ float linearToSrgb(float x) {
 float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 void writeImage(const Image& img, const std::string& path, float exposure) {
-  using namespace OIIO;
   std::string ext = std::filesystem::path(path).extension().string();
   for (auto& c : ext) c = char(std::tolower(c));
   auto parent = std::filesystem::path(path).parent_path();
   if (!parent.empty() && !std::filesystem::exists(parent))
     fail("cannot write '", path, "': folder '", parent.string(), "' does not exist");
-  auto out = ImageOutput::create(path);
-  if (!out) fail("cannot write '", path, "': unknown image format '", ext, "'");
-  bool ok;
-  if (ext == ".exr" || ext == ".hdr") {
-    ImageSpec spec(img.width, img.height, 3, TypeDesc::FLOAT);
-    if (ext == ".exr") spec.attribute("compression", "zip");
-    ok = out->open(path, spec) && out->write_image(TypeDesc::FLOAT, img.pixels.data());
-  } else {
-    ImageSpec spec(img.width, img.height, 3, TypeDesc::UINT8);
+  if (ext == ".exr") {
+    image_io::writeExr(path, img.width, img.height, &img.pixels[0].x);
+  } else if (ext == ".png") {
     std::vector<unsigned char> px(img.pixels.size() * 3);
     for (size_t i = 0; i < img.pixels.size(); ++i)
       for (int k = 0; k < 3; ++k) {
@@ -41,9 +33,10 @@ void writeImage(const Image& img, const std::string& path, float exposure) {
         if (!std::isfinite(v)) v = 0;  // NaN must never turn into a plausible colour
         px[i * 3 + k] = (unsigned char)std::lround(linearToSrgb(v) * 255.0f);
       }
-    ok = out->open(path, spec) && out->write_image(TypeDesc::UINT8, px.data());
+    image_io::writePng(path, img.width, img.height, px.data());
+  } else {
+    fail("cannot write '", path, "': unknown image format '", ext, "' (.exr or .png)");
   }
-  if (!ok || !out->close()) fail("cannot write '", path, "': ", out->geterror());
 }
 
 Image readImage(const std::string& path) {

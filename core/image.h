@@ -1,4 +1,5 @@
-// Linear HDR RGB images; EXR (float) and tone-mapped sRGB PNG through OpenImageIO.
+// Linear HDR RGB images; EXR (float) and tone-mapped sRGB PNG (core/image_io.h: OpenImageIO, or
+// OpenEXR + libpng + stb_image in the lean build).
 #pragma once
 #include <glm/glm.hpp>
 #include <string>
@@ -15,9 +16,9 @@ struct Image {
   const glm::vec3& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
 };
 
-// Writes by extension: .exr (float, linear), .png/.jpg (exposure·x, clamp, sRGB).
+// Writes by extension: .exr (float, linear), .png (exposure·x, clamp, sRGB).
 void writeImage(const Image& img, const std::string& path, float exposure = 1.0f);
-// Reads any OIIO format; 8/16-bit files are linearised from sRGB.
+// Reads EXR, PNG, JPEG, HDR, TGA, BMP, …; 8/16-bit files are linearised from sRGB.
 Image readImage(const std::string& path);
 
 float linearToSrgb(float x);

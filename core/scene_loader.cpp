@@ -1,6 +1,5 @@
 #include "core/scene_loader.h"
 
-#include <OpenImageIO/imageio.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -16,6 +15,7 @@
 
 #include "core/builtin_scenes.h"
 #include "core/error.h"
+#include "core/image_io.h"
 #include "core/json_text.h"
 
 namespace fs = std::filesystem;
@@ -615,24 +615,15 @@ void requireRegularFile(const std::string& path, const std::string& what) {
 }
 
 Texture loadTexture(const std::string& path, const std::string& what) {
-  using namespace OIIO;
   requireRegularFile(path, what);
-  auto in = ImageInput::open(path);
-  if (!in) fail("cannot read ", what, " '", path, "': ", OIIO::geterror());
-  const ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail(what, " '", path, "' has no pixels");
-  if (size_t(spec.width) * spec.height > (size_t(1) << 28))
-    fail(what, " '", path, "' is too large (", spec.width, "x", spec.height, ")");
-  // Only the channels used (RGB, or the first as grey): a header may claim a thousand.
-  const int nc = std::min(spec.nchannels, 3);
-  std::vector<float> px(size_t(spec.width) * spec.height * nc);
-  if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, px.data()))
-    fail("cannot decode ", what, " '", path, "': ", in->geterror());
-  bool srgb = spec.format.basetype == TypeDesc::UINT8 || spec.format.basetype == TypeDesc::UINT16;
+  const image_io::Pixels in = image_io::read(path, what);
+  const std::vector<float>& px = in.values;
+  const int nc = in.channels;
+  const bool srgb = in.srgb;
   Texture t;
   t.path = path;
-  t.width = spec.width;
-  t.height = spec.height;
+  t.width = in.width;
+  t.height = in.height;
   t.texels.resize(size_t(t.width) * t.height);
   for (size_t i = 0; i < t.texels.size(); ++i) {
     glm::vec3 c;

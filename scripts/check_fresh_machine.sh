@@ -6,19 +6,16 @@
 # exit status and the test summary. A package that a development machine keeps
 # from a hand install, and that scripts/setup.sh forgets, fails here.
 #
-# The minbase system is built once and cached as a tarball
-# ($VGI_FRESH_CACHE, default /var/cache/vgi/bookworm-minbase.tar); every run
-# unpacks it anew, so no run sees what an earlier one installed.
+# The minbase system is built once and cached (scripts/fresh_chroot.sh); every
+# run unpacks it anew, so no run sees what an earlier one installed.
 #
 # Usage (as root): scripts/check_fresh_machine.sh [work-dir]   (default /var/tmp/vgi-fresh)
 # Needs: debootstrap (installed here if missing), network access to Debian's mirror.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repo=$(pwd)
-[ "$(id -u)" -eq 0 ] || { echo "check_fresh_machine: run as root (debootstrap and chroot need it)" >&2; exit 2; }
-cache=${VGI_FRESH_CACHE:-/var/cache/vgi/bookworm-minbase.tar}
 work=${1:-/var/tmp/vgi-fresh}
-mirror=${VGI_DEBIAN_MIRROR:-http://deb.debian.org/debian}
+. scripts/fresh_chroot.sh
 
 # The README's two commands: the non-comment lines of the first ```sh block
 # after the "## Two commands" heading.
@@ -29,31 +26,8 @@ if [ ${#commands[@]} -ne 2 ]; then
   exit 2
 fi
 
-if [ ! -f "$cache" ]; then
-  command -v debootstrap > /dev/null || DEBIAN_FRONTEND=noninteractive apt-get install -y -qq debootstrap
-  mkdir -p "$(dirname "$cache")"
-  base=$(mktemp -d /var/tmp/vgi-minbase.XXXXXX)
-  echo "check_fresh_machine: building the minbase Debian 12 system (once) in $base"
-  debootstrap --variant=minbase bookworm "$base" "$mirror" > "$base.log" 2>&1 || { tail -20 "$base.log"; exit 1; }
-  tar -C "$base" -cf "$cache.part" . && mv "$cache.part" "$cache"
-  rm -rf "$base" "$base.log"
-fi
-
 root="$work/root"
-cleanup() {
-  for m in dev/pts dev proc sys; do mountpoint -q "$root/$m" && umount -l "$root/$m"; done
-  return 0
-}
-trap cleanup EXIT
-cleanup
-rm -rf "$work"
-mkdir -p "$root"
-tar -C "$root" -xf "$cache"
-cp /etc/resolv.conf "$root/etc/resolv.conf"
-mount -t proc proc "$root/proc"
-mount --rbind /sys "$root/sys"
-mount --bind /dev "$root/dev"
-mount --bind /dev/pts "$root/dev/pts"
+fresh_root "$root"  # unmounts a previous run's mounts before it removes anything
 git clone -q --no-local "$repo" "$root/root/vgi"
 echo "check_fresh_machine: HEAD $(git -C "$repo" rev-parse --short HEAD), $(git -C "$repo" status --porcelain | wc -l) uncommitted change(s) not included"
 
@@ -63,8 +37,7 @@ for i in 0 1; do
   echo "check_fresh_machine: command $((i + 1)): ${commands[$i]}"
   start=$(date +%s)
   rc=0
-  chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-    TERM=dumb LANG=C.UTF-8 /bin/bash -c "cd /root/vgi && ${commands[$i]}" > "$log" 2>&1 || rc=$?
+  in_root "$root" "cd /root/vgi && ${commands[$i]}" > "$log" 2>&1 || rc=$?
   secs=$(($(date +%s) - start))
   echo "  exit $rc after ${secs} s (log: $log)"
   [ $i -eq 0 ] && grep -E '^wrote ' "$log" | sed 's/^/  /' || true

@@ -9,12 +9,15 @@ set -euo pipefail
 # exported targets reference /usr/bin/iconvert (openimageio-tools), and assimp's
 # link interface names libz.so (zlib1g-dev). Without them configure, then link,
 # fails on a fresh Debian 12 (scripts/check_fresh_machine.sh checks that).
+# libopenexr-dev, libpng-dev, libjpeg-dev and libstb-dev: the lean image layer (core/image_io.h), built
+# beside OpenImageIO for its tests and alone for the bundle (scripts/bundle.sh).
 # python3-matplotlib draws `vgi sweep`'s plots (scripts/sweep_report.py); the
 # suite opens its HTML report in headless chromium (tests/apps/sweep_test.cpp). xvfb (+ xauth for
 # xvfb-run) gives `vgi view` an X server with Mesa on a machine without a display (tests/apps/view_test.cpp).
 PKGS=(
   build-essential cmake ninja-build pkg-config git python3 python3-glad clang-format
   libembree-dev libopenimageio-dev openimageio-tools libassimp-dev zlib1g-dev libopenmesh-dev libeigen3-dev
+  libopenexr-dev libpng-dev libjpeg-dev libstb-dev
   libglfw3-dev libglm-dev libimgui-dev libcli11-dev nlohmann-json3-dev libgtest-dev
   libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
   python3-matplotlib chromium xvfb xauth

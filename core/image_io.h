@@ -1,0 +1,42 @@
+// The image files the framework reads and writes, behind one small interface
+// with two builds: OpenImageIO (the full build) or, with -DVGI_LEAN_IMAGES=ON,
+// OpenEXR for EXR, libpng for writing PNG and stb_image for reading the other
+// formats (the relocatable bundle's: a small fraction of OpenImageIO's run-time
+// closure). Both give the same pixels: tests/core/image_io_test.cpp reads and
+// writes through both and compares them bit for bit.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace vgi::image_io {
+
+// The first min(3, channels) channels of an image, interleaved, as float.
+// srgb: the file stores 8- or 16-bit values (then in [0, 1], sRGB-encoded).
+struct Pixels {
+  int width = 0, height = 0, channels = 0;
+  bool srgb = false;
+  std::vector<float> values;
+};
+
+// The largest image read (pixels): a header may claim anything.
+constexpr size_t kMaxPixels = size_t(1) << 28;
+
+// Each throws vgi::Error naming `what` (or the path) and the problem.
+Pixels read(const std::string& path, const std::string& what);
+void writeExr(const std::string& path, int width, int height, const float* rgb);          // float RGB, zip
+void writePng(const std::string& path, int width, int height, const unsigned char* rgb);  // 8-bit RGB
+const char* backend();
+
+// The two implementations, by name (the build links one as the above; the tests compare both).
+namespace oiio {
+Pixels read(const std::string& path, const std::string& what);
+void writeExr(const std::string& path, int width, int height, const float* rgb);
+void writePng(const std::string& path, int width, int height, const unsigned char* rgb);
+}  // namespace oiio
+namespace lean {
+Pixels read(const std::string& path, const std::string& what);
+void writeExr(const std::string& path, int width, int height, const float* rgb);
+void writePng(const std::string& path, int width, int height, const unsigned char* rgb);
+}  // namespace lean
+
+}  // namespace vgi::image_io
