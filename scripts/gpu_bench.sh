@@ -1,0 +1,204 @@
+#!/usr/bin/env bash
+# Every GPU figure of the project in one command (issue "Beyond one machine"): run it on a GPU
+# node from the bundle (scripts/bundle.sh) or a build, and it writes OUT/gpu_bench.json and
+# OUT/gpu_bench.md:
+#   voxelizers   each GL voxelizer on Sibenik and the dragon at 128³, 256³ and 512³ (pass times,
+#                recall / precision against the exact voxelizer)
+#   traverse     `vgi bench traverse` GLSL rows (Mrays/s per tracer, agreement) at 10⁷ rays, 256³
+#   methods      every GL method's per-pass time per sample at 1920×1080 and 1024×768 on the Cornell
+#                box and Sibenik at its defaults, and the papers' settings (VGI: nearfield at ¼
+#                resolution, 1024×768; voxelpath 64 spp with two bounces), set-up passes apart, and the
+#                bytes each resource reports (value textures, cone volume, light maps, …)
+#   equal error  the same-device experiment (scenes/experiments/same-device-gi.json): each method
+#                against reference_gl on the same GPU, the equal-error time ratio
+# --quick runs the same code at tiny sizes on the Cornell box only (the suite runs it on llvmpipe, so
+# the script never rots). Scenes from ../shared/scenes (or $VGI_SCENES) are used where present.
+# The NVIDIA EGL device path needs glvnd to find the driver's vendor file; where
+# /usr/share/glvnd/egl_vendor.d has none, the script looks for one and exports
+# __EGL_VENDOR_LIBRARY_FILENAMES (and says so).
+# Usage: scripts/gpu_bench.sh [--quick] [--vgi PATH] OUT
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+repo=$(cd "$here/.." && pwd)
+quick=0
+vgi=""
+out=""
+while [ $# -gt 0 ]; do
+  case $1 in
+    --quick) quick=1 ;;
+    --vgi) vgi=$2; shift ;;
+    -*) echo "gpu_bench: unknown option '$1' (usage: gpu_bench.sh [--quick] [--vgi PATH] OUT)" >&2; exit 2 ;;
+    *) out=$1 ;;
+  esac
+  shift
+done
+[ -n "$out" ] || { echo "usage: gpu_bench.sh [--quick] [--vgi PATH] OUT" >&2; exit 2; }
+if [ -z "$vgi" ]; then
+  for c in "$repo/bin/vgi" "$repo/build/apps/vgi" "$(command -v vgi || true)"; do
+    [ -n "$c" ] && [ -x "$c" ] && { vgi=$c; break; }
+  done
+fi
+[ -x "${vgi:-}" ] || { echo "gpu_bench: no vgi binary (give --vgi PATH)" >&2; exit 2; }
+mkdir -p "$out/raw"
+log=$out/gpu_bench.log
+: > "$log"
+note() { echo "gpu_bench: $*" | tee -a "$log" >&2; }
+
+# The NVIDIA driver's EGL vendor file, where glvnd's default folder lacks one.
+if [ -z "${__EGL_VENDOR_LIBRARY_FILENAMES:-}" ] && ! ls /usr/share/glvnd/egl_vendor.d/*nvidia* > /dev/null 2>&1; then
+  for f in /etc/glvnd/egl_vendor.d/10_nvidia.json /usr/local/share/glvnd/egl_vendor.d/10_nvidia.json \
+           /usr/lib/x86_64-linux-gnu/nvidia/10_nvidia.json /usr/share/nvidia/10_nvidia.json; do
+    if [ -f "$f" ]; then
+      export __EGL_VENDOR_LIBRARY_FILENAMES=$f
+      note "EGL vendor file: $f (exported as __EGL_VENDOR_LIBRARY_FILENAMES)"
+      break
+    fi
+  done
+fi
+
+scenes_dir=${VGI_SCENES:-$repo/../shared/scenes}
+scene() {  # scene NAME → its path, or nothing (and a note) when absent
+  case $1 in
+    cornell) echo builtin:cornell ;;
+    sibenik) [ -f "$scenes_dir/sibenik/sibenik.obj" ] && echo "$repo/scenes/sibenik.json" || note "Sibenik absent: its rows are left out" ;;
+    dragon) [ -d "$scenes_dir/stanford-dragon" ] && echo "$repo/scenes/dragon.json" || note "the dragon absent: its rows are left out" ;;
+  esac
+}
+
+if [ $quick -eq 1 ]; then
+  vox_scenes=(cornell); vox_res=(128); rays=20000; trav_res=128
+  sizes=(64x48); method_scenes=(cornell); spp=2; paper_spp=2; equal_error=smoke
+else
+  vox_scenes=(sibenik dragon); vox_res=(128 256 512); rays=10000000; trav_res=256
+  sizes=(1920x1080 1024x768); method_scenes=(cornell sibenik); spp=16; paper_spp=64; equal_error=same-device-gi
+fi
+run() {  # run NAME ARGS… : vgi ARGS, its output in raw/NAME.log; a failure is noted, not fatal
+  local name=$1
+  shift
+  if ! (cd "$repo" && "$vgi" "$@") > "$out/raw/$name.log" 2>&1; then
+    note "FAILED: vgi $* (raw/$name.log)"
+    return 1
+  fi
+}
+start=$(date +%s)
+
+note "voxelizers"
+for s in "${vox_scenes[@]}"; do
+  path=$(scene "$s")
+  [ -n "$path" ] || continue
+  for r in "${vox_res[@]}"; do
+    for v in atlas conservative hybrid slicemap; do
+      run "vox_${s}_${r}_$v" voxelize --scene "$path" --voxels "$r" --voxelizer "$v" --stats "$out/raw/vox_${s}_${r}_$v.json" || true
+    done
+  done
+done
+
+note "traverse"
+run "traverse" bench traverse --voxels "$trav_res" --rays "$rays" --repeat 1 --json --stats "$out/raw/traverse.json" || true
+
+note "methods"
+# The registry's methods (its error message lists them), but the CPU one (reference: Embree, not a GPU figure).
+methods=$("$vgi" render --help-module '?' 2>&1 | sed -n 's/.*(known: \(.*\))$/\1/p' | tr -d ',' |
+  tr ' ' '\n' | grep -vx reference | tr '\n' ' ' || true)
+[ -n "$methods" ] || { note "cannot list the methods (vgi render --help-module)"; exit 1; }
+for s in "${method_scenes[@]}"; do
+  path=$(scene "$s")
+  [ -n "$path" ] || continue
+  for size in "${sizes[@]}"; do
+    for m in $methods; do
+      run "method_${s}_${size}_$m" render --scene "$path" --method "$m" --size "$size" --spp "$spp" --quiet \
+        -o "$out/raw/method_${s}_${size}_$m.exr" || true
+    done
+  done
+  # The papers' settings: VGI's near field at 1/4 resolution and its 64-sample, two-bounce path tracing.
+  psize=1024x768
+  [ $quick -eq 1 ] && psize=${sizes[0]}
+  run "paper_${s}_nearfield" render --scene "$path" --method nearfield --set resolution=0.25 --size "$psize" \
+    --spp "$spp" --quiet -o "$out/raw/paper_${s}_nearfield.exr" || true
+  run "paper_${s}_voxelpath" render --scene "$path" --method voxelpath --set maxdepth=3 --size "$psize" \
+    --spp "$paper_spp" --quiet -o "$out/raw/paper_${s}_voxelpath.exr" || true
+done
+
+note "equal error on one device ($equal_error)"
+run "equal_error" sweep "scenes/experiments/$equal_error.json" -o "$out/raw/sweep_$equal_error" || true
+
+python3 - "$out" "$vgi" "$(( $(date +%s) - start ))" "$quick" <<'PY'
+import glob, json, os, sys
+out, vgi, seconds, quick = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4] == "1"
+raw = os.path.join(out, "raw")
+def load(p):
+    try:
+        return json.load(open(p))
+    except Exception:
+        return None
+report = {"vgi": vgi, "quick": quick, "seconds": seconds, "voxelizers": [], "traverse": [], "methods": [],
+          "equal_error": []}
+md = []
+renderer = None
+for p in sorted(glob.glob(os.path.join(raw, "vox_*.json"))):
+    s = load(p)
+    if not s: continue
+    renderer = renderer or s.get("gl_renderer")
+    report["voxelizers"].append({k: s.get(k) for k in ("scene", "voxelizer", "resolution", "total_ms", "timings_ms",
+                                                         "recall", "precision", "voxels_set", "gl_renderer")})
+t = load(os.path.join(raw, "traverse.json"))
+if t:
+    for length in t.get("lengths", []):
+        for name, r in sorted(length["tracers"].items()):
+            if "gl_mrays_per_s" in r:
+                report["traverse"].append({"tracer": name, "max_dist": length["max_dist"], "rays": length["rays"],
+                                           "gl_mrays_per_s": r["gl_mrays_per_s"], "gl_equals_cpu": r.get("gl_equals_cpu"),
+                                           "agree_embree_hit": r.get("agree_embree_hit")})
+def bytes_of(extra, prefix=""):
+    found = {}
+    if isinstance(extra, dict):
+        for k, v in extra.items():
+            if k == "bytes" and isinstance(v, (int, float)): found[prefix.rstrip(".")] = v
+            else: found.update(bytes_of(v, prefix + k + "."))
+    return found
+for p in sorted(glob.glob(os.path.join(raw, "method_*.json")) + glob.glob(os.path.join(raw, "paper_*.json"))):
+    s = load(p)
+    if not s or "timings_ms" not in s: continue
+    renderer = renderer or s.get("gl_renderer")
+    n = max(1, s.get("spp_completed", 1))
+    sample = set(s.get("sample_passes", []))
+    per_sample = {k: v / n for k, v in s["timings_ms"].items() if k in sample}
+    setup = {k: v for k, v in s["timings_ms"].items() if k not in sample}
+    report["methods"].append({"run": os.path.basename(p)[:-5], "method": s["method"], "scene": s["scene"],
+                              "size": f'{s["width"]}x{s["height"]}', "spp": n, "params": s.get("params"),
+                              "ms_per_sample": sum(per_sample.values()), "per_sample_ms": per_sample,
+                              "setup_ms": setup, "resource_bytes": bytes_of(s.get("extra", {})),
+                              "gl_renderer": s.get("gl_renderer")})
+for p in glob.glob(os.path.join(raw, "sweep_*", "results.json")):
+    for r in (load(p) or {}).get("rows", []):
+        for ch, m in r.items():
+            if isinstance(m, dict) and "equal_error_time_ratio" in m:
+                report["equal_error"].append({"scene": r["scene"], "method": r["method"], "label": r["label"],
+                                              "spp": r["spp"], "channel": ch, "relmse": m["relmse"],
+                                              "time_ms": r["time_ms"], "ratio": m["equal_error_time_ratio"],
+                                              "extrapolated": m.get("equal_error_extrapolated")})
+report["gl_renderer"] = renderer
+json.dump(report, open(os.path.join(out, "gpu_bench.json"), "w"), indent=1)
+md.append(f"GL_RENDERER: {renderer}; vgi: {vgi}; {seconds} s{' (--quick)' if quick else ''}\n")
+md.append("| voxelizer | scene | resolution | ms | recall | precision |\n|---|---|---|---|---|---|")
+for v in report["voxelizers"]:
+    md.append(f'| {v["voxelizer"]} | {v["scene"]} | {"x".join(map(str, v["resolution"] or []))} | '
+              f'{v["total_ms"]:.1f} | {v["recall"]:.4f} | {v["precision"]:.4f} |')
+md.append("\n| tracer (GLSL) | max dist | rays | Mrays/s | GLSL = C++ |\n|---|---|---|---|---|")
+for r in report["traverse"]:
+    md.append(f'| {r["tracer"]} | {r["max_dist"]:.3g} | {r["rays"]} | {r["gl_mrays_per_s"]:.1f} | {r["gl_equals_cpu"]} |')
+md.append("\n| run | method | size | ms / sample | per-sample passes (ms) | set-up ms | resource MiB |\n|---|---|---|---|---|---|---|")
+for m in report["methods"]:
+    passes = ", ".join(f"{k} {v:.2f}" for k, v in sorted(m["per_sample_ms"].items(), key=lambda x: -x[1]))
+    mib = ", ".join(f"{k} {v / 2**20:.1f}" for k, v in m["resource_bytes"].items())
+    md.append(f'| {m["run"]} | {m["method"]} | {m["size"]} | {m["ms_per_sample"]:.2f} | {passes} | '
+              f'{sum(m["setup_ms"].values()):.1f} | {mib} |')
+md.append("\n| scene | method | spp | channel | relMSE | ms | equal-error time ratio (exact / method) |"
+          "\n|---|---|---|---|---|---|---|")
+for r in report["equal_error"]:
+    md.append(f'| {r["scene"]} | {r["label"]} | {r["spp"]} | {r["channel"]} | {r["relmse"]:.4f} | {r["time_ms"]:.0f} | '
+              f'{r["ratio"]:.2f}{" (extrapolated)" if r["extrapolated"] else ""} |')
+open(os.path.join(out, "gpu_bench.md"), "w").write("\n".join(md) + "\n")
+print(f"gpu_bench: wrote {out}/gpu_bench.json and gpu_bench.md ({len(report['voxelizers'])} voxelizer, "
+      f"{len(report['traverse'])} tracer, {len(report['methods'])} method rows; {seconds} s)")
+PY
