@@ -51,10 +51,12 @@
 
 #include "core/error.h"
 #include "core/shader_library.h"
+#include "illum/framework/compute_pass.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/cone_kit.h"
 #include "illum/kits/gather_kit.h"
+#include "shaders/illum/vct_ao/params.glsl"
 
 namespace vgi {
 
@@ -104,27 +106,28 @@ class VctAoMethod : public Method {
     kit_.prepare(f, gather_);
     ShaderDefines defs;
     vol_.addDefines(defs);
-    prog_ = shaders.program({"illum/vct_ao/ao.comp.glsl"}, defs);
-    shaders.setUniform(prog_, "uScale", kit_.scale());
-    shaders.setUniformArray(prog_, "uCones", constellation_.data(), int(constellation_.size()));
-    shaders.setUniform(prog_, "uTanHalf", std::tan(glm::radians(aperture_ * overlap_) * 0.5f));
-    shaders.setUniform(prog_, "uRadius", radius_);
-    shaders.setUniform(prog_, "uOffset", offset_ * f.resources.get<GridBox>().voxelDiagonal());
-    shaders.setUniform(prog_, "uFalloff", falloff_);
-    shaders.setUniform(prog_, "uSeed", f.request.seed);
-    shaders.setUniform(prog_, "uGuard", guard_ ? 1 : 0);
+    ao_.create(f, {"illum/vct_ao/ao.comp.glsl"}, defs, kPassGBuffer);
+    shaders.setUniform(ao_.program(), "uScale", kit_.scale());
+    shared::VctAoParams& p = ao_.params();
+    VGI_CHECK(constellation_.size() <= std::size(p.cones));
+    std::copy(constellation_.begin(), constellation_.end(), p.cones);
+    p.tanHalf = std::tan(glm::radians(aperture_ * overlap_) * 0.5f);
+    p.radius = radius_;
+    p.offset = offset_ * f.resources.get<GridBox>().voxelDiagonal();
+    p.falloff = falloff_;
+    p.seed = f.request.seed;
+    p.guard = guard_ ? 1 : 0;
   }
   bool addSample(Frame& f, int k) override {
     {
       auto s = f.profiler.scope("ao_cones");
-      glUseProgram(prog_);
-      f.resources.get<ConeVolume>().bind(f.shaders(), prog_, vol_.step);
-      f.gbuffer().bind();
       const int ring = cones_ == 3 ? 3 : cones_ - 1;
       const float period = 2.0f * float(M_PI) / float(ring);
-      f.shaders().setUniform(prog_, "uTurn", k == 0 ? 0.0f : period * halton(k, 3));
-      f.shaders().setUniform(prog_, "uJitter", jitter_ ? period : 0.0f);
-      kit_.dispatchGather(f.shaders(), prog_, int(constellation_.size()), 16);
+      ao_.params().turn = k == 0 ? 0.0f : period * halton(k, 3);
+      ao_.params().jitter = jitter_ ? period : 0.0f;
+      ao_.use(f);
+      f.resources.get<ConeVolume>().bind(f.shaders(), ao_.program(), vol_.step);
+      kit_.dispatchGather(f.shaders(), ao_.program(), int(constellation_.size()), 16);
     }
     kit_.resolve(f);
     return true;
@@ -147,7 +150,7 @@ class VctAoMethod : public Method {
   GatherSettings gather_;
   std::vector<glm::vec4> constellation_;
   GatherKit kit_;
-  unsigned prog_ = 0;
+  ComputePass<shared::VctAoParams> ao_;
 };
 
 }  // namespace

@@ -36,11 +36,13 @@
 #include <glad/gl.h>
 
 #include "core/shader_library.h"
+#include "illum/framework/compute_pass.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/gather_kit.h"
 #include "illum/kits/shared_params.h"
 #include "illum/kits/tracer_kit.h"
 #include "illum/resources/or_mip_pyramid.h"
+#include "shaders/illum/voxel_ao/params.glsl"
 #include "traverse/gl_ray_tracer.h"
 
 namespace vgi {
@@ -71,22 +73,22 @@ class VoxelAoMethod : public Method {
     kit_.prepare(f, gather_);
     ShaderDefines defs;
     addTracerDefine(defs, tracer_);
-    prog_ = shaders.program({"illum/voxel_ao/ao.comp.glsl"}, defs);
+    ao_.create(f, {"illum/voxel_ao/ao.comp.glsl"}, defs, kPassGBuffer);
     const float diagonal = f.resources.get<GridBox>().voxelDiagonal();
-    kit_.setFrameUniforms(shaders, prog_);
-    shaders.setUniform(prog_, "uRadius", radius_);
-    shaders.setUniform(prog_, "uOffset", offset_ * diagonal);
-    shaders.setUniform(prog_, "uVoxelDiagonal", diagonal);
-    shaders.setUniform(prog_, "uPassThrough", passThrough_ ? 1 : 0);
+    kit_.setFrameUniforms(shaders, ao_.program());
+    shared::VoxelAoParams& p = ao_.params();
+    p.radius = radius_;
+    p.offset = offset_ * diagonal;
+    p.voxelDiagonal = diagonal;
+    p.passThrough = passThrough_ ? 1 : 0;
   }
   bool addSample(Frame& f, int k) override {
     {
       auto s = f.profiler.scope("ao");
-      glUseProgram(prog_);
-      bindTracer(f.resources, f.shaders(), prog_);
-      f.gbuffer().bind();
-      kit_.setSampleUniforms(f.shaders(), prog_, k);
-      kit_.dispatchGather(f.shaders(), prog_, kit_.settings().rays, GatherKit::kRaysPerDispatch);
+      ao_.use(f);
+      bindTracer(f.resources, f.shaders(), ao_.program());
+      kit_.setSampleUniforms(f.shaders(), ao_.program(), k);
+      kit_.dispatchGather(f.shaders(), ao_.program(), kit_.settings().rays, GatherKit::kRaysPerDispatch);
     }
     kit_.resolve(f);
     return true;
@@ -105,7 +107,7 @@ class VoxelAoMethod : public Method {
   std::string tracer_;
   BinaryGridNeed grid_;
   GatherKit kit_;
-  unsigned prog_ = 0;
+  ComputePass<shared::VoxelAoParams> ao_;
 };
 
 }  // namespace

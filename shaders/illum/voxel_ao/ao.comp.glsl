@@ -1,8 +1,8 @@
 // voxel_ao's gather (illum/methods/voxel_ao.cpp): per gather pixel, N cosine rays of
 // the kit's interleaved sets (../gather/gather.glsl) from the G-buffer point,
-// started uOffset along the normal, traced through the binary grid with the
+// started offset along the normal, traced through the binary grid with the
 // chosen GLSL tracer up to the radius; AO = the fraction that reach it.
-// With uPassThrough, a hit within a voxel diagonal of the receiver's tangent
+// With passThrough, a hit within a voxel diagonal of the receiver's tangent
 // plane may be the receiver's own voxel and the ray goes on past it (up to
 // three times), as nearfield's rays do.
 // Output: rgb = AO, w = 1 where there is a surface, 0 elsewhere.
@@ -11,14 +11,12 @@
 #include "../../shared/sampling.glsl"
 #include "../../traverse/tracer.glsl"
 #include "../gather/gather.glsl"
+#include "params.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uAo;
 
-uniform float uRadius;        // r, world units
-uniform float uOffset;        // start offset along the normal, world units
-uniform float uVoxelDiagonal;
-uniform int uPassThrough;
+layout(std140, binding = UBO_PASS) uniform Pass { VoxelAoParams pass; };
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
@@ -30,18 +28,18 @@ void main() {
     return;
   }
   Basis frame = makeBasis(n);
-  vec3 origin = p + n * uOffset;
+  vec3 origin = p + n * pass.offset;
   int open = 0;
   for (int r = uBatchFirst; r < uBatchEnd; ++r) {
     vec3 d = gatherDirection(q, r, frame);
-    ResumableRay ray = resumableRay(origin, d, uRadius);
+    ResumableRay ray = resumableRay(origin, d, pass.radius);
     while (true) {
       if (!nextHit(ray)) {
         ++open;
         break;
       }
-      precise float height = dot(d, n) * hitDistance(ray) + uOffset;  // of the hit above the receiver's plane
-      if (uPassThrough == 0 || height >= uVoxelDiagonal || !passHit(ray, uVoxelDiagonal)) break;
+      precise float height = dot(d, n) * hitDistance(ray) + pass.offset;  // of the hit above the receiver's plane
+      if (pass.passThrough == 0 || height >= pass.voxelDiagonal || !passHit(ray, pass.voxelDiagonal)) break;
     }
   }
   imageStore(uAo, q, vec4(gatheredBefore(uAo, q).xyz + vec3(float(open) / float(uRays)), 1.0f));
