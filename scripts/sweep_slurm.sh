@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# A `vgi sweep` on a Slurm cluster: every render of the experiment as one job array (one task per
+# render, each an independent `vgi render`), then the results collected from what finished.
+#   scripts/sweep_slurm.sh EXPERIMENT OUT [sbatch options…]
+# VGI: the vgi the tasks run (default: build/apps/vgi, or a bundle's bin/vgi on shared storage); the
+# experiment's relative scene paths are the current folder's, as with `vgi sweep`. It waits for the
+# array (sbatch --wait), so run it inside `salloc`/`tmux` or as a job of its own on a long sweep.
+# An interrupted or partly failed array is resumed by running the script again: finished renders
+# are kept (their JSON says so) and only the others are listed again.
+set -euo pipefail
+[ $# -ge 2 ] || { echo "usage: sweep_slurm.sh EXPERIMENT OUT [sbatch options...]" >&2; exit 2; }
+experiment=$1
+out=$2
+shift 2
+vgi=${VGI:-build/apps/vgi}
+mkdir -p "$out"
+jobs="$out/jobs.txt"
+"$vgi" sweep "$experiment" -o "$out" --print-commands > "$jobs.all"
+# Only the renders not done yet (a finished one's stats JSON has every sample).
+: > "$jobs"
+while IFS= read -r cmd; do
+  stem=$(printf '%s\n' "$cmd" | sed -n "s/.*'-o' '\\([^']*\\)\\.exr'.*/\\1/p")
+  if [ -n "$stem" ] && [ -f "$stem.json" ] &&
+     python3 -c "import json,sys; s=json.load(open(sys.argv[1])); sys.exit(0 if s.get('spp_completed',0)>=s.get('spp',1) or s.get('time_limited') else 1)" "$stem.json" 2> /dev/null; then
+    continue
+  fi
+  printf '%s\n' "$cmd" >> "$jobs"
+done < "$jobs.all"
+n=$(wc -l < "$jobs")
+echo "sweep_slurm: $n of $(wc -l < "$jobs.all") renders to run"
+if [ "$n" -gt 0 ]; then
+  mkdir -p "$out/slurm"
+  sbatch --wait --array="1-$n" --job-name=vgi-sweep --output="$out/slurm/%A_%a.log" "$@" \
+    --wrap "eval \"\$(sed -n \${SLURM_ARRAY_TASK_ID}p '$jobs')\"" || echo "sweep_slurm: some tasks failed (see $out/slurm/)"
+fi
+"$vgi" sweep "$experiment" -o "$out" --collect
