@@ -32,6 +32,7 @@ class GlPyramid {
   void bind(ShaderLibrary& shaders, unsigned program) const;
   const GridBox& box() const { return box_; }
   uint32_t levels() const { return params_.levels; }
+  size_t bytes() const { return size_t(totalWords_) * 4; }  // its SSBO
 
   // Level 0 := the grid's words (a GPU copy, or an upload), then every level
   // above by one dispatch of shaders/traverse/or_mip.comp.glsl — the index

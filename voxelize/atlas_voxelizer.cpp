@@ -378,6 +378,24 @@ glm::ivec2 AtlasVoxelizer::insertStaticMeshes(Profiler& prof, nlohmann::json& at
   return {int(lost), int(sharedTotal)};
 }
 
+double AtlasVoxelizer::gpuBytes() const {
+  const double cells = double(request_.box.cellCount());
+  double bytes = double(static_->bytes()) + double(frame_->bytes());
+  for (const ValueBuffers* v : {staticValues_.get(), frameValues_.get()}) {
+    if (!v) continue;
+    bytes += cells * 4.0;
+    for (unsigned s : v->sums) bytes += s ? cells * 16.0 : 0.0;
+  }
+  if (radianceSums_) bytes += cells * 16.0;
+  const double R = double(std::max(maxResolution_, 1));
+  bytes += R * R * (16.0 + 4.0);  // position + triangle id
+  if (valueTargets_[0]) bytes += R * R * 16.0 * 3.0;
+  if (radianceTarget_) bytes += R * R * 16.0;
+  for (const auto& m : meshes_)
+    bytes += double(m->corners) * kVertexFloats * 4.0 + double(m->lineIndices) * 4.0;
+  return bytes;
+}
+
 AtlasVoxelizer::~AtlasVoxelizer() {
   for (auto& m : meshes_) {
     unsigned b[2] = {m->vbo, m->ebo};

@@ -55,6 +55,8 @@ class AtlasVoxelizer {
   // "points" (of the last frame, static included), "atlas_resolution",
   // "atlases" (per mesh), "triangles_without_texels", "static_meshes", "dynamic_meshes".
   nlohmann::json stats() const;
+  // The GPU memory it holds: the static and frame grids, the value sums, the atlas targets, the meshes.
+  double gpuBytes() const;
 
  private:
   struct MeshGpu;

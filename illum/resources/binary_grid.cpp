@@ -71,10 +71,12 @@ class BinaryGridResource : public Resource {
       counted_ = true;
     }
     const glm::uvec3 r = need_.resolution;
-    return {{"resolution", {r.x, r.y, r.z}},
-            {"voxelizer", need_.voxelizer},
-            {"voxels_set", voxelsSet_},
-            {"stats", voxelizerStats_}};
+    // Where it lives: the atlas voxelizer's grids, sums and targets on the GPU, another voxelizer's
+    // grid on the host (the pyramid holds its GPU copy).
+    const double bytes = atlas_ ? atlas_->gpuBytes() : double(grid_->words().size()) * 4.0;
+    return {{"resolution", {r.x, r.y, r.z}},     {"voxelizer", need_.voxelizer},
+            {"voxels_set", voxelsSet_},          {"bytes", bytes},
+            {"memory", atlas_ ? "gpu" : "host"}, {"stats", voxelizerStats_}};
   }
 
   void* offer(const std::type_info& t) override {

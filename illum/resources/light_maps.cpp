@@ -99,6 +99,7 @@ LightMaps::LightMaps(const std::vector<Light>& lights, const GpuScene& gpu, int 
                      "parameter 'shadow_res' = " + std::to_string(resolution) + " with " +
                          std::to_string(lights.size()) + " light(s) (" + std::to_string(layers) +
                          " light-map faces" + (reflective ? ", reflective" : "") + ")");
+  bytes_ = (double(layers) * texel + 4.0) * double(resolution) * double(resolution);
   glCreateTextures(GL_TEXTURE_2D_ARRAY, channels, textures_);
   for (int c = 0; c < channels; ++c) {
     glTextureStorage3D(textures_[c], 1, formats[c], resolution, resolution, layers);
@@ -231,8 +232,8 @@ nlohmann::json LightMaps::describe() const {
   for (auto& r : layout_.ranges) (r.y == 6 ? cube : single)++;
   int drawn = 0;
   for (bool d : layout_.drawn) drawn += d ? 1 : 0;
-  return {{"faces", faceCount()},  {"faces_drawn", drawn},      {"cube", cube},
-          {"single_face", single}, {"resolution", resolution_}, {"reflective", reflective_}};
+  return {{"faces", faceCount()},      {"faces_drawn", drawn},      {"cube", cube},   {"single_face", single},
+          {"resolution", resolution_}, {"reflective", reflective_}, {"bytes", bytes_}};
 }
 
 namespace {

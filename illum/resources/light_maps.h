@@ -73,6 +73,7 @@ class LightMaps {
   LightFaceLayout layout_;
   int resolution_;
   bool reflective_;
+  double bytes_ = 0;  // the textures and the depth buffer, as allocated
   uint64_t renders_ = 0;
   unsigned faceBuffer_ = 0, rangeBuffer_ = 0, fbo_ = 0, depth_ = 0;
   unsigned textures_[4] = {0, 0, 0, 0};  // distance, position, normal, radiance

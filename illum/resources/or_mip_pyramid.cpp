@@ -29,6 +29,11 @@ class OrMipPyramidResource : public Resource {
     return true;
   }
   void* offer(const std::type_info& t) override { return offerOf(t, gl_.get(), cpu_.get()); }
+  nlohmann::json stats() override {
+    if (gl_) return {{"levels", gl_->levels()}, {"bytes", gl_->bytes()}, {"memory", "gpu"}};
+    if (cpu_) return {{"bytes", cpu_->words().size() * 4}, {"memory", "host"}};
+    return nullptr;
+  }
 
  private:
   BinaryGridNeed grid_;
@@ -47,7 +52,7 @@ ResourceKind orMipPyramidKind() {
           [](const ResourceNeed& n, SceneResources&) -> std::unique_ptr<Resource> {
             return std::make_unique<OrMipPyramidResource>(n.spec<OrMipPyramidNeed>());
           },
-          ""};
+          "pyramid"};
 }
 
 }  // namespace vgi
