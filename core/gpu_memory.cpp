@@ -1,9 +1,12 @@
 #include "core/gpu_memory.h"
 
 #include <glad/gl.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 
@@ -11,6 +14,8 @@ namespace vgi {
 
 namespace {
 constexpr GLenum kGpuMemoryInfoTotalAvailableNvx = 0x9048;  // GL_NVX_gpu_memory_info, KiB
+constexpr GLenum kGpuMemoryInfoCurrentAvailableNvx = 0x9049;
+constexpr GLenum kTextureFreeMemoryAti = 0x87FC;  // GL_ATI_meminfo: 4 KiB values, [0] = total free
 
 bool hasExtension(const char* name) {
   GLint n = 0;
@@ -48,6 +53,30 @@ void checkSsboAllocation(double bytes, const std::string& what) {
     fail(what, " needs a ", mib(bytes), " MiB storage buffer; this GL's largest is ", mib(double(maxBlock)),
          " MiB (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)");
   checkGpuAllocation(bytes, what);
+}
+
+nlohmann::json measuredMemory(bool gl) {
+  nlohmann::json m;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  m["peak_rss_bytes"] = double(usage.ru_maxrss) * 1024.0;  // Linux: KiB
+  std::ifstream statm("/proc/self/statm");
+  double pages = 0, resident = 0;
+  if (statm >> pages >> resident) m["rss_bytes"] = resident * double(sysconf(_SC_PAGE_SIZE));
+  if (gl && hasExtension("GL_NVX_gpu_memory_info")) {
+    GLint total = 0, available = 0;
+    glGetIntegerv(kGpuMemoryInfoTotalAvailableNvx, &total);
+    glGetIntegerv(kGpuMemoryInfoCurrentAvailableNvx, &available);
+    m["gpu_total_bytes"] = double(total) * 1024.0;
+    m["gpu_used_bytes"] = double(total - available) * 1024.0;  // by every process on the device
+    m["gpu_report"] = "GL_NVX_gpu_memory_info";
+  } else if (gl && hasExtension("GL_ATI_meminfo")) {
+    GLint free[4] = {0, 0, 0, 0};
+    glGetIntegerv(kTextureFreeMemoryAti, free);
+    m["gpu_free_texture_bytes"] = double(free[0]) * 1024.0;
+    m["gpu_report"] = "GL_ATI_meminfo";
+  }
+  return m;
 }
 
 }  // namespace vgi

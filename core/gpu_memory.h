@@ -2,6 +2,7 @@
 // what asked for them, against a budget this GL and machine can state — not
 // left to fail in the driver ("out of memory", an incomplete framebuffer).
 #pragma once
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 namespace vgi {
@@ -16,5 +17,11 @@ double gpuMemoryBudget();
 void checkGpuAllocation(double bytes, const std::string& what);
 // The same for one shader storage buffer, which must also fit GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
 void checkSsboAllocation(double bytes, const std::string& what);
+
+// What the process measurably uses, against which the resources' own byte counts can be read:
+// resident and peak resident memory (where llvmpipe keeps every GL object), and with `gl` (a
+// current context) the device's own report where the driver gives one — GL_NVX_gpu_memory_info
+// (NVIDIA: total and available dedicated memory) or GL_ATI_meminfo (free texture memory).
+nlohmann::json measuredMemory(bool gl);
 
 }  // namespace vgi

@@ -8,7 +8,9 @@
 #   methods      every GL method's per-pass time per sample at 1920×1080 and 1024×768 on the Cornell
 #                box and Sibenik at its defaults, and the papers' settings (VGI: nearfield at ¼
 #                resolution, 1024×768; voxelpath 64 spp with two bounces), set-up passes apart, and the
-#                bytes each resource reports (value textures, cone volume, light maps, …)
+#                bytes each resource reports (light maps, grid, pyramid, value textures, cone volume,
+#                BVH) beside what the process measurably uses (peak resident memory; on NVIDIA the
+#                driver's used dedicated memory, GL_NVX_gpu_memory_info)
 #   equal error  the same-device experiment (scenes/experiments/same-device-gi.json): each method
 #                against reference_gl on the same GPU, the equal-error time ratio
 # --quick runs the same code at tiny sizes on the Cornell box only (the suite runs it on llvmpipe, so
@@ -168,6 +170,7 @@ for p in sorted(glob.glob(os.path.join(raw, "method_*.json")) + glob.glob(os.pat
                               "size": f'{s["width"]}x{s["height"]}', "spp": n, "params": s.get("params"),
                               "ms_per_sample": sum(per_sample.values()), "per_sample_ms": per_sample,
                               "setup_ms": setup, "resource_bytes": bytes_of(s.get("extra", {})),
+                              "measured_memory": s.get("memory", {}),
                               "gl_renderer": s.get("gl_renderer")})
 for p in glob.glob(os.path.join(raw, "sweep_*", "results.json")):
     for r in (load(p) or {}).get("rows", []):
@@ -187,12 +190,16 @@ for v in report["voxelizers"]:
 md.append("\n| tracer (GLSL) | max dist | rays | Mrays/s | GLSL = C++ |\n|---|---|---|---|---|")
 for r in report["traverse"]:
     md.append(f'| {r["tracer"]} | {r["max_dist"]:.3g} | {r["rays"]} | {r["gl_mrays_per_s"]:.1f} | {r["gl_equals_cpu"]} |')
-md.append("\n| run | method | size | ms / sample | per-sample passes (ms) | set-up ms | resource MiB |\n|---|---|---|---|---|---|---|")
+md.append("\n| run | method | size | ms / sample | per-sample passes (ms) | set-up ms | resource MiB | measured MiB |"
+          "\n|---|---|---|---|---|---|---|---|")
 for m in report["methods"]:
     passes = ", ".join(f"{k} {v:.2f}" for k, v in sorted(m["per_sample_ms"].items(), key=lambda x: -x[1]))
     mib = ", ".join(f"{k} {v / 2**20:.1f}" for k, v in m["resource_bytes"].items())
+    mem = m["measured_memory"]
+    measured = f'peak RSS {mem.get("peak_rss_bytes", 0) / 2**20:.0f}'
+    if "gpu_used_bytes" in mem: measured += f', GPU used {mem["gpu_used_bytes"] / 2**20:.0f}'
     md.append(f'| {m["run"]} | {m["method"]} | {m["size"]} | {m["ms_per_sample"]:.2f} | {passes} | '
-              f'{sum(m["setup_ms"].values()):.1f} | {mib} |')
+              f'{sum(m["setup_ms"].values()):.1f} | {mib} | {measured} |')
 md.append("\n| scene | method | spp | channel | relMSE | ms | equal-error time ratio (exact / method) |"
           "\n|---|---|---|---|---|---|---|")
 for r in report["equal_error"]:

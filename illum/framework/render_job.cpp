@@ -11,6 +11,7 @@
 
 #include "core/build_info.h"
 #include "core/error.h"
+#include "core/gpu_memory.h"
 #include "core/image.h"
 #include "core/json_text.h"
 #include "core/output_files.h"
@@ -256,6 +257,7 @@ nlohmann::json RenderJob::describe() const {
   run["needs"] = needs.names();
   run["accumulation"] = opt_.accumulation == Accumulation::Compensated ? "compensated" : "plain";
   run["aovs"] = opt_.aovs;
+  run["memory"] = measuredMemory(gl != nullptr);  // what the process uses, beside each resource's bytes
   // What renders this again: `vgi render --job THIS.json` (the method as resolved, a preset's included).
   RenderOptions job = opt_;
   job.method = info_->name;
