@@ -24,10 +24,11 @@ namespace {
 // allocations it leaks there then have stacks in "<unknown module>", which no
 // LeakSanitizer suppression can name. Kept loaded (RTLD_NODELETE), their
 // stacks name the driver, and scripts/lsan.supp suppresses exactly Mesa's.
+// (libOSMesa is not preloaded: its backend loads it with RTLD_NODELETE itself, and only when chosen.)
 void keepMesaLoaded() {
   static const bool once = [] {
     for (const char* lib : {"libEGL_mesa.so.0", "swrast_dri.so",
-                            "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so", "libOSMesa.so.8", "libglapi.so.0"})
+                            "/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so", "libglapi.so.0"})
       dlopen(lib, RTLD_NOW | RTLD_GLOBAL | RTLD_NODELETE);
     return true;
   }();
