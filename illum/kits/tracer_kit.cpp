@@ -19,23 +19,11 @@ void bindTracer(const SceneResources& res, ShaderLibrary& shaders, unsigned prog
   if (const GpuBvh* bvh = res.tryGet<GpuBvh>()) bvh->bind();
 }
 
-namespace {
-
-int constantOf(const std::string& name, std::initializer_list<std::pair<const char*, int>> table,
-               const char* what) {
-  for (const auto& [n, c] : table)
-    if (name == n) return c;
-  fail("unknown ", what, " '", name, "'");
-}
-
-}  // namespace
-
 int hitPointConstant(const std::string& name) {
-  return constantOf(name,
-                    {{"entry", shared::VOXEL_HIT_ENTRY},
-                     {"centre", shared::VOXEL_HIT_CENTRE},
-                     {"plane", shared::VOXEL_HIT_PLANE}},
-                    "hitpoint");
+  if (name == "entry") return shared::VOXEL_HIT_ENTRY;
+  if (name == "centre") return shared::VOXEL_HIT_CENTRE;
+  if (name == "plane") return shared::VOXEL_HIT_PLANE;
+  fail("unknown hitpoint '", name, "'");  // the parameter's choices are checked when it is read
 }
 
 void VoxelHits::set(unsigned program, const shared::VoxelHitParams& params) {
