@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/json_text.h"
+#include "core/smooth_normals.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -28,6 +29,10 @@ namespace vgi {
 // 1.8e18) and far from float overflow in squared distances; light and
 // emitted power such that sums over 10⁶ samples stay finite in float.
 constexpr float kMaxCoordinate = 1e12f, kMaxRadiometric = 1e20f;
+// Normals generated for meshes without them: smoothed across edges up to this angle; a vertex
+// position with more distinct face normals than the bound stays flat (core/smooth_normals.h).
+constexpr float kMaxSmoothingAngleDegrees = 60.0f;
+constexpr int kMaxDistinctNormalsPerPosition = 1024;
 
 void checkSceneRanges(const Scene& scene, const std::string& origin) {
   auto coordinate = [&](glm::vec3 v, const std::string& what) {
@@ -532,6 +537,31 @@ struct AssimpReader {
     for (unsigned k = 0; k < n->mNumChildren; ++k) node(n->mChildren[k], M);
   }
 
+  // A mesh without normals gets smooth ones (core/smooth_normals.h), one per corner: its
+  // corners are unshared so that a vertex on a crease can take a normal per side.
+  void addSmoothNormals(Mesh& m) {
+    SmoothNormals sn = smoothCornerNormals(m.positions, m.triangles, kMaxSmoothingAngleDegrees,
+                                           kMaxDistinctNormalsPerPosition);
+    if (sn.flatPositions > 0)
+      scene.report.warnings.push_back(path + ": mesh '" + m.name + "': " + std::to_string(sn.flatPositions) +
+                                      " vertex position(s) shared by more than " +
+                                      std::to_string(kMaxDistinctNormalsPerPosition) +
+                                      " differently oriented triangles keep flat normals");
+    Mesh u;
+    u.positions.reserve(sn.normals.size());
+    for (const glm::uvec3& tri : m.triangles)
+      for (int k = 0; k < 3; ++k) {
+        u.positions.push_back(m.positions[tri[k]]);
+        if (!m.uvs.empty()) u.uvs.push_back(m.uvs[tri[k]]);
+      }
+    u.triangles.resize(m.triangles.size());
+    for (uint32_t t = 0; t < u.triangles.size(); ++t) u.triangles[t] = {3 * t, 3 * t + 1, 3 * t + 2};
+    m.positions.swap(u.positions);
+    m.uvs.swap(u.uvs);
+    m.triangles.swap(u.triangles);
+    m.normals = std::move(sn.normals);
+  }
+
   void mesh(const aiMesh* am, const glm::mat4& M) {
     if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) return;  // points/lines sorted out
     Mesh m;
@@ -557,6 +587,7 @@ struct AssimpReader {
       if (face.mNumIndices != 3) continue;
       m.triangles.push_back({face.mIndices[0], face.mIndices[1], face.mIndices[2]});
     }
+    if (!am->mNormals) addSmoothNormals(m);
     validateMesh(m, scene.report);
     if (!m.triangles.empty()) {
       scene.meshes.push_back(std::move(m));
@@ -646,7 +677,6 @@ size_t appendModelFile(const std::string& path, Scene& scene) {
   if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".ply")
     fail("model file '", path, "': unsupported format '", ext, "' (obj, gltf, glb, ply)");
   Assimp::Importer importer;
-  importer.SetPropertyFloat(AI_CONFIG_PP_GSN_MAX_SMOOTHING_ANGLE, 60.0f);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   // Read with triangulation only and check the raw vertices first: later steps
   // (vertex joining, normal generation) silently drop triangles with NaN corners.
@@ -661,8 +691,10 @@ size_t appendModelFile(const std::string& path, Scene& scene) {
              ", ", p.y, ", ", p.z, ")");
     }
   }
-  ai = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
-                                    aiProcess_SortByPType | aiProcess_ValidateDataStructure);
+  // Normals are not generated here (aiProcess_GenSmoothNormals is quadratic in the corners at one
+  // position: AssimpReader::addSmoothNormals does it in linear time).
+  ai = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                                    aiProcess_ValidateDataStructure);
   if (!ai) fail("cannot load model '", path, "': ", importer.GetErrorString());
   if (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) fail("model '", path, "' is incomplete (no meshes?)");
   AssimpReader r{ai, path, fs::path(path).parent_path(), scene, int(scene.materials.size()), {}, 0};
