@@ -6,6 +6,11 @@
 // by count, as in Bashford-Rogers et al., AVG). §3.2: static meshes are
 // voxelized once; each frame copies that grid and inserts the dynamic meshes.
 //
+// The atlas holds positions as offsets from the grid's origin, not world
+// positions: far from the world's origin (georeferenced coordinates) a float's
+// step is a large part of a cell, and interpolating world positions snapped
+// every point of a unit box at 10^7 onto its corners (recall 0.00008).
+//
 // Sliver triangles may cover no texel centre when filled, so the atlas is drawn
 // three times — corners as points, edges as lines (pulled back onto their
 // triangle), then the filled triangles on top, which keep the regular lattice
@@ -28,6 +33,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -52,16 +58,22 @@ void insertAtlasPoints(const AtlasSamples& atlas, BinaryGrid& grid) {
     grid.words()[b.word] |= b.bit;
     const int tri = atlas.triangles.empty() ? -1 : atlas.triangles[i];
     if (atlas.footprint <= 0.0f || tri < 0) continue;
-    glm::vec3 a = shared::worldToGrid(g, atlas.corners[3 * size_t(tri)]);
-    glm::vec3 bb = shared::worldToGrid(g, atlas.corners[3 * size_t(tri) + 1]);
-    glm::vec3 c = shared::worldToGrid(g, atlas.corners[3 * size_t(tri) + 2]);
-    shared::CellRange r = shared::footprintCells(g, shared::worldToGrid(g, glm::vec3(p)), atlas.footprint);
+    glm::vec3 a = shared::offsetToGrid(g, atlas.corners[3 * size_t(tri)]);
+    glm::vec3 bb = shared::offsetToGrid(g, atlas.corners[3 * size_t(tri) + 1]);
+    glm::vec3 c = shared::offsetToGrid(g, atlas.corners[3 * size_t(tri) + 2]);
+    shared::CellRange r = shared::footprintCells(g, shared::offsetToGrid(g, glm::vec3(p)), atlas.footprint);
     for (int z = r.lo.z; z <= r.hi.z; ++z)
       for (int y = r.lo.y; y <= r.hi.y; ++y)
         for (int x = r.lo.x; x <= r.hi.x; ++x)
           if (shared::triangleOverlapsBox(glm::vec3(x, y, z) + 0.5f, glm::vec3(0.5f), a, bb, c))
             grid.set(uint32_t(x), uint32_t(y), uint32_t(z));
   }
+}
+
+// Object → offset from the grid's origin, where the atlas keeps its points (atlas_render.vert.glsl).
+// Composed in double, so that a far translation and the grid's origin cancel before rounding.
+glm::mat4 modelToBox(const glm::mat4& objectToWorld, const GridBox& box) {
+  return glm::mat4(glm::translate(glm::dmat4(1.0), -glm::dvec3(box.origin)) * glm::dmat4(objectToWorld));
 }
 
 constexpr int kVertexFloats = 11;  // position 3, atlas uv 2, triangle 1, normal 3, texture uv 2
@@ -416,8 +428,7 @@ AtlasVoxelizer::~AtlasVoxelizer() {
 // mesh's corners and model matrix, the footprint radius.
 void AtlasVoxelizer::setPointCellInputs(unsigned program, const MeshGpu& m, float time) const {
   request_.shaders->setUniform(program, "uFootprint", request_.atlasFootprint * m.texelWorld);
-  glm::mat4 model = m.mesh->objectToWorld(time);
-  request_.shaders->setUniform(program, "uModel", model);
+  request_.shaders->setUniform(program, "uModel", modelToBox(m.mesh->objectToWorld(time), request_.box));
   glBindTextureUnit(TEXUNIT_ATLAS_POSITION, targets_[0]);
   glBindTextureUnit(TEXUNIT_ATLAS_TRIANGLE, targets_[1]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
@@ -437,8 +448,7 @@ void AtlasVoxelizer::renderAtlas(const MeshGpu& m, float time, unsigned prog, in
   glClearBufferfv(GL_COLOR, 0, clearPos);
   glClearBufferiv(GL_COLOR, 1, clearId);
   for (int k = 2; k < targets; ++k) glClearBufferfv(GL_COLOR, k, clearPos);
-  glm::mat4 model = m.mesh->objectToWorld(time);
-  request_.shaders->setUniform(prog, "uModel", model);
+  request_.shaders->setUniform(prog, "uModel", modelToBox(m.mesh->objectToWorld(time), request_.box));
   glBindVertexArray(m.vao);
   // Corners and edges first, the fill last: a texel whose centre a triangle
   // covers keeps that centre's point (the regular lattice the resolution
@@ -466,6 +476,7 @@ void AtlasVoxelizer::insertRadiance(float time, const std::function<void(unsigne
     materials_->bind(*request_.shaders, radianceRenderProg_);
     bindLights(radianceRenderProg_);
     request_.shaders->setUniform(radianceRenderProg_, "uShadowBias", 1.0f);
+    request_.shaders->setUniform(radianceRenderProg_, "uGridOrigin", request_.box.origin);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, radianceMaxBuffer_);
     for (auto& m : meshes_) {
       request_.shaders->setUniform(radianceRenderProg_, "uMaterial", m->material);
@@ -542,7 +553,7 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     points->triangles.assign(size_t(R) * size_t(R), -1);
     glGetTextureSubImage(targets_[1], 0, 0, 0, 0, R, R, 1, GL_RED_INTEGER, GL_INT,
                          GLsizei(points->triangles.size() * sizeof(int)), points->triangles.data());
-    glm::mat4 model = m.mesh->objectToWorld(time);
+    const glm::mat4 model = modelToBox(m.mesh->objectToWorld(time), request_.box);
     points->corners.clear();
     for (const glm::uvec3& tri : m.mesh->triangles)
       for (int k = 0; k < 3; ++k)

@@ -17,9 +17,9 @@ namespace vgi {
 // copies the static grid and inserts only the dynamic meshes at that time.
 // One mesh's atlas as rendered (read back for tests that run the CPU insertion).
 struct AtlasSamples {
-  std::vector<glm::vec4> positions;  // per texel: world position, w = 1 if valid
+  std::vector<glm::vec4> positions;  // per texel: world position − grid origin, w = 1 if valid
   std::vector<int> triangles;        // per texel: the triangle that wrote it, −1 if none
-  std::vector<glm::vec3> corners;    // world corners, 3 per triangle, at the frame's time
+  std::vector<glm::vec3> corners;    // corners − grid origin, 3 per triangle, at the frame's time
   float footprint = 0;               // world radius of each point's footprint (0: the point only)
 };
 

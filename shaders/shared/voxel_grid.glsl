@@ -18,14 +18,22 @@ struct GridParams {
   uvec4 resolution; // W, H, D, D/128 (slabs)
 };
 
-// World position → continuous grid coordinates (cell (i,j,k) spans [i, i+1) × …).
+// An offset from the box's corner (world position − origin) → continuous grid
+// coordinates (cell (i,j,k) spans [i, i+1) × …). Positions kept as offsets keep
+// their precision far from the world's origin, where a float's step can be a
+// large part of a cell (the atlas voxelizer stores its points so).
 // precise: the GPU must round like the CPU (GLSL would fuse the dot products).
-SHARED_FN vec3 worldToGrid(SHARED_IN(GridParams) g, vec3 p) {
-  SHARED_PRECISE vec3 d = p - vec3(g.origin.x, g.origin.y, g.origin.z);
+SHARED_FN vec3 offsetToGrid(SHARED_IN(GridParams) g, vec3 d) {
   SHARED_PRECISE vec3 q = vec3(dot(d, vec3(g.axisX.x, g.axisX.y, g.axisX.z)) * g.axisX.w,
                                dot(d, vec3(g.axisY.x, g.axisY.y, g.axisY.z)) * g.axisY.w,
                                dot(d, vec3(g.axisZ.x, g.axisZ.y, g.axisZ.z)) * g.axisZ.w);
   return q;
+}
+
+// World position → continuous grid coordinates.
+SHARED_FN vec3 worldToGrid(SHARED_IN(GridParams) g, vec3 p) {
+  SHARED_PRECISE vec3 d = p - vec3(g.origin.x, g.origin.y, g.origin.z);
+  return offsetToGrid(g, d);
 }
 
 // Continuous grid coordinates → world position (the inverse of worldToGrid).
@@ -70,9 +78,9 @@ struct PointBit {
   uint bit;
 };
 
-SHARED_FN PointBit pointBit(GridParams g, vec3 worldPosition) {
+SHARED_FN PointBit pointBit(GridParams g, vec3 offset) {  // offset: world position − origin
   PointBit r;
-  vec3 q = worldToGrid(g, worldPosition);
+  vec3 q = offsetToGrid(g, offset);
   if (!insideGrid(g, q)) {
     r.word = 0xffffffffu;
     r.bit = 0u;

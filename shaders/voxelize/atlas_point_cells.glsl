@@ -11,12 +11,12 @@ layout(binding = TEXUNIT_ATLAS_TRIANGLE) uniform isampler2D atlasTriangle;
 layout(std430, binding = BINDING_ATLAS_CORNERS) readonly buffer Corners { float corners[]; };  // the mesh's VBO
 uniform ivec2 uAtlasSize;
 uniform float uFootprint;  // world radius; 0: the point only
-uniform mat4 uModel;
+uniform mat4 uModel;  // object → offset from the grid's origin (AtlasVoxelizer::modelToBox)
 
 vec3 gridCorner(GridParams g, int i) {
   int o = ATLAS_VERTEX_FLOATS * i;
   precise vec4 w = uModel * vec4(corners[o], corners[o + 1], corners[o + 2], 1.0f);  // rounds like the CPU
-  return worldToGrid(g, w.xyz);
+  return offsetToGrid(g, w.xyz);
 }
 
 // False if the texel holds no point.
@@ -24,7 +24,7 @@ bool visitPointCells(ivec2 t) {
   vec4 p = texelFetch(atlasPosition, t, 0);
   if (p.w == 0.0f) return false;
   GridParams g = gridFromUniforms();
-  vec3 q = worldToGrid(g, p.xyz);
+  vec3 q = offsetToGrid(g, p.xyz);  // the atlas holds offsets from the grid's origin
   if (!insideGrid(g, q)) return true;
   uvec3 own = gridCell(g, q);
   visitCell(t, own);

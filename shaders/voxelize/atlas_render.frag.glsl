@@ -1,4 +1,5 @@
-// Atlas texels: world position (w = 1: valid) and the triangle that wrote it;
+// Atlas texels: position as an offset from the grid's origin (w = 1: valid; see
+// atlas_render.vert.glsl) and the triangle that wrote it;
 // with MULTI_VALUED also the world normal, textured albedo and glossy (ks,
 // exponent) for the multi-valued grids, and with VALUE_RADIANCE the diffuse
 // direct light leaving the point (VGI §3, Table 2): every light of the bound
@@ -29,12 +30,13 @@ layout(location = 4) out vec4 outGlossy;
 layout(location = 5) out vec4 outRadiance;
 layout(std430, binding = BINDING_VALUE_RADIANCE_MAX) buffer RadianceMax { uint radianceMaxBits; };
 uniform float uShadowBias;  // light-map texels
+uniform vec3 uGridOrigin;   // lights and light maps are in world space: position = offset + this
 #endif
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vTexUv;
 flat in int vTriangle;
-uniform mat4 uModel;
+uniform mat4 uModel;  // object → offset from the grid's origin
 uniform int uClampToTriangle;
 layout(std430, binding = BINDING_ATLAS_CORNERS) readonly buffer Corners { float corners[]; };  // the VBO: ATLAS_VERTEX_FLOATS per corner
 layout(location = 0) out vec4 outPosition;
@@ -64,14 +66,15 @@ void main() {
   vec3 sn = dot(n, n) > 0.0f ? normalize(n) : vec3(0.0f);  // vNormal may be an unnormalised face normal
   ng = dot(ng, ng) > 0.0f ? normalize(ng) : sn;
   vec3 L = vec3(0.0f);
+  const vec3 pw = p + uGridOrigin;
   for (int i = 0; i < lights.length(); ++i) {
-    LightSample ls = sampleDeltaLight(lights[i], p);
+    LightSample ls = sampleDeltaLight(lights[i], pw);
     if (ls.radiance.x + ls.radiance.y + ls.radiance.z <= 0.0f) continue;
     vec3 g = dot(ls.wi, ng) < 0.0f ? -ng : ng;  // the side facing the light
     vec3 s = dot(sn, g) < 0.0f ? -sn : sn;
     float cosI = dot(ls.wi, s);
     if (cosI <= 0.0f || dot(ls.wi, g) <= 0.0f) continue;
-    if (lightMapLit(i, p, s, g, cosI, uShadowBias, 0.0f)) L += albedo * INV_PI * ls.radiance * cosI;
+    if (lightMapLit(i, pw, s, g, cosI, uShadowBias, 0.0f)) L += albedo * INV_PI * ls.radiance * cosI;
   }
   outRadiance = vec4(L, 1.0f);
   atomicMax(radianceMaxBits, floatBitsToUint(max(max(L.x, L.y), L.z)));

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_util.h"
@@ -373,6 +374,77 @@ TEST(BadInputCli, NonManifoldFansVoxelizeWithTheAtlas) {
   ASSERT_EQ(r.code, 0) << r.output;
   nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("fan.json")));
   EXPECT_GT(s["voxels_set"].get<long>(), 0);
+}
+
+TEST(BadInputCli, CoincidentGeometryLoadsInLinearTime) {
+  // Class 10 of issue 33: assimp's GenSmoothNormals walked every corner at a position for each corner
+  // there (10^4 copies of one triangle took 2 s, 10^6 never loaded); core/smooth_normals.h groups them.
+  // At 3e5 the old loader would run for about half an hour: this test's timeout catches a regression.
+  auto write = [](const std::string& name, const std::function<void(std::ostream&)>& body) {
+    std::ofstream f(tmp(name));
+    body(f);
+    return tmp(name);
+  };
+  const std::string copies = write("copies.obj", [](std::ostream& f) {
+    f << "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    for (int i = 0; i < 300000; ++i) f << "f 1 2 3\n";
+  });
+  // A disc of 1e5 coplanar triangles around one vertex, and a cone of 2000 facets: its apex holds more
+  // distinct normals than the bound and stays flat, with a warning naming the file.
+  auto fan = [](std::ostream& f, int n, float apex) {
+    f << "v 0 0 " << apex << "\n";
+    for (int i = 0; i <= n; ++i)
+      f << "v " << std::cos(2 * M_PI * i / n) << ' ' << std::sin(2 * M_PI * i / n) << " 0\n";
+    for (int i = 0; i < n; ++i) f << "f 1 " << i + 2 << ' ' << i + 3 << '\n';
+  };
+  const std::string disc = write("disc.obj", [&](std::ostream& f) { fan(f, 100000, 0.0f); });
+  const std::string cone = write("cone.obj", [&](std::ostream& f) { fan(f, 2000, 1.0f); });
+  CliRun c = vgi("info --scene " + copies);
+  ASSERT_EQ(c.code, 0) << c.output;
+  EXPECT_NE(c.output.find("triangles  300000 "), std::string::npos) << c.output;
+  CliRun d = vgi("info --scene " + disc);
+  ASSERT_EQ(d.code, 0) << d.output;
+  EXPECT_NE(d.output.find("triangles  100000 "), std::string::npos) << d.output;
+  CliRun k = vgi("info --scene " + cone);
+  ASSERT_EQ(k.code, 0) << k.output;
+  EXPECT_NE(k.output.find("cone.obj: mesh 'defaultobject': 1 vertex position(s) shared by more than 1024"),
+            std::string::npos)
+      << k.output;
+  // And they render: the exact counterpart over the copies, the direct method over the cone.
+  expectRendered(vgi("render --scene " + copies + " --method reference --size 16x16 --spp 1 --quiet -o " +
+                     tmp("copies.exr")),
+                 tmp("copies"));
+  expectRendered(
+      vgi("render --scene " + cone + " --method direct --size 16x16 --spp 1 --quiet -o " + tmp("cone.exr")),
+      tmp("cone"));
+}
+
+TEST(BadInputCli, VoxelGridsFarFromTheOriginAreComplete) {
+  // Class 11 of issue 33: the atlas kept world positions, which far from the origin snap to a float's
+  // step (1 unit at 1e7): a unit box there set 8 voxels, recall 0.00008, with exit 0. Georeferenced-style
+  // coordinates, in the mesh's own vertices and through a scene file's transform; every voxelizer that
+  // finds all of a closed box at the origin finds all of it here (`vgi voxelize` compares with exact).
+  {
+    std::ofstream f(tmp("far_box.obj"));
+    for (int i = 0; i < 8; ++i)
+      f << "v " << 10000000 + (i & 1) << ' ' << 10000000 + (i >> 1 & 1) << ' ' << 10000000 + (i >> 2) << '\n';
+    f << "f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n";
+    std::ofstream(tmp("near_cube.obj"))
+        << "v 0 0 0\nv 10 0 0\nv 0 10 0\nv 10 10 0\nv 0 0 10\nv 10 0 10\nv 0 10 10\n"
+           "v 10 10 10\nf 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n";
+    std::ofstream(tmp("far_cube.json"))
+        << R"({"meshes": [{"path": "near_cube.obj", "transform": {"translate": [5e5, 5e6, 0]}}]})";
+  }
+  for (const std::string scene : {tmp("far_box.obj"), tmp("far_cube.json")})
+    for (const char* voxelizer : {"atlas", "conservative", "hybrid"}) {
+      const std::string stats = tmp(std::string("far_") + voxelizer + ".json");
+      CliRun r = vgi("voxelize --scene " + scene + " --voxels 128 --no-cache --voxelizer " + voxelizer +
+                     " --stats " + stats);
+      ASSERT_EQ(r.code, 0) << r.output;
+      nlohmann::json s = nlohmann::json::parse(std::ifstream(stats));
+      EXPECT_GE(s["recall"].get<double>(), 0.999) << scene << " " << voxelizer;
+      EXPECT_GE(s["precision"].get<double>(), 0.999) << scene << " " << voxelizer;
+    }
 }
 
 }  // namespace vgi

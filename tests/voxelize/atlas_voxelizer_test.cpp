@@ -394,3 +394,55 @@ TEST(AtlasVoxelizer, MultiValuedGridsAverageTheirPoints) {
   EXPECT_EQ(f.gl->errorCount(), 0);
 }
 }  // namespace vgi
+
+namespace vgi {
+// Far from the origin (issue 33, class 11): georeferenced-style coordinates, where a float's step is a
+// large part of a cell. Each voxelizer of the registry finds the same share of the exact grid's cells as
+// for the same scene at the origin, whether the coordinates are the mesh's own or come from its
+// transform. (At 1e7 a float's step is 1: the unit box's corners are exact, its interior is not.)
+TEST(Voxelizers, RecallFarFromTheOriginEqualsRecallAtTheOrigin) {
+  GlFixture f;
+  struct Case {
+    const char* what;
+    glm::vec3 lo, size, translate;
+    bool quad;  // a tilted quad across the box (its cells are not all on grid planes), where floats hold it
+  };
+  const Case cases[] = {
+      {"unit box at 1e7", {1e7f, 1e7f, 1e7f}, glm::vec3(1), glm::vec3(0), false},
+      {"10 m cube at (5e5, 5e6)", {5e5f, 5e6f, 0}, glm::vec3(10), glm::vec3(0), true},
+      {"10 m cube moved to (5e5, 5e6) by its transform", glm::vec3(0), glm::vec3(10), {5e5f, 5e6f, 0}, true}};
+  for (const Case& c : cases) {
+    auto scene = [&](bool far) {
+      const glm::vec3 lo = far ? c.lo : glm::vec3(0);
+      Scene s;
+      test::addBox(s, lo, lo + c.size, test::addMaterial(s, glm::vec3(0.5f)));
+      if (c.quad) {
+        Mesh& q =
+            test::addMesh(s, {{0.1f, 0.2f, 0.1f}, {0.9f, 0.3f, 0.2f}, {0.8f, 0.9f, 0.9f}, {0.2f, 0.7f, 0.8f}},
+                          {{0, 1, 2}, {0, 2, 3}});
+        for (glm::vec3& p : q.positions) p = lo + p * c.size;
+      }
+      if (far && c.translate != glm::vec3(0))
+        for (Mesh& m : s.meshes) m.transform = glm::translate(glm::mat4(1.0f), c.translate);
+      return s;
+    };
+    for (const VoxelizerInfo& v : voxelizerRegistry()) {
+      double recall[2];
+      for (bool far : {false, true}) {
+        Scene s = scene(far);
+        VoxelizeRequest r = f.request(s, {128, 128, 128});
+        Profiler prof(true);
+        nlohmann::json stats;
+        GridComparison cmp = compareGrids(v.run(r, prof, stats), voxelizeExact(s, r.box));
+        recall[far] = cmp.recall();
+        EXPECT_GE(cmp.precision(), 0.999) << v.name << ", " << c.what << (far ? " (far)" : " (origin)");
+      }
+      EXPECT_GE(recall[1], recall[0] - 0.002)
+          << v.name << ", " << c.what << ": recall at the origin " << recall[0];
+      std::printf("  %-12s %-48s recall %.5f at the origin, %.5f far\n", v.name.c_str(), c.what, recall[0],
+                  recall[1]);
+    }
+  }
+  EXPECT_EQ(f.gl->errorCount(), 0);
+}
+}  // namespace vgi
