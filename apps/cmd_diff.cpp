@@ -1,13 +1,17 @@
 // vgi diff A B [--json]: error of image A against reference B.
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
 #include "core/image_metrics.h"
 #include "core/json_text.h"
 #include "core/output_files.h"
+#include "illum/framework/render_job.h"
 
 namespace vgi::app {
+
+namespace fs = std::filesystem;
 
 void addDiffOptions(CLI::App* cmd, DiffOptions& d) {
   cmd->add_option("--epsilon", d.epsilon, "relMSE's epsilon: (a-b)^2 / (b^2 + epsilon)")
@@ -16,18 +20,58 @@ void addDiffOptions(CLI::App* cmd, DiffOptions& d) {
       "--relative-epsilon", d.relativeEpsilon,
       "f > 0: relMSE's epsilon = (f x mean of the reference)^2, so dim images (an indirect channel) "
       "are measured on their own scale");
+  cmd->add_option("--dark-tolerance", d.darkTolerance,
+                  "leak: a pixel is dark where the reference's r+g+b is at most this x its mean (0: exactly "
+                  "dark); leak = A's light there / the reference's light elsewhere")
+      ->capture_default_str();
 }
 
 std::string diffLine(const ImageDiff& d) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "%12.6g %12.5f %9.4f   %.4f %.4f %.4f   %.3f %.3f %.3f", d.relMse, d.relMae,
-                d.ssim, d.relMaeRgb[0], d.relMaeRgb[1], d.relMaeRgb[2], d.energyRgb[0], d.energyRgb[1],
-                d.energyRgb[2]);
+  char buf[320];
+  std::snprintf(buf, sizeof buf, "%12.6g %12.5f %9.4f   %.4f %.4f %.4f   %.3f %.3f %.3f   %9.3g (%.2f)",
+                d.relMse, d.relMae, d.ssim, d.relMaeRgb[0], d.relMaeRgb[1], d.relMaeRgb[2], d.energyRgb[0],
+                d.energyRgb[1], d.energyRgb[2], d.leak, d.darkFraction);
   return buf;
 }
 const char* diffHeader() {
-  return "      relMSE     rel. MAE      SSIM   rel. MAE r / g / b       energy r / g / b (A/B)";
+  return "      relMSE     rel. MAE      SSIM   rel. MAE r / g / b       energy r / g / b (A/B)   leak (dark "
+         "share)";
 }
+
+namespace {
+// `vgi diff --frames N`: every frame's metrics, then the temporal ones (core/image_metrics.h).
+void diffSequences(const std::string& a, const std::string& b, int frames, const DiffOptions& options,
+                   bool json) {
+  auto frameFile = [](const std::string& path, int t) {
+    const fs::path p(path);
+    return frameStem((p.parent_path() / p.stem()).string(), t) + p.extension().string();
+  };
+  std::vector<Image> ia, ib;
+  nlohmann::json perFrame = nlohmann::json::array();
+  if (!json) std::printf("frame %s\n", diffHeader());
+  for (int t = 0; t < frames; ++t) {
+    const std::string fa = frameFile(a, t), fb = frameFile(b, t);
+    ia.push_back(readImage(fa));
+    ib.push_back(readImage(fb));
+    ImageDiff d = compareImages(ia.back(), ib.back(), fa, fb, options);
+    if (json)
+      perFrame.push_back(d.toJson());
+    else
+      std::printf("%5d %s\n", t, diffLine(d).c_str());
+  }
+  SequenceDiff s = compareSequences(ia, ib, a, b);
+  if (json) {
+    nlohmann::json j = s.toJson();
+    j["a"] = a;
+    j["b"] = b;
+    j["per_frame"] = perFrame;
+    std::printf("%s\n", jsonText(j, 2).c_str());
+  } else {
+    std::printf("temporal error %.6g (frame-to-frame change: A %.6g, B %.6g; %d frames)\n", s.temporalError,
+                s.changeA, s.changeB, s.frames);
+  }
+}
+}  // namespace
 
 void addDiffCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("diff",
@@ -49,7 +93,16 @@ void addDiffCommand(CLI::App& app) {
       "--signed-image", *signedImage,
       "write A - B to this .exr (signed) or .png (red: A > B, blue: A < B, full at the 99th percentile)");
   cmd->add_option("--exposure", *exposure, "exposure of the --image PNG")->capture_default_str();
+  auto frames = std::make_shared<int>(1);
+  cmd->add_option(
+         "--frames", *frames,
+         "N >= 2: A and B are animations as `vgi render --frames N -o A` writes them (A_0000.exr …); "
+         "prints each frame's metrics and the temporal error of A's frame-to-frame change against B's")
+      ->check(CLI::Range(1, 100000));
   cmd->callback([=] {
+    if (*frames > 1 && !(image->empty() && signedImage->empty()))
+      fail("--image and --signed-image write one frame's error: not with --frames ", *frames);
+    if (*frames > 1) return diffSequences(*a, *b, *frames, *options, *json);
     if (!image->empty()) checkOutputFile(*image, "--image");
     if (!signedImage->empty()) checkOutputFile(*signedImage, "--signed-image");
     Image ia = readImage(*a), ib = readImage(*b);
@@ -68,9 +121,9 @@ void addDiffCommand(CLI::App& app) {
     } else {
       std::printf(
           "rmse        %.6g\nmae         %.6g\nrelmse      %.6g (epsilon %.3g)\nrel_mae     %.6g (r %.4f, g "
-          "%.4f, b %.4f)\nenergy A/B  %.4f %.4f %.4f\nssim        %.6f\n",
+          "%.4f, b %.4f)\nenergy A/B  %.4f %.4f %.4f\nssim        %.6f\nleak        %.6g (dark share %.4f)\n",
           d.rmse, d.mae, d.relMse, d.epsilon, d.relMae, d.relMaeRgb[0], d.relMaeRgb[1], d.relMaeRgb[2],
-          d.energyRgb[0], d.energyRgb[1], d.energyRgb[2], d.ssim);
+          d.energyRgb[0], d.energyRgb[1], d.energyRgb[2], d.ssim, d.leak, d.darkFraction);
     }
   });
 }

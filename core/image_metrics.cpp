@@ -21,7 +21,14 @@ nlohmann::json ImageDiff::toJson() const {
           {"energy_rgb", rgb(energyRgb)},
           {"mean_a_rgb", rgb(meanA)},
           {"mean_b_rgb", rgb(meanB)},
-          {"ssim", ssim}};
+          {"ssim", ssim},
+          {"leak", leak},
+          {"dark_fraction", darkFraction}};
+}
+
+nlohmann::json SequenceDiff::toJson() const {
+  return {
+      {"frames", frames}, {"temporal_error", temporalError}, {"change_a", changeA}, {"change_b", changeB}};
 }
 
 namespace {
@@ -67,6 +74,9 @@ double meanSsim(const Image& a, const Image& b) {
 }  // namespace
 
 namespace {
+// num / den, with 0 / 0 = 0 and x / 0 = ∞ for x > 0.
+double ratio(double num, double den) { return den > 0 ? num / den : (num > 0 ? INFINITY : 0.0); }
+
 void checkComparable(const Image& a, const Image& b, const std::string& nameA, const std::string& nameB) {
   if (a.width != b.width || a.height != b.height)
     fail("cannot compare images of different sizes: ", nameA, " is ", a.width, "x", a.height, ", ", nameB,
@@ -81,6 +91,8 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
   if (!(options.epsilon > 0) || !(options.relativeEpsilon >= 0) || !std::isfinite(options.relativeEpsilon))
     fail("relMSE epsilon ", options.epsilon, " / relative ", options.relativeEpsilon,
          ": epsilon must be > 0, the relative factor >= 0");
+  if (!(options.darkTolerance >= 0) || !std::isfinite(options.darkTolerance))
+    fail("the leak's dark tolerance ", options.darkTolerance, " must be a finite number >= 0");
   double sumA[3] = {0, 0, 0}, sumB[3] = {0, 0, 0}, absErr[3] = {0, 0, 0};
   for (size_t i = 0; i < a.pixels.size(); ++i)
     for (int k = 0; k < 3; ++k) {
@@ -107,7 +119,6 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
       rel += e * e / (r * r + d.epsilon);
     }
   const double ae = absErr[0] + absErr[1] + absErr[2], level = sumB[0] + sumB[1] + sumB[2];
-  auto ratio = [](double num, double den) { return den > 0 ? num / den : (num > 0 ? INFINITY : 0.0); };
   d.rmse = std::sqrt(se / n);
   d.relMse = rel / n;
   d.mae = ae / n;
@@ -119,7 +130,56 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
     d.meanB[k] = sumB[k] / double(a.pixels.size());
   }
   d.ssim = meanSsim(a, b);
+  // The leak: a's light where b is dark, over b's light where it is not.
+  const double darkLevel = options.darkTolerance * level / double(a.pixels.size());
+  double leaked = 0, lit = 0;
+  long dark = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    const glm::vec3 &pa = a.pixels[i], &pb = b.pixels[i];
+    const double sb = double(pb.x) + pb.y + pb.z;
+    if (sb <= darkLevel) {
+      ++dark;
+      leaked += double(pa.x) + pa.y + pa.z;
+    } else {
+      lit += sb;
+    }
+  }
+  d.darkFraction = double(dark) / double(a.pixels.size());
+  d.leak = ratio(leaked, lit);
   return d;
+}
+
+SequenceDiff compareSequences(const std::vector<Image>& a, const std::vector<Image>& b,
+                              const std::string& nameA, const std::string& nameB) {
+  if (a.size() != b.size() || a.size() < 2)
+    fail("a temporal comparison needs two animations of the same length, at least 2 frames: ", nameA, " has ",
+         a.size(), ", ", nameB, " ", b.size());
+  double err = 0, changeA = 0, changeB = 0, levelA = 0, levelB = 0;
+  for (size_t t = 0; t < a.size(); ++t) {
+    const std::string frame = " frame " + std::to_string(t);
+    checkComparable(a[t], b[t], nameA + frame, nameB + frame);
+    checkComparable(a[t], a[0], nameA + frame, nameA + " frame 0");
+    for (size_t i = 0; i < a[t].pixels.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const double x = a[t].pixels[i][k], r = b[t].pixels[i][k];
+        if (!std::isfinite(x) || !std::isfinite(r))
+          fail("image ", (std::isfinite(x) ? nameB : nameA) + frame, " has a non-finite value at pixel (",
+               i % a[t].width, ", ", i / a[t].width, ")");
+        if (t == 0) continue;
+        const double da = x - a[t - 1].pixels[i][k], db = r - b[t - 1].pixels[i][k];
+        err += std::abs(da - db);
+        changeA += std::abs(da);
+        changeB += std::abs(db);
+        levelA += std::abs(x);
+        levelB += std::abs(r);
+      }
+  }
+  SequenceDiff s;
+  s.frames = int(a.size());
+  s.temporalError = ratio(err, levelB);
+  s.changeA = ratio(changeA, levelA);
+  s.changeB = ratio(changeB, levelB);
+  return s;
 }
 
 Image signedDifference(const Image& a, const Image& b) {

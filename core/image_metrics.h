@@ -11,8 +11,31 @@
 //   energy   Σa / Σb per colour channel (1 = unbiased level; 1.16 = 16 % too bright)
 //   SSIM     Wang et al. 2004 on tone-mapped (clamped, sRGB) luminance, 8×8
 //            Gaussian-free box windows with stride 4 (mean SSIM).
+//   leak     Σ_dark (a_r + a_g + a_b) / Σ_lit (b_r + b_g + b_b): the light a puts
+//            where the reference is dark, as a fraction of the reference's light
+//            elsewhere. A pixel is dark where b_r + b_g + b_b ≤ τ · its mean over
+//            the image (τ = `darkTolerance`, 0 by default: exactly dark, as the
+//            exact counterpart leaves a room no light path reaches); lit
+//            otherwise. Measured on the indirect channel of a scene with a dark
+//            room behind a wall, it is the light leaking through the wall;
+//            `darkFraction` is the share of dark pixels (0: the leak is 0 and
+//            means nothing).
+//
+// Over an animation (compareSequences), with Δx_t = x_t − x_{t−1} per pixel and
+// channel for t ≥ 1:
+//   temporal error  Σ_t Σ |Δa_t − Δb_t| / Σ_{t≥1} Σ |b_t|: how far the method's
+//            frame-to-frame change is from the exact one's, relative to the
+//            level — 0 for any two sequences that change alike (a constant
+//            image against a constant image); the static error of each frame
+//            does not enter. A converged method measures flicker and voxel
+//            snapping; a few-sample method also its noise (two independent noisy
+//            frames differ by √2 × the noise), unless its seeds repeat per frame.
+//   change   Σ_t Σ |Δx_t| / Σ_{t≥1} Σ |x_t| of each sequence alone (`changeA`,
+//            `changeB`): how much each one moves from frame to frame.
 #pragma once
 #include <nlohmann/json_fwd.hpp>
+#include <string>
+#include <vector>
 
 #include "core/image.h"
 
@@ -21,6 +44,7 @@ namespace vgi {
 struct DiffOptions {
   double epsilon = 0.01;       // relMSE's ε, used when relativeEpsilon is 0
   double relativeEpsilon = 0;  // > 0: ε = (relativeEpsilon · mean(b))²
+  double darkTolerance = 0;    // leak: dark where b ≤ this × mean(b) (sum of the channels)
 };
 
 struct ImageDiff {
@@ -30,12 +54,24 @@ struct ImageDiff {
   double relMaeRgb[3] = {0, 0, 0};
   double energyRgb[3] = {1, 1, 1};
   double meanA[3] = {0, 0, 0}, meanB[3] = {0, 0, 0};  // per colour channel
+  double leak = 0, darkFraction = 0;
+  nlohmann::json toJson() const;
+};
+
+struct SequenceDiff {
+  int frames = 0;
+  double temporalError = 0, changeA = 0, changeB = 0;
   nlohmann::json toJson() const;
 };
 
 // Throws if the sizes differ, an image is empty or holds a non-finite value.
 ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA = "A",
                         const std::string& nameB = "B", const DiffOptions& options = {});
+
+// The temporal metrics of two animations of equal length (≥ 2 frames), frame t of a against frame t
+// of b (sizes and values checked as in compareImages).
+SequenceDiff compareSequences(const std::vector<Image>& a, const std::vector<Image>& b,
+                              const std::string& nameA = "A", const std::string& nameB = "B");
 
 // a − b per pixel and channel (sizes checked as in compareImages).
 Image signedDifference(const Image& a, const Image& b);

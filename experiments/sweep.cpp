@@ -74,9 +74,11 @@ std::string stringAt(const nlohmann::json& obj, const std::string& key, const st
   return v.get<std::string>();
 }
 
-double positive(const nlohmann::json& v, const std::string& key) {
-  if (!v.is_number() || !(v.get<double>() > 0) || !std::isfinite(v.get<double>()))
-    fail("experiment: '", key, "' = ", v.dump(), " must be a positive number");
+double positive(const nlohmann::json& v, const std::string& key, bool zeroAllowed = false) {
+  if (!v.is_number() || !(v.get<double>() > 0 || (zeroAllowed && v.get<double>() == 0)) ||
+      !std::isfinite(v.get<double>()))
+    fail("experiment: '", key, "' = ", v.dump(), " must be a ", zeroAllowed ? "non-negative" : "positive",
+         " number");
   return v.get<double>();
 }
 
@@ -158,7 +160,7 @@ namespace {
 void readExperimentHead(const nlohmann::json& j, const std::string& path, Experiment& e) {
   checkKeys(j, "the experiment",
             {"name", "scenes", "size", "spp", "checkpoints", "seed", "aovs", "epsilon", "relative_epsilon",
-             "time_budget_s", "reference", "methods"});
+             "dark_tolerance", "time_budget_s", "reference", "methods"});
   e.name = stringAt(j, "name", "name", fs::path(path).stem().string());
   for (const char* k : {"scenes", "size", "spp", "methods"})
     if (!j.contains(k)) fail("experiment file '", path, "': '", k, "' is missing");
@@ -190,6 +192,8 @@ void readExperimentHead(const nlohmann::json& j, const std::string& path, Experi
   }
   if (j.contains("epsilon")) e.diff.epsilon = positive(j["epsilon"], "epsilon");
   if (j.contains("relative_epsilon")) e.relativeEpsilon = positive(j["relative_epsilon"], "relative_epsilon");
+  if (j.contains("dark_tolerance"))
+    e.diff.darkTolerance = positive(j["dark_tolerance"], "dark_tolerance", true);
   if (j.contains("time_budget_s")) e.timeBudgetS = positive(j["time_budget_s"], "time_budget_s");
 }
 
@@ -595,7 +599,9 @@ void addRows(const Experiment& e, const SweepRender& render, const std::vector<i
                  {"relmse_relative", dr.relMse},
                  {"rel_mae", d.relMae},
                  {"ssim", d.ssim},
-                 {"energy", (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0}};
+                 {"energy", (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0},
+                 {"leak", d.leak},
+                 {"dark_fraction", d.darkFraction}};
     }
     rows.push_back(row);
   }
@@ -703,6 +709,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
                         {"checkpoints", e.checkpoints},
                         {"epsilon", e.diff.epsilon},
                         {"relative_epsilon", e.relativeEpsilon},
+                        {"dark_tolerance", e.diff.darkTolerance},
                         {"time_budget_s", e.timeBudgetS},
                         {"convergence", e.curveCounts},
                         {"exact_device", e.exactDevice == ExactDevice::Same ? "same" : "cpu"},
@@ -715,7 +722,8 @@ nlohmann::json writeSweepResults(const Experiment& e) {
     for (auto& [k, v] : p.params.items()) keys.insert(k);
   std::vector<std::string> channels = {"image"};
   channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
-  std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy"};
+  std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy",
+                                      "leak",   "dark_fraction"};
   if (!e.curveCounts.empty()) metrics.push_back("equal_error_time_ratio");
   std::ostringstream csv;
   csv << "scene,method,label,role,point";

@@ -13,6 +13,8 @@
 //     "seed": 1,                              // optional (1)
 //     "aovs": ["indirect"],                   // channels compared besides the image (optional)
 //     "epsilon": 0.01, "relative_epsilon": 0.1,   // relMSE's ε and the relative one (optional)
+//     "dark_tolerance": 0,                    // the leak's dark pixels: reference ≤ this × its mean
+//                                             // (core/image_metrics.h; optional, 0 = exactly dark)
 //     "time_budget_s": 10,                    // optional: every point stops after this wall time
 //                                             // (`vgi render --time-limit`; spp is then the most)
 //     "reference": {"spp": 256,               // each method's registry counterpart (default),

@@ -199,6 +199,41 @@ TEST(Cli, DiffRefusesDifferentSizes) {
   EXPECT_NE(diff.output.find("different sizes"), std::string::npos) << diff.output;
 }
 
+// `vgi diff --frames N` reads two animations as `vgi render --frames N -o X.exr` writes them and reports
+// the temporal error (core/image_metrics.h) besides each frame's metrics.
+TEST(Cli, DiffOfAnimationsReportsTheTemporalError) {
+  const std::string common =
+      "render --method reference --set integrator=ao --size 8x8 --spp 1 --frames 3 --quiet";
+  ASSERT_EQ(vgi(common + " -o " + tmp("anim_a.exr")).code, 0);
+  ASSERT_EQ(vgi(common + " -o " + tmp("anim_b.exr")).code, 0);
+  CliRun same = vgi("diff --json --frames 3 " + tmp("anim_a.exr") + " " + tmp("anim_b.exr"));
+  ASSERT_EQ(same.code, 0) << same.output;
+  nlohmann::json j = nlohmann::json::parse(same.output);
+  EXPECT_EQ(j["frames"], 3);
+  EXPECT_EQ(j["temporal_error"], 0.0);  // the same seeds: the same frames
+  EXPECT_EQ(j["per_frame"].size(), 3u);
+  // One frame of A brightened: A changes twice (up, then down), B not at all.
+  Image f1 = readImage(tmp("anim_a_0001.exr"));
+  for (auto& p : f1.pixels) p += glm::vec3(0.5f);
+  writeImage(f1, tmp("anim_a_0001.exr"));
+  CliRun flicker = vgi("diff --json --frames 3 " + tmp("anim_a.exr") + " " + tmp("anim_b.exr"));
+  ASSERT_EQ(flicker.code, 0) << flicker.output;
+  double levelB = 0;
+  for (int t : {1, 2})
+    for (auto& p : readImage(tmp("anim_b_000" + std::to_string(t) + ".exr")).pixels)
+      levelB += p.x + p.y + p.z;
+  EXPECT_NEAR(nlohmann::json::parse(flicker.output)["temporal_error"].get<double>(),
+              2 * 0.5 * 64 * 3 / levelB, 1e-4);
+  CliRun text = vgi("diff --frames 3 " + tmp("anim_a.exr") + " " + tmp("anim_b.exr"));
+  EXPECT_NE(text.output.find("temporal error"), std::string::npos) << text.output;
+  CliRun missing = vgi("diff --frames 4 " + tmp("anim_a.exr") + " " + tmp("anim_b.exr"));
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.output.find("anim_a_0003.exr"), std::string::npos) << missing.output;
+  CliRun image =
+      vgi("diff --frames 3 --image " + tmp("e.exr") + " " + tmp("anim_a.exr") + " " + tmp("anim_b.exr"));
+  EXPECT_EQ(image.code, 2) << image.output;
+}
+
 TEST(Cli, InfoAndHelpModule) {
   CliRun i = vgi("info --scene builtin:cornell --json");
   ASSERT_EQ(i.code, 0) << i.output;

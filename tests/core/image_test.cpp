@@ -86,4 +86,70 @@ TEST(ImageMetrics, SsimDropsWithNoise) {
   EXPECT_GT(d.ssim, 0.0);
 }
 
+// The leak (core/image_metrics.h): a's light where the reference is dark over the reference's light
+// elsewhere. Two rooms side by side: the left lit (1), the right dark (0).
+TEST(ImageMetrics, LeakIsTheLightWhereTheReferenceIsDark) {
+  Image b(8, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x) b.at(x, y) = glm::vec3(x < 4 ? 1.0f : 0.0f);
+  // The exact counterpart against itself: exactly 0, half the image dark.
+  ImageDiff self = compareImages(b, b);
+  EXPECT_EQ(self.leak, 0.0);
+  EXPECT_EQ(self.darkFraction, 0.5);
+  // 5 % of the lit room's light appears in the dark room (and the lit room's level is unchanged).
+  Image a = b;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 4; x < 8; ++x) a.at(x, y) = glm::vec3(0.05f);
+  EXPECT_NEAR(compareImages(a, b).leak, 0.05, 1e-7);
+  // A dim, not dark, right room (noise of a reference): dark only within the tolerance.
+  Image dim = b;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 4; x < 8; ++x) dim.at(x, y) = glm::vec3(0.001f);
+  EXPECT_EQ(compareImages(a, dim).darkFraction, 0.0);
+  EXPECT_EQ(compareImages(a, dim).leak, 0.0);
+  DiffOptions tolerant;
+  tolerant.darkTolerance = 0.01;  // dark: r+g+b <= 0.01 x its mean (1.5015)
+  ImageDiff t = compareImages(a, dim, "a", "dim", tolerant);
+  EXPECT_EQ(t.darkFraction, 0.5);
+  EXPECT_NEAR(t.leak, 0.05 / 1.0, 1e-6);
+  test::expectError(
+      [&] {
+        compareImages(a, b, "a", "b", DiffOptions{0.01, 0.0, -1.0});
+      },
+      {"dark tolerance", "-1"});
+  // Nothing dark: the leak is 0 and says so through its dark share.
+  EXPECT_EQ(compareImages(b, a).darkFraction, 0.0);
+}
+
+// The temporal error: the method's frame-to-frame change against the exact one's.
+TEST(ImageMetrics, TemporalErrorComparesFrameToFrameChanges) {
+  Image grey(4, 4), ramp(4, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) grey.at(x, y) = glm::vec3(0.5f), ramp.at(x, y) = glm::vec3(0.25f * x);
+  // A constant image against a constant image: zero, whatever the static error (grey is not ramp).
+  SequenceDiff still = compareSequences({grey, grey, grey}, {ramp, ramp, ramp});
+  EXPECT_EQ(still.temporalError, 0.0);
+  EXPECT_EQ(still.changeA, 0.0);
+  EXPECT_EQ(still.frames, 3);
+  // Both brighten alike by 0.1 per frame: zero; the method flickers (+0.1, -0.1) where the exact stays:
+  // |Δa − Δb| = 0.1 per channel per frame, over the exact level of frames 1 and 2.
+  auto plus = [](Image im, float v) {
+    for (auto& p : im.pixels) p += glm::vec3(v);
+    return im;
+  };
+  EXPECT_NEAR(
+      compareSequences({ramp, plus(ramp, 0.1f), plus(ramp, 0.2f)}, {grey, plus(grey, 0.1f), plus(grey, 0.2f)})
+          .temporalError,
+      0.0, 1e-7);
+  SequenceDiff flicker = compareSequences({grey, plus(grey, 0.1f), grey}, {grey, grey, grey});
+  EXPECT_NEAR(flicker.temporalError, 0.1 * 2 / (0.5 * 2), 1e-6);
+  EXPECT_NEAR(flicker.changeA, 0.2 / (0.6 + 0.5), 1e-6);
+  EXPECT_EQ(flicker.changeB, 0.0);
+  // Doubling the method's change doubles the error.
+  SequenceDiff twice = compareSequences({grey, plus(grey, 0.2f), grey}, {grey, grey, grey});
+  EXPECT_NEAR(twice.temporalError, 2 * flicker.temporalError, 1e-6);
+  test::expectError([&] { compareSequences({grey}, {grey}, "a", "b"); }, {"at least 2 frames"});
+  test::expectError([&] { compareSequences({grey, grey}, {grey, Image(4, 5)}, "a", "b"); }, {"b frame 1"});
+}
+
 }  // namespace vgi
