@@ -79,4 +79,20 @@ nlohmann::json measuredMemory(bool gl) {
   return m;
 }
 
+nlohmann::json memoryAgainstResources(nlohmann::json now, const nlohmann::json& baseline,
+                                      double resourcesBytes) {
+  now["baseline"] = baseline;
+  now["resources_bytes"] = resourcesBytes;
+  const char* key =
+      now.contains("gpu_used_bytes") && baseline.contains("gpu_used_bytes") ? "gpu_used_bytes" : "rss_bytes";
+  if (now.contains(key) && baseline.contains(key)) {
+    const double growth = now[key].get<double>() - baseline[key].get<double>();
+    now["growth_of"] = key;
+    now["growth_bytes"] = growth;
+    now["growth_over_resources"] =
+        resourcesBytes > 0 ? nlohmann::json(growth / resourcesBytes) : nlohmann::json();
+  }
+  return now;
+}
+
 }  // namespace vgi

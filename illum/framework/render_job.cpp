@@ -136,6 +136,7 @@ RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options
   }
   gl_ = gl;
   setMethod(methodFor(opt_, scene_), opt_.set, opt_.aovs);
+  baselineMemory_ = measuredMemory(this->gl() != nullptr);
 }
 
 RenderJob::~RenderJob() = default;
@@ -257,12 +258,16 @@ nlohmann::json RenderJob::describe() const {
   run["needs"] = needs.names();
   run["accumulation"] = opt_.accumulation == Accumulation::Compensated ? "compensated" : "plain";
   run["aovs"] = opt_.aovs;
-  run["memory"] = measuredMemory(gl != nullptr);  // what the process uses, beside each resource's bytes
+  run["memory"] = memory();
   // What renders this again: `vgi render --job THIS.json` (the method as resolved, a preset's included).
   RenderOptions job = opt_;
   job.method = info_->name;
   run["job"] = renderJobJson(job);
   return run;
+}
+
+nlohmann::json RenderJob::memory() const {
+  return memoryAgainstResources(measuredMemory(gl() != nullptr), baselineMemory_, resources_->bytes());
 }
 
 void RenderJob::checkGl() const {
@@ -313,6 +318,7 @@ RenderOutput renderStillJob(RenderJob& job, const RenderOptions& opt, const Chec
   s["time_limit_s"] = opt.timeLimitS;
   s["time_limited"] = out.result.timeLimited;
   s["gl_errors"] = gl ? gl->errorCount() : 0;
+  s["memory"] = job.memory();  // with the resources built (describe ran before)
   s["wall_ms"] = msSince(t0);
   job.checkGl();
   return out;
@@ -378,6 +384,7 @@ RenderOutput renderAnimationJob(RenderJob& job, const RenderOptions& opt, const 
   s["total_ms"] = total;
   s["built"] = out.result.built;
   s["frames"] = frames;
+  s["memory"] = job.memory();
   s["wall_ms"] = msSince(t0);
   return out;
 }

@@ -60,7 +60,13 @@ class RenderJob {
   // them (light maps, radiance) at the next update, and keep the rest (the grid, the pyramid).
   void lightsChanged();
   // The stats of the run (method, scene, size, camera, resolved parameters, GL renderer, revision, …).
+  // Its "memory" (measured when called; a render measures again when done) holds what the process uses (core/gpu_memory.h), the same measured before any resource
+  // was built ("baseline"), the bytes the resources report ("resources_bytes"), and how much the device's
+  // (GPU where GL reports it, else resident) memory grew since the baseline against them
+  // ("growth_bytes", "growth_over_resources": 1 = the reported bytes are what it costs).
   nlohmann::json describe() const;
+  // Its "memory" alone, measured now.
+  nlohmann::json memory() const;
   // Throws if the GL context counted errors; throws if the result has a non-finite pixel.
   void checkGl() const;
   void checkFiniteResult(const RenderResult& result) const;
@@ -78,6 +84,7 @@ class RenderJob {
   std::unique_ptr<Method> method_;
   std::unique_ptr<SceneResources> resources_;
   SampleTargets targets_;
+  nlohmann::json baselineMemory_;  // measuredMemory once the scene and GL context exist, before any resource
 };
 
 // Renders a still (options.frames == 1: the returned output holds the image)

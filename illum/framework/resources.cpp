@@ -176,6 +176,16 @@ std::vector<std::string> SceneResources::built() const {
   return n;
 }
 
+double SceneResources::bytes() {
+  double sum = 0;
+  for (auto& e : entries_) {
+    if (!e.resource) continue;
+    const nlohmann::json s = e.resource->stats();
+    if (s.is_object() && s.contains("bytes") && s["bytes"].is_number()) sum += s["bytes"].get<double>();
+  }
+  return sum;
+}
+
 void SceneResources::addStats(nlohmann::json& extra) {
   for (auto& e : entries_) {
     if (!e.resource || e.kind->statsKey.empty()) continue;

@@ -234,6 +234,8 @@ class SceneResources {
   // Each resource's stats under its kind's statsKey, with "rebuilt_this_frame"
   // (whether the last update changed it); call after the image (they may read back).
   void addStats(nlohmann::json& extra);
+  // The bytes the built resources report (their stats' "bytes"), all together.
+  double bytes();
 
  private:
   struct Entry {

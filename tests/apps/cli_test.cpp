@@ -234,6 +234,22 @@ TEST(Cli, DiffOfAnimationsReportsTheTemporalError) {
   EXPECT_EQ(image.code, 2) << image.output;
 }
 
+// The stats' memory is measured once the resources exist: their reported bytes, summed, beside the
+// process's growth since before they were built (core/gpu_memory.h).
+TEST(Cli, StatsMeasureMemoryAfterTheResourcesAreBuilt) {
+  ASSERT_EQ(vgi("render --method nearfield --size 16x16 --spp 1 --quiet -o " + tmp("mem.exr")).code, 0);
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("mem.json")));
+  double reported = 0;
+  for (auto& [k, v] : s["extra"].items())
+    if (v.is_object() && v.contains("bytes")) reported += v["bytes"].get<double>();
+  const nlohmann::json& m = s["memory"];
+  EXPECT_GT(reported, 1e6);  // light maps, grid, pyramid
+  EXPECT_EQ(m["resources_bytes"].get<double>(), reported);
+  EXPECT_GT(m["growth_bytes"].get<double>(), 0.0);
+  EXPECT_GT(m["growth_over_resources"].get<double>(), 0.1);
+  EXPECT_GE(m["rss_bytes"].get<double>(), m["baseline"]["rss_bytes"].get<double>());
+}
+
 TEST(Cli, InfoAndHelpModule) {
   CliRun i = vgi("info --scene builtin:cornell --json");
   ASSERT_EQ(i.code, 0) << i.output;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/gl_context.h"
+#include "core/gpu_memory.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
 #include "shaders/shared/brdf.glsl"
@@ -52,6 +53,29 @@ TEST(GlContext, DebugCallbackCountsErrors) {
   auto ctx = GlContext::create();
   glBindBuffer(GL_ARRAY_BUFFER, 987654u);  // not a buffer name: GL_INVALID_OPERATION
   EXPECT_GE(ctx->errorCount(), 1);
+}
+
+// The memory the stats report against what the process measurably uses (issue 32): growth since the
+// baseline over the resources' bytes, on the GPU's own report where there is one.
+TEST(GpuMemory, GrowthIsMeasuredAgainstTheReportedBytes) {
+  nlohmann::json base = {{"rss_bytes", 100.0}, {"peak_rss_bytes", 120.0}};
+  nlohmann::json now = {{"rss_bytes", 400.0}, {"peak_rss_bytes", 450.0}};
+  nlohmann::json m = memoryAgainstResources(now, base, 150.0);
+  EXPECT_EQ(m["growth_of"], "rss_bytes");
+  EXPECT_EQ(m["growth_bytes"], 300.0);
+  EXPECT_EQ(m["growth_over_resources"], 2.0);  // twice what the stats say
+  EXPECT_EQ(m["baseline"], base);
+  EXPECT_TRUE(memoryAgainstResources(now, base, 0.0)["growth_over_resources"].is_null());
+  base["gpu_used_bytes"] = 1000.0;
+  now["gpu_used_bytes"] = 1150.0;
+  nlohmann::json g = memoryAgainstResources(now, base, 150.0);
+  EXPECT_EQ(g["growth_of"], "gpu_used_bytes");
+  EXPECT_EQ(g["growth_over_resources"], 1.0);
+  // A real process: what it uses now is at least what it used at the start.
+  std::unique_ptr<GlContext> gl = GlContext::create();
+  nlohmann::json real = memoryAgainstResources(measuredMemory(true), measuredMemory(true), 1.0);
+  EXPECT_GT(real["rss_bytes"].get<double>(), 0.0);
+  EXPECT_TRUE(real.contains("growth_bytes"));
 }
 
 TEST(ShaderLibrary, CompileErrorsNameTheIncludedFileAndLine) {
