@@ -40,11 +40,12 @@ const char* diffHeader() {
 
 namespace {
 // `vgi diff --frames N`: every frame's metrics, then the temporal ones (core/image_metrics.h).
-void diffSequences(const std::string& a, const std::string& b, int frames, const DiffOptions& options,
-                   bool json) {
-  auto frameFile = [](const std::string& path, int t) {
+void diffSequences(const std::string& a, const std::string& b, int frames, const std::string& aov,
+                   const DiffOptions& options, bool json) {
+  auto frameFile = [&](const std::string& path, int t) {
     const fs::path p(path);
-    return frameStem((p.parent_path() / p.stem()).string(), t) + p.extension().string();
+    return frameStem((p.parent_path() / p.stem()).string(), t) + (aov.empty() ? "" : "." + aov) +
+           p.extension().string();
   };
   std::vector<Image> ia, ib;
   nlohmann::json perFrame = nlohmann::json::array();
@@ -99,10 +100,17 @@ void addDiffCommand(CLI::App& app) {
          "N >= 2: A and B are animations as `vgi render --frames N -o A` writes them (A_0000.exr …); "
          "prints each frame's metrics and the temporal error of A's frame-to-frame change against B's")
       ->check(CLI::Range(1, 100000));
+  auto aov = std::make_shared<std::string>();
+  cmd->add_option(
+      "--aov", *aov,
+      "with --frames: compare this output of each frame (A_0000.NAME.exr …), as `vgi render --aov "
+      "NAME` writes it");
   cmd->callback([=] {
+    if (!aov->empty() && *frames < 2)
+      fail("--aov ", *aov, " picks an output of each frame: only with --frames N >= 2");
     if (*frames > 1 && !(image->empty() && signedImage->empty()))
       fail("--image and --signed-image write one frame's error: not with --frames ", *frames);
-    if (*frames > 1) return diffSequences(*a, *b, *frames, *options, *json);
+    if (*frames > 1) return diffSequences(*a, *b, *frames, *aov, *options, *json);
     if (!image->empty()) checkOutputFile(*image, "--image");
     if (!signedImage->empty()) checkOutputFile(*signedImage, "--signed-image");
     Image ia = readImage(*a), ib = readImage(*b);

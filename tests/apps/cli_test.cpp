@@ -232,6 +232,15 @@ TEST(Cli, DiffOfAnimationsReportsTheTemporalError) {
   CliRun image =
       vgi("diff --frames 3 --image " + tmp("e.exr") + " " + tmp("anim_a.exr") + " " + tmp("anim_b.exr"));
   EXPECT_EQ(image.code, 2) << image.output;
+  // An output of each frame (anim_c_0000.indirect.exr …) with --aov.
+  ASSERT_EQ(vgi("render --method nearfield --size 8x8 --spp 1 --frames 2 --quiet --aov indirect -o " +
+                tmp("anim_c.exr"))
+                .code,
+            0);
+  CliRun aov = vgi("diff --json --frames 2 --aov indirect " + tmp("anim_c.exr") + " " + tmp("anim_c.exr"));
+  ASSERT_EQ(aov.code, 0) << aov.output;
+  EXPECT_EQ(nlohmann::json::parse(aov.output)["temporal_error"], 0.0);
+  EXPECT_EQ(vgi("diff --aov indirect " + tmp("anim_a.exr") + " " + tmp("anim_b.exr")).code, 2);
 }
 
 // The stats' memory is measured once the resources exist: their reported bytes, summed, beside the
