@@ -2,6 +2,8 @@
 //   traverse  the tracers on the near-field ray population of a scene: speed
 //             (CPU threads, and GLSL where it runs) against agreement with the
 //             DDA oracle and with exact Embree hits.
+//   motion    the cost of one moving object per frame, pass by pass: two animations' stats
+//             (experiments/motion_cost.h).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +23,7 @@
 #include "core/profiler.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
+#include "experiments/motion_cost.h"
 #include "traverse/embree_tracer.h"
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/gpu_bvh.h"
@@ -356,12 +359,43 @@ void addTraverseBench(CLI::App& bench) {
   });
 }
 
+void addMotionBench(CLI::App& bench) {
+  auto* cmd =
+      bench.add_subcommand("motion",
+                           "The cost of motion: per pass and frame, an animation with a moving object (its "
+                           "stats JSON) against the "
+                           "same scene standing still, from two `vgi render --frames N` runs of one method");
+  auto moving = std::make_shared<std::string>(), still = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  cmd->add_option("MOVING", *moving, "stats JSON of the animation with the object moving")->required();
+  cmd->add_option("STILL", *still, "stats JSON of the same animation with it standing still")->required();
+  cmd->add_flag("--json", *json, "print JSON");
+  cmd->callback([=] {
+    const MotionCost c =
+        motionCost(readJsonFile(*moving, "MOVING"), readJsonFile(*still, "STILL"), *moving, *still);
+    if (*json) {
+      nlohmann::json j = c.toJson();
+      j["moving"] = *moving;
+      j["still"] = *still;
+      std::printf("%s\n", jsonText(j, 2).c_str());
+      return;
+    }
+    std::printf("%-24s %12s %12s %8s   (ms per frame, mean of %d frames after the first)\n", "pass", "still",
+                "moving", "ratio", c.frames);
+    for (auto& [name, t] : c.passes)
+      std::printf("%-24s %12.3f %12.3f %8s\n", name.c_str(), t.stillMs, t.movingMs,
+                  t.stillMs > 0 ? (std::to_string(t.movingMs / t.stillMs).substr(0, 6)).c_str() : "-");
+    std::printf("%-24s %12.3f %12.3f %8.3f\n", "all passes", c.stillMs, c.movingMs, c.ratio());
+  });
+}
+
 }  // namespace
 
 void addBenchCommand(CLI::App& app) {
   auto* bench = app.add_subcommand("bench", "Benchmarks (numbers for docs/BENCHMARKS.md)");
   bench->require_subcommand(1);
   addTraverseBench(*bench);
+  addMotionBench(*bench);
 }
 
 }  // namespace vgi::app
