@@ -537,8 +537,8 @@ struct AssimpReader {
     for (unsigned k = 0; k < n->mNumChildren; ++k) node(n->mChildren[k], M);
   }
 
-  // A mesh without normals gets smooth ones (core/smooth_normals.h), one per corner: its
-  // corners are unshared so that a vertex on a crease can take a normal per side.
+  // A mesh without normals gets smooth ones (core/smooth_normals.h); a vertex on a crease is split
+  // into one vertex per side, the others stay shared (the atlas's charts follow the connectivity).
   void addSmoothNormals(Mesh& m) {
     SmoothNormals sn = smoothCornerNormals(m.positions, m.triangles, kMaxSmoothingAngleDegrees,
                                            kMaxDistinctNormalsPerPosition);
@@ -547,19 +547,16 @@ struct AssimpReader {
                                       " vertex position(s) shared by more than " +
                                       std::to_string(kMaxDistinctNormalsPerPosition) +
                                       " differently oriented triangles keep flat normals");
+    WeldedNormals w = weldCornerNormals(m.triangles, sn.normals);
     Mesh u;
-    u.positions.reserve(sn.normals.size());
-    for (const glm::uvec3& tri : m.triangles)
-      for (int k = 0; k < 3; ++k) {
-        u.positions.push_back(m.positions[tri[k]]);
-        if (!m.uvs.empty()) u.uvs.push_back(m.uvs[tri[k]]);
-      }
-    u.triangles.resize(m.triangles.size());
-    for (uint32_t t = 0; t < u.triangles.size(); ++t) u.triangles[t] = {3 * t, 3 * t + 1, 3 * t + 2};
+    for (uint32_t v : w.source) {
+      u.positions.push_back(m.positions[v]);
+      if (!m.uvs.empty()) u.uvs.push_back(m.uvs[v]);
+    }
     m.positions.swap(u.positions);
     m.uvs.swap(u.uvs);
-    m.triangles.swap(u.triangles);
-    m.normals = std::move(sn.normals);
+    m.triangles.swap(w.triangles);
+    m.normals = std::move(w.normals);
   }
 
   void mesh(const aiMesh* am, const glm::mat4& M) {

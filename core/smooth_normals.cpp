@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/error.h"
+
 namespace vgi {
 
 namespace {
@@ -177,6 +179,26 @@ SmoothNormals smoothCornerNormals(const std::vector<glm::vec3>& positions,
   out.normals.resize(cornerCluster.size());
   for (size_t i = 0; i < cornerCluster.size(); ++i) out.normals[i] = smooth[cornerCluster[i]];
   return out;
+}
+
+WeldedNormals weldCornerNormals(const std::vector<glm::uvec3>& triangles,
+                                const std::vector<glm::vec3>& cornerNormals) {
+  if (cornerNormals.size() != triangles.size() * 3)
+    fail("internal: ", cornerNormals.size(), " corner normals for ", triangles.size(), " triangles");
+  WeldedNormals w;
+  IdMap ids(triangles.size() * 3 / 2);
+  w.triangles.resize(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 n = cornerNormals[t * 3 + k];
+      bool added;
+      w.triangles[t][k] = ids.insert(key(triangles[t][k], n), added);
+      if (added) {
+        w.source.push_back(triangles[t][k]);
+        w.normals.push_back(n);
+      }
+    }
+  return w;
 }
 
 }  // namespace vgi

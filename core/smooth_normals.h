@@ -38,4 +38,16 @@ SmoothNormals smoothCornerNormals(const std::vector<glm::vec3>& positions,
                                   const std::vector<glm::uvec3>& triangles, float maxAngleDegrees,
                                   int maxDistinctNormals);
 
+// One normal per vertex again: each vertex of `triangles` split by the normals its corners got (a
+// vertex on a crease becomes one vertex per side), shared wherever its corners agree — as assimp's
+// JoinIdenticalVertices left a mesh after GenSmoothNormals, so that what follows the mesh's
+// connectivity (the atlas's charts) still sees it connected.
+struct WeldedNormals {
+  std::vector<uint32_t> source;       // per new vertex: the vertex of the input it copies
+  std::vector<glm::vec3> normals;     // per new vertex
+  std::vector<glm::uvec3> triangles;  // the input's triangles on the new vertices
+};
+WeldedNormals weldCornerNormals(const std::vector<glm::uvec3>& triangles,
+                                const std::vector<glm::vec3>& cornerNormals);
+
 }  // namespace vgi
