@@ -382,9 +382,11 @@ void addMotionBench(CLI::App& bench) {
     }
     std::printf("%-24s %12s %12s %8s   (ms per frame, mean of %d frames after the first)\n", "pass", "still",
                 "moving", "ratio", c.frames);
-    for (auto& [name, t] : c.passes)
-      std::printf("%-24s %12.3f %12.3f %8s\n", name.c_str(), t.stillMs, t.movingMs,
-                  t.stillMs > 0 ? (std::to_string(t.movingMs / t.stillMs).substr(0, 6)).c_str() : "-");
+    for (auto& [name, t] : c.passes) {
+      char ratio[32] = "-";
+      if (t.stillMs > 0) std::snprintf(ratio, sizeof ratio, "%.3f", t.movingMs / t.stillMs);
+      std::printf("%-24s %12.3f %12.3f %8s\n", name.c_str(), t.stillMs, t.movingMs, ratio);
+    }
     std::printf("%-24s %12.3f %12.3f %8.3f\n", "all passes", c.stillMs, c.movingMs, c.ratio());
   });
 }

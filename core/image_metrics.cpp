@@ -77,6 +77,14 @@ namespace {
 // num / den, with 0 / 0 = 0 and x / 0 = ∞ for x > 0.
 double ratio(double num, double den) { return den > 0 ? num / den : (num > 0 ? INFINITY : 0.0); }
 
+// Throws naming the image (a's or b's) and the pixel when a value of either is not finite.
+void checkFinitePair(double x, double r, const std::string& nameA, const std::string& nameB, size_t pixel,
+                     int width) {
+  if (!std::isfinite(x) || !std::isfinite(r))
+    fail("image ", std::isfinite(x) ? nameB : nameA, " has a non-finite value at pixel (", pixel % width,
+         ", ", pixel / width, ")");
+}
+
 void checkComparable(const Image& a, const Image& b, const std::string& nameA, const std::string& nameB) {
   if (a.width != b.width || a.height != b.height)
     fail("cannot compare images of different sizes: ", nameA, " is ", a.width, "x", a.height, ", ", nameB,
@@ -97,9 +105,7 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
   for (size_t i = 0; i < a.pixels.size(); ++i)
     for (int k = 0; k < 3; ++k) {
       double x = a.pixels[i][k], r = b.pixels[i][k];
-      if (!std::isfinite(x) || !std::isfinite(r))
-        fail("image ", std::isfinite(x) ? nameB : nameA, " has a non-finite value at pixel (", i % a.width,
-             ", ", i / a.width, ")");
+      checkFinitePair(x, r, nameA, nameB, i, a.width);
       sumA[k] += x;
       sumB[k] += std::abs(r);
       absErr[k] += std::abs(x - r);
@@ -162,9 +168,7 @@ SequenceDiff compareSequences(const std::vector<Image>& a, const std::vector<Ima
     for (size_t i = 0; i < a[t].pixels.size(); ++i)
       for (int k = 0; k < 3; ++k) {
         const double x = a[t].pixels[i][k], r = b[t].pixels[i][k];
-        if (!std::isfinite(x) || !std::isfinite(r))
-          fail("image ", (std::isfinite(x) ? nameB : nameA) + frame, " has a non-finite value at pixel (",
-               i % a[t].width, ", ", i / a[t].width, ")");
+        checkFinitePair(x, r, nameA + frame, nameB + frame, i, a[t].width);
         if (t == 0) continue;
         const double da = x - a[t - 1].pixels[i][k], db = r - b[t - 1].pixels[i][k];
         err += std::abs(da - db);

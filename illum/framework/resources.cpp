@@ -177,12 +177,11 @@ std::vector<std::string> SceneResources::built() const {
 }
 
 double SceneResources::bytes() {
+  nlohmann::json extra = nlohmann::json::object();
+  addStats(extra);
   double sum = 0;
-  for (auto& e : entries_) {
-    if (!e.resource) continue;
-    const nlohmann::json s = e.resource->stats();
-    if (s.is_object() && s.contains("bytes") && s["bytes"].is_number()) sum += s["bytes"].get<double>();
-  }
+  for (auto& [key, s] : extra.items())
+    if (s.contains("bytes") && s["bytes"].is_number()) sum += s["bytes"].get<double>();
   return sum;
 }
 

@@ -234,7 +234,7 @@ class SceneResources {
   // Each resource's stats under its kind's statsKey, with "rebuilt_this_frame"
   // (whether the last update changed it); call after the image (they may read back).
   void addStats(nlohmann::json& extra);
-  // The bytes the built resources report (their stats' "bytes"), all together.
+  // The bytes the built resources report (the "bytes" of what addStats writes), all together.
   double bytes();
 
  private:

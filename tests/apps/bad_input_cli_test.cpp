@@ -435,7 +435,7 @@ TEST(BadInputCli, VoxelGridsFarFromTheOriginAreComplete) {
     std::ofstream(tmp("far_cube.json"))
         << R"({"meshes": [{"path": "near_cube.obj", "transform": {"translate": [5e5, 5e6, 0]}}]})";
   }
-  for (const std::string scene : {tmp("far_box.obj"), tmp("far_cube.json")})
+  for (const std::string& scene : {tmp("far_box.obj"), tmp("far_cube.json")})
     for (const char* voxelizer : {"atlas", "conservative", "hybrid"}) {
       const std::string stats = tmp(std::string("far_") + voxelizer + ".json");
       CliRun r = vgi("voxelize --scene " + scene + " --voxels 128 --no-cache --voxelizer " + voxelizer +
