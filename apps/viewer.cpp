@@ -92,6 +92,13 @@ void Viewer::switchMethod(const std::string& name) {
   });
 }
 
+void Viewer::startFromPathCamera() {
+  Scene& s = job_->scene();
+  s.camera = s.cameraAt(time_);
+  s.cameraPath.clear();
+  home_ = s.camera;
+}
+
 void Viewer::loadScene(const std::string& spec) {
   attempt("scene " + spec, [&] {
     RenderOptions o = job_->options();
@@ -101,7 +108,7 @@ void Viewer::loadScene(const std::string& spec) {
     auto job = std::make_unique<RenderJob>(o, gl_.get());
     session_.reset();
     job_ = std::move(job);
-    home_ = job_->scene().camera;
+    startFromPathCamera();
     movedLights_.clear();
     dirty_ = true;
   });
@@ -263,7 +270,7 @@ int Viewer::run() {
     frame();
     error_ = keep;
   }
-  home_ = job_->scene().camera;
+  startFromPathCamera();
   for (auto& l : job_->options().lightPositions) movedLights_.insert(l.first);
   if (!script.empty()) {
     // Ctrl-C: the events done stand (their screenshots written); the rest is not run.

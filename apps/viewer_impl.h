@@ -95,6 +95,9 @@ class Viewer {
   Image lightMapImage() const;
   void setLightFace(long face);
   void loadScene(const std::string& spec);
+  // The scene's camera becomes its path's camera at the current time, and the home the R key
+  // returns to; the viewer's camera is the user's to move (a camera path is not played here).
+  void startFromPathCamera();
   void screenshot(const std::string& path);
   void writeWindow(const std::string& path);
   void orbit(float yawDeg, float pitchDeg);

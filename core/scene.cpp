@@ -45,6 +45,28 @@ glm::mat4 Mesh::objectToWorld(float time) const {
   return m * transform;
 }
 
+Camera Scene::cameraAt(float time) const {
+  if (cameraPath.empty()) return camera;
+  if (time <= cameraPath.front().time) return cameraPath.front().camera;
+  if (time >= cameraPath.back().time) return cameraPath.back().camera;
+  size_t i = 0;
+  while (time >= cameraPath[i + 1].time) ++i;
+  const CameraKey &a = cameraPath[i], &b = cameraPath[i + 1];
+  const float t = (time - a.time) / (b.time - a.time);
+  Camera c = a.camera;
+  c.position = glm::mix(a.camera.position, b.camera.position, t);
+  c.target = glm::mix(a.camera.target, b.camera.target, t);
+  c.up = glm::mix(a.camera.up, b.camera.up, t);
+  c.fovYDeg = glm::mix(a.camera.fovYDeg, b.camera.fovYDeg, t);
+  // The loader checks every key's pose; between two keys the position can pass through the target
+  // or the up turn parallel to the view: there the nearer key's camera stands in.
+  const glm::vec3 dir = c.target - c.position;
+  if (glm::length(dir) < 1e-12f ||
+      glm::length(glm::cross(dir, c.up)) < 1e-6f * glm::length(dir) * glm::length(c.up))
+    return t < 0.5f ? a.camera : b.camera;
+  return c;
+}
+
 size_t Scene::triangleCount() const {
   size_t n = 0;
   for (auto& m : meshes) n += m.triangles.size();

@@ -79,6 +79,15 @@ struct Environment {
 struct Camera {
   glm::vec3 position{0, 0, 5}, target{0.0f}, up{0, 1, 0};
   float fovYDeg = 45.0f;
+  // > 0: a cut-away view — what lies closer than this distance along the view axis is not seen
+  // (the near plane of every method's primary visibility); light transport still sees it.
+  float clipNear = 0.0f;
+};
+
+// A camera path: the camera at `time`, linearly interpolated between keys (clamped at the ends).
+struct CameraKey {
+  float time = 0;
+  Camera camera;
 };
 
 struct Bounds {
@@ -105,6 +114,7 @@ struct Scene {
   std::vector<Light> lights;
   Environment environment;
   Camera camera;
+  std::vector<CameraKey> cameraPath;  // empty: `camera` at every time; else times increasing
   // Emissive surfaces emit on their front side only (core/emitters.h), or on both.
   bool twoSidedEmission = false;
   std::map<std::string, std::map<std::string, std::string>> presets;
@@ -113,6 +123,8 @@ struct Scene {
   size_t triangleCount() const;
   Bounds bounds(float time = 0) const;
   bool hasDynamicMeshes() const;
+  // The camera at `time`: `camera`, or the path's interpolation (position, target, up, field of view).
+  Camera cameraAt(float time) const;
   glm::vec3 environmentRadiance(glm::vec3 dir) const;
 };
 

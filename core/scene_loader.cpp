@@ -51,6 +51,11 @@ void checkSceneRanges(const Scene& scene, const std::string& origin) {
   coordinate(b.hi, "the geometry's bounding-box corner");
   coordinate(scene.camera.position, "camera.position");
   coordinate(scene.camera.target, "camera.target");
+  for (size_t k = 0; k < scene.cameraPath.size(); ++k) {
+    const std::string where = "camera.keyframes[" + std::to_string(k) + "]";
+    coordinate(scene.cameraPath[k].camera.position, where + ".position");
+    coordinate(scene.cameraPath[k].camera.target, where + ".target");
+  }
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const std::string where = "lights[" + std::to_string(i) + "]";
     coordinate(scene.lights[i].position, where + ".position");
@@ -255,6 +260,13 @@ Camera defaultCamera(const Bounds& b) {
   return cam;
 }
 
+void checkCameraPose(const Camera& cam, const std::string& where) {
+  glm::vec3 dir = cam.target - cam.position;
+  if (glm::length(dir) < 1e-12f) fail(where, " position equals its target");
+  if (glm::length(glm::cross(dir, cam.up)) < 1e-12f * glm::length(dir))
+    fail(where, " 'up' is parallel to the viewing direction");
+}
+
 void finishScene(Scene& scene, const std::string& origin, bool haveLights, bool haveCamera) {
   if (scene.triangleCount() == 0) fail(origin, ": the scene has no triangles");
   checkSceneRanges(scene, origin);
@@ -272,10 +284,9 @@ void finishScene(Scene& scene, const std::string& origin, bool haveLights, bool 
       scene.report.warnings.push_back(origin + ": no lights, added a point light above the camera");
     }
   }
-  glm::vec3 dir = scene.camera.target - scene.camera.position;
-  if (glm::length(dir) < 1e-12f) fail(origin, ": camera position equals its target");
-  if (glm::length(glm::cross(dir, scene.camera.up)) < 1e-12f * glm::length(dir))
-    fail(origin, ": camera 'up' is parallel to the viewing direction");
+  checkCameraPose(scene.camera, origin + ": camera");
+  for (size_t k = 0; k < scene.cameraPath.size(); ++k)
+    checkCameraPose(scene.cameraPath[k].camera, origin + ": camera.keyframes[" + std::to_string(k) + "]");
 }
 
 // A mesh entry's keyframes (it must be dynamic), times increasing.
@@ -384,18 +395,46 @@ void readEnvironment(JsonCtx& c, const json& ej, Scene& scene, const fs::path& d
   }
 }
 
-Camera readCamera(JsonCtx& c, const json& cj) {
-  c.checkKeys(cj, "camera", {"position", "target", "up", "fov_deg"});
-  Camera cam;
-  if (!cj.contains("position") || !cj.contains("target"))
-    c.error("camera", "needs \"position\" and \"target\"");
-  cam.position = c.vec3(cj["position"], "camera.position");
-  cam.target = c.vec3(cj["target"], "camera.target");
-  if (cj.contains("up")) cam.up = c.direction(cj["up"], "camera.up");
+// A camera's position, target, up and field of view over `cam` (each optional when `base`).
+void readCameraPose(JsonCtx& c, const json& cj, const std::string& where, bool base, Camera& cam) {
+  if (base && (!cj.contains("position") || !cj.contains("target")))
+    c.error(where, "needs \"position\" and \"target\"");
+  if (cj.contains("position")) cam.position = c.vec3(cj["position"], where + ".position");
+  if (cj.contains("target")) cam.target = c.vec3(cj["target"], where + ".target");
+  if (cj.contains("up")) cam.up = c.direction(cj["up"], where + ".up");
   if (cj.contains("fov_deg")) {
-    cam.fovYDeg = c.number(cj["fov_deg"], "camera.fov_deg");
+    cam.fovYDeg = c.number(cj["fov_deg"], where + ".fov_deg");
     if (cam.fovYDeg <= 0 || cam.fovYDeg >= 180)
-      c.error("camera.fov_deg", "must be in (0, 180), got " + jsonExcerpt(cj["fov_deg"]));
+      c.error(where + ".fov_deg", "must be in (0, 180), got " + jsonExcerpt(cj["fov_deg"]));
+  }
+}
+
+// "camera": the pose, the cut-away distance "near", and "keyframes" (a path: each key's pose over
+// the camera's, times increasing).
+Camera readCamera(JsonCtx& c, const json& cj, std::vector<CameraKey>& path) {
+  c.checkKeys(cj, "camera", {"position", "target", "up", "fov_deg", "near", "keyframes"});
+  Camera cam;
+  readCameraPose(c, cj, "camera", true, cam);
+  if (cj.contains("near")) {
+    cam.clipNear = c.number(cj["near"], "camera.near");
+    if (!(cam.clipNear > 0)) c.error("camera.near", "must be > 0, got " + jsonExcerpt(cj["near"]));
+  }
+  path.clear();
+  if (cj.contains("keyframes")) {
+    const json& kj = cj["keyframes"];
+    if (!kj.is_array() || kj.empty()) c.error("camera.keyframes", "expected a non-empty array");
+    for (size_t k = 0; k < kj.size(); ++k) {
+      const std::string kw = "camera.keyframes[" + std::to_string(k) + "]";
+      c.checkKeys(kj[k], kw, {"time", "position", "target", "up", "fov_deg"});
+      if (!kj[k].contains("time")) c.error(kw, "missing \"time\"");
+      CameraKey key;
+      key.time = c.number(kj[k]["time"], kw + ".time");
+      if (!path.empty() && key.time <= path.back().time)
+        c.error(kw + ".time", "keyframe times must increase");
+      key.camera = cam;
+      readCameraPose(c, kj[k], kw, false, key.camera);
+      path.push_back(key);
+    }
   }
   return cam;
 }
@@ -454,7 +493,7 @@ Scene loadSceneJson(const std::string& path) {
   bool haveCamera = builtin.haveCamera;
   scene.camera = builtin.camera;
   if (root.contains("camera")) {
-    scene.camera = readCamera(c, root["camera"]);
+    scene.camera = readCamera(c, root["camera"], scene.cameraPath);
     haveCamera = true;
   }
   if (root.contains("presets")) readPresets(c, root["presets"], scene);

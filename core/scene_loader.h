@@ -22,7 +22,12 @@
 //   "environment": {"color":[r,g,b]} | {"map":"latlong.exr", "scale": s},
 //   "two_sided_emission": false,   // emissive meshes (area lights) emit on their winding's
 //                                  // front side only, or (true) on both (core/emitters.h)
-//   "camera": {"position":[…], "target":[…], "up":[…], "fov_deg": f},
+//   "camera": {"position":[…], "target":[…], "up":[…], "fov_deg": f,
+//              "near": d,              // optional: a cut-away view, nothing nearer than d along
+//                                      // the view axis is seen (light transport still sees it)
+//              "keyframes": [ {"time": t, "position":…, "target":…, "up":…, "fov_deg": f} ] },
+//                                      // optional: a camera path (each key over the camera's
+//                                      // values; linear between keys, clamped at the ends)
 //   "presets": { "name": { "key": "value", … } }   (a preset for one method names it:
 //              "method": "reference"; --preset then selects that method)
 // }

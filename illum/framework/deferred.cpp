@@ -32,7 +32,9 @@ FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int fr
   // with the front face and won a 1-pixel column (seen on the Cornell box).
   const float camFar =
       glm::length(glm::max(glm::abs(b.lo - cam.position), glm::abs(b.hi - cam.position))) * 1.01f + 1e-6f;
-  const float nearP = std::max(camFar * 1e-5f, 1e-7f), f = 1.0f / std::tan(0.5f * glm::radians(cam.fovYDeg));
+  // A cut-away camera's near plane is its clip distance: the raster clips what lies before it.
+  const float nearP = cam.clipNear > 0.0f ? cam.clipNear : std::max(camFar * 1e-5f, 1e-7f),
+              f = 1.0f / std::tan(0.5f * glm::radians(cam.fovYDeg));
   glm::mat4 proj(0.0f);
   proj[0][0] = f * float(H) / float(W);
   proj[1][1] = f;
@@ -49,6 +51,8 @@ FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int fr
   c.viewProj = jitter * proj * view;
   c.invViewProj = glm::inverse(c.viewProj);
   c.position = cam.position;
+  c.forward = glm::normalize(cam.target - cam.position);
+  c.clipNear = cam.clipNear;
   return c;
 }
 
@@ -60,6 +64,7 @@ PinholeView pinholeView(const Camera& cam, int W, int H) {
   v.up = glm::cross(v.right, v.fwd);
   v.tanHalf = std::tan(glm::radians(cam.fovYDeg) * 0.5f);
   v.aspect = float(W) / float(H);
+  v.clipNear = cam.clipNear;
   return v;
 }
 

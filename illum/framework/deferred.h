@@ -20,6 +20,8 @@ float halton(int index, int base);
 struct FrameCamera {
   glm::mat4 viewProj, invViewProj;
   glm::vec3 position;
+  glm::vec3 forward;      // the view axis (unit)
+  float clipNear = 0.0f;  // > 0: the camera's cut-away distance (Camera::clipNear), the near plane
 };
 // Jittered frame `frame`: frame 0 at pixel centres, frame k > 0 at Halton
 // (2,3) point k + 1, an offset in [−½, ½)² pixels. A frame's jitter does not
@@ -35,6 +37,12 @@ FrameCamera frameCamera(const Camera& camera, const Bounds& bounds, int width, i
 struct PinholeView {
   glm::vec3 position, fwd, right, up;
   float tanHalf, aspect;
+  float clipNear = 0.0f;  // Camera::clipNear
+  // Where the camera ray along unit direction d starts: the eye, or with a cut-away distance the
+  // ray's point on the near plane (what lies before it is not seen).
+  glm::vec3 origin(glm::vec3 d) const {
+    return clipNear > 0.0f ? position + d * (clipNear / glm::dot(d, fwd)) : position;
+  }
 };
 PinholeView pinholeView(const Camera& camera, int width, int height);
 

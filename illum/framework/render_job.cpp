@@ -122,8 +122,11 @@ RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options
   checkRenderOptions(opt_);
   findMethod(opt_.method);  // a misspelt --method is named before the scene is loaded
   scene_ = loadScene(opt_.scene);
-  if (opt_.camera) {
+  if (opt_.camera) {  // the pose at every time (no path); the scene's cut-away distance stays
+    const float clipNear = scene_.camera.clipNear;
     scene_.camera = *opt_.camera;
+    scene_.camera.clipNear = clipNear;
+    scene_.cameraPath.clear();
     checkSceneRanges(scene_, "--camera '" + cameraText(*opt_.camera) + "'");
   }
   for (auto& [index, position] : opt_.lightPositions) {
@@ -226,11 +229,13 @@ nlohmann::json RenderJob::describe() const {
   run["spp"] = opt_.spp;
   run["seed"] = opt_.seed;
   run["time"] = opt_.time;
-  const Camera& c = scene_.camera;
+  const Camera c = scene_.cameraAt(opt_.time);
   run["camera"] = {{"position", {c.position.x, c.position.y, c.position.z}},
                    {"target", {c.target.x, c.target.y, c.target.z}},
                    {"up", {c.up.x, c.up.y, c.up.z}},
                    {"fov_y_deg", c.fovYDeg},
+                   {"near", c.clipNear},
+                   {"path_keys", scene_.cameraPath.size()},
                    {"option", cameraText(c)}};
   nlohmann::json lights = nlohmann::json::array();
   for (size_t i = 0; i < scene_.lights.size(); ++i) {
@@ -330,9 +335,11 @@ RenderOutput renderAnimationJob(RenderJob& job, const RenderOptions& opt, const 
   GlContext* gl = job.gl();
   RenderRequest req = job.request();
   nlohmann::json run = job.describe();
-  if (!job.scene().hasDynamicMeshes())
-    run["warnings"].push_back("--frames " + std::to_string(opt.frames) +
-                              ": the scene has no dynamic meshes, so every frame shows the same instant");
+  if (!job.scene().hasDynamicMeshes() && job.scene().cameraPath.empty())
+    run["warnings"].push_back(
+        "--frames " + std::to_string(opt.frames) +
+        ": the scene has no dynamic meshes and no camera path, so every frame shows the same "
+        "instant");
   nlohmann::json frames = nlohmann::json::array(), timings = nlohmann::json::object(),
                  cpuTimings = nlohmann::json::object(), calls = nlohmann::json::object();
   auto addInto = [](nlohmann::json& sum, const nlohmann::json& part) {

@@ -216,7 +216,7 @@ bool SampleSession::addSample() {
   const bool gl = shaders_ != nullptr;
   const SceneNeeds& needs = res_.needs();
   if (gl) {
-    frame_.camera = frameCamera(req_.scene->camera,
+    frame_.camera = frameCamera(req_.scene->cameraAt(req_.time),
                                 needs.gbuffer ? res_.get<GpuScene>().bounds() : req_.scene->bounds(req_.time),
                                 req_.width, req_.height, done_);
     if (needs.gbuffer) {

@@ -385,8 +385,7 @@ void ReferenceRenderer::prepareFrame(Frame& f) {
   lights_.clear();
   for (auto& l : f.scene.lights) lights_.push_back(packLight(l));
   eps_ = 2e-5f * f.scene.bounds(f.request.time).diagonal();
-  const Camera& cam = f.scene.camera;
-  view_ = pinholeView(cam, f.width(), f.height());
+  view_ = pinholeView(f.scene.cameraAt(f.request.time), f.width(), f.height());
 }
 
 bool ReferenceRenderer::addSample(Frame& f, int k) {
@@ -411,7 +410,7 @@ bool ReferenceRenderer::addSample(Frame& f, int k) {
           float py = (1.0f - 2.0f * (y + j.y) / H) * view_.tanHalf;
           vec3 d = glm::normalize(view_.fwd + px * view_.right + py * view_.up);
           vec3 indirect(0.0f);
-          vec3 L = li(view_.position, d, rng, indirect);
+          vec3 L = li(view_.origin(d), d, rng, indirect);
           if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z))
             throw std::logic_error("reference: non-finite radiance");
           image[pix] = L;

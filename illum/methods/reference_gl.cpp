@@ -86,8 +86,9 @@ class ReferenceGlMethod : public Method {
     s.setUniform(prog_, "uSeed", f.request.seed);
     // Pixel positions are drawn per sample in the shader, through the reference's pinhole camera
     // (not the sample loop's jittered projection).
-    const PinholeView v = pinholeView(f.scene.camera, f.width(), f.height());
+    const PinholeView v = pinholeView(f.scene.cameraAt(f.request.time), f.width(), f.height());
     s.setUniform(prog_, "uEye", v.position);
+    s.setUniform(prog_, "uClipNear", v.clipNear);
     s.setUniform(prog_, "uFwd", v.fwd);
     s.setUniform(prog_, "uRight", v.right * (v.tanHalf * v.aspect));
     s.setUniform(prog_, "uUp", v.up * v.tanHalf);

@@ -70,6 +70,8 @@ class VoxelViewMethod : public Method {
     f.resources.get<GlPyramid>().bind(shaders, prog_);
     shaders.setUniform(prog_, "uInvViewProj", f.camera.invViewProj);
     shaders.setUniform(prog_, "uEye", f.camera.position);
+    shaders.setUniform(prog_, "uFwd", f.camera.forward);
+    shaders.setUniform(prog_, "uClipNear", f.camera.clipNear);
     shaders.setUniform(prog_, "uLevel", uint32_t(level_));
     // The depth cue's range: the scene's nearest and farthest points from the eye.
     const Bounds b = f.scene.bounds(f.request.time);

@@ -110,4 +110,86 @@ TEST(Scene, ProjectSceneFilesLoadWhenTheirDataIsPresent) {
   }
 }
 
+namespace {
+// A scene JSON over the built-in Cornell box with this "camera" object; returns its path.
+std::string cornellWithCamera(const std::string& name, const std::string& camera) {
+  const std::string path = testing::TempDir() + "/" + name + ".json";
+  std::ofstream(path) << R"({"meshes": [{"path": "builtin:cornell"}], "camera": )" << camera << "}";
+  return path;
+}
+}  // namespace
+
+// A camera path: linear between keys, clamped at the ends; a key inherits what it leaves out from the
+// camera (up, field of view) and every key keeps the camera's cut-away distance.
+TEST(Scene, CameraPathInterpolatesBetweenKeysAndClampsAtTheEnds) {
+  const Scene s = loadScene(cornellWithCamera("camera_path", R"({"position": [0, 0, 1], "target": [0, 0, 0],
+      "fov_deg": 40, "near": 0.25, "keyframes": [
+        {"time": 1, "position": [0, 0, 2], "target": [0, 0, 0]},
+        {"time": 3, "position": [2, 0, 2], "target": [1, 0, 0], "up": [0, 0, -1], "fov_deg": 60}]})"));
+  ASSERT_EQ(s.cameraPath.size(), 2u);
+  EXPECT_FLOAT_EQ(s.camera.clipNear, 0.25f);
+  const Camera before = s.cameraAt(0), at1 = s.cameraAt(1), mid = s.cameraAt(2), after = s.cameraAt(7);
+  EXPECT_EQ(before.position, glm::vec3(0, 0, 2));  // before the first key: the first key
+  EXPECT_EQ(at1.up, glm::vec3(0, 1, 0));           // the camera's up, inherited
+  EXPECT_FLOAT_EQ(at1.fovYDeg, 40.0f);
+  EXPECT_FLOAT_EQ(at1.clipNear, 0.25f);
+  EXPECT_EQ(mid.position, glm::vec3(1, 0, 2));
+  EXPECT_EQ(mid.target, glm::vec3(0.5f, 0, 0));
+  EXPECT_FLOAT_EQ(mid.fovYDeg, 50.0f);
+  EXPECT_NEAR(glm::length(mid.up - glm::vec3(0, 0.5f, -0.5f)), 0.0f, 1e-6f);  // mixed, not renormalised
+  EXPECT_EQ(after.position, glm::vec3(2, 0, 2));
+  EXPECT_EQ(after.up, glm::vec3(0, 0, -1));
+  // Without a path the camera is the same at every time.
+  const Scene plain = loadScene("builtin:cornell");
+  EXPECT_EQ(plain.cameraAt(5).position, plain.camera.position);
+}
+
+// Between two valid keys the position can pass through the target: the nearer key stands in.
+TEST(Scene, CameraPathThroughItsTargetKeepsAValidCamera) {
+  const Scene s =
+      loadScene(cornellWithCamera("camera_through", R"({"position": [0, 0, 1], "target": [0, 0, 0],
+      "keyframes": [{"time": 0, "position": [0, 0, 1], "target": [0, 0, 0]},
+                    {"time": 1, "position": [0, 0, -1], "target": [0, 0, 0]}]})"));
+  const glm::vec3 halfway = s.cameraAt(0.5f).position;  // on the target: a key's camera
+  EXPECT_TRUE(halfway == glm::vec3(0, 0, 1) || halfway == glm::vec3(0, 0, -1)) << halfway.z;
+  EXPECT_EQ(s.cameraAt(0.75f).position, glm::vec3(0, 0, -0.5f));  // past it: interpolated again
+}
+
+TEST(Scene, BadCameraPathsAndCutAwaysAreNamed) {
+  using test::expectError;
+  expectError(
+      [] {
+        loadScene(
+            cornellWithCamera("bad_near", R"({"position": [0, 0, 1], "target": [0, 0, 0], "near": -1})"));
+      },
+      {"bad_near.json", "camera.near", "-1"});
+  expectError(
+      [] {
+        loadScene(
+            cornellWithCamera("bad_key_time", R"({"position": [0, 0, 1], "target": [0, 0, 0], "keyframes": [
+        {"time": 1, "position": [0, 0, 2]}, {"time": 1, "position": [0, 0, 3]}]})"));
+      },
+      {"bad_key_time.json", "camera.keyframes[1].time", "increase"});
+  expectError(
+      [] {
+        loadScene(
+            cornellWithCamera("bad_key_pose", R"({"position": [0, 0, 1], "target": [0, 0, 0], "keyframes": [
+        {"time": 0}, {"time": 1, "position": [0, 0, 0]}]})"));
+      },
+      {"bad_key_pose.json", "camera.keyframes[1]", "position equals its target"});
+  expectError(
+      [] {
+        loadScene(
+            cornellWithCamera("bad_key_key", R"({"position": [0, 0, 1], "target": [0, 0, 0], "keyframes": [
+        {"time": 0, "near": 2}]})"));
+      },
+      {"bad_key_key.json", "camera.keyframes[0]", "near"});
+  expectError(
+      [] {
+        loadScene(cornellWithCamera("bad_keys",
+                                    R"({"position": [0, 0, 1], "target": [0, 0, 0], "keyframes": []})"));
+      },
+      {"bad_keys.json", "camera.keyframes", "non-empty"});
+}
+
 }  // namespace vgi

@@ -384,4 +384,32 @@ TEST(Modules, EveryNumberParameterAcceptsBothEndsOfItsRange) {
   EXPECT_GT(checked, 100);
 }
 
+// A cut-away camera ("near"): a grey quad at z = 0 hides an emissive quad at z = −1 (emission 2, facing
+// the camera, the only light); with the near plane between them every device's primary visibility
+// starts behind the grey quad and sees the emitter's exact radiance at the image centre, without it
+// the grey quad's unlit front (0). The light transport still sees the grey quad: its shadow darkens
+// nothing here, the emitter is seen directly.
+TEST(CutAway, EveryDeviceSeesThroughTheNearPlane) {
+  const std::string dir = testing::TempDir();
+  std::ofstream(dir + "/cut_away.mtl") << "newmtl grey\nKd 0.5 0.5 0.5\nnewmtl lamp\nKd 0 0 0\nKe 2 2 2\n";
+  std::ofstream(dir + "/cut_away.obj") << "mtllib cut_away.mtl\n"
+                                          "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                                          "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+                                          "usemtl grey\nf 1 2 3\nf 1 3 4\nusemtl lamp\nf 5 6 7\nf 5 7 8\n";
+  for (const char* near : {"", R"(, "near": 2.5)"}) {
+    const std::string scene = dir + "/cut_away" + (*near ? "_near" : "") + ".json";
+    std::ofstream(scene) << R"({"meshes": [{"path": "cut_away.obj"}],
+        "camera": {"position": [0, 0, 2], "target": [0, 0, 0], "fov_deg": 20)"
+                         << near << "}}";
+    for (const char* method : {"reference", "reference_gl", "direct", "nearfield"}) {
+      const Image img = test::render(scene, method, {}, 16, 1).result.image;
+      const glm::vec3 c = img.at(8, 8);
+      if (*near)
+        EXPECT_NEAR(c.x, 2.0f, 1e-5f) << method << ": the emitter behind the near plane";
+      else
+        EXPECT_LT(c.x, 1e-3f) << method << ": the grey quad's unlit front";
+    }
+  }
+}
+
 }  // namespace vgi

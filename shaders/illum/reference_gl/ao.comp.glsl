@@ -17,10 +17,11 @@ void main() {
   vec3 dir;
   if (!pixelRay(imageSize(uImage), q, state, dir)) return;
   float ao = 0.0f;
-  const BvhHit h = traceBvh(uEye, dir, kTraceInfinity, false);
+  const vec3 origin = primaryOrigin(dir);
+  const BvhHit h = traceBvh(origin, dir, kTraceInfinity, false);
   if (h.hit != 0u) {
     const SurfaceNormals s = hitNormals(h, -dir);
-    const vec3 p = uEye + h.t * dir;
+    const vec3 p = origin + h.t * dir;
     vec2 u;
     u.x = rngNext(state);
     u.y = rngNext(state);

@@ -13,6 +13,7 @@ layout(std430, binding = BINDING_BVH_NORMALS) readonly buffer BvhNormals { vec4 
 #include "../../shared/trace_bvh.glsl"
 
 uniform vec3 uEye, uFwd;
+uniform float uClipNear;  // > 0: the camera's cut-away distance (PinholeView::origin)
 uniform vec3 uRight, uUp;  // scaled by tan(fov/2)·aspect and tan(fov/2) (illum/framework/deferred.h, PinholeView)
 uniform float uEps;        // the start offset's scene part (2e-5 of the diagonal, as the reference's)
 uniform uint uSample;
@@ -29,6 +30,9 @@ vec3 cameraRay(ivec2 q, ivec2 size, inout uint state) {
   const vec2 ndc = (vec2(q) + jitter) / vec2(size) * 2.0f - 1.0f;
   return normalize(uFwd + ndc.x * uRight + ndc.y * uUp);
 }
+
+// Where the camera ray along dir starts: the eye, or its point on a cut-away camera's near plane.
+vec3 primaryOrigin(vec3 dir) { return uClipNear > 0.0f ? uEye + dir * (uClipNear / dot(dir, uFwd)) : uEye; }
 
 // This invocation's pixel q of an image of `size`, its random stream (per
 // pixel, sample and seed) and its camera ray; false outside the image.

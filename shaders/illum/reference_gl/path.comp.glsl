@@ -223,9 +223,9 @@ void main() {
   if (!pixelRay(imageSize(uImage), q, state, dir)) return;
   vec3 indirect = vec3(0.0f);
 #ifdef REFERENCE_NEARFIELD
-  const vec3 L = nearFieldLi(uEye, dir, state, indirect);
+  const vec3 L = nearFieldLi(primaryOrigin(dir), dir, state, indirect);
 #else
-  const vec3 L = pathLi(uEye, dir, state, indirect);
+  const vec3 L = pathLi(primaryOrigin(dir), dir, state, indirect);
 #endif
   imageStore(uImage, q, vec4(L, 1.0f));
   if (uWriteIndirect != 0) imageStore(uIndirectAov, q, vec4(indirect, 1.0f));

@@ -13,6 +13,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform writeonly image2D uImage;
 uniform mat4 uInvViewProj;
 uniform vec3 uEye;
+uniform vec3 uFwd;
+uniform float uClipNear;   // > 0: the camera's cut-away distance (rays start on the near plane)
 uniform vec2 uDepthRange;  // distances from the eye to the scene's bounds: nearest, farthest
 uniform uint uLevel;       // the pyramid level shown (0: the grid)
 
@@ -29,7 +31,9 @@ void main() {
   const vec2 ndc = (vec2(q) + 0.5f) / vec2(size) * 2.0f - 1.0f;
   const vec3 dir = cameraRay(ndc);
   const PyramidParams p = pyramidFromLevel(pyramidFromUniforms(), uLevel);
-  const TraceHit h = tracePyramid(p, uEye, dir, 1e30f);
+  const float t0 = uClipNear > 0.0f ? uClipNear / dot(dir, uFwd) : 0.0f;
+  TraceHit h = tracePyramid(p, uEye + t0 * dir, dir, 1e30f);
+  h.t += t0;
   vec3 c = vec3(0.0f);
   if (h.hit != 0u) {
     const GridParams g = p.grid;
