@@ -102,6 +102,10 @@ RenderOptions sweepRenderOptions(const Experiment& e, const std::string& scene, 
   o.aovs = aovs;
   o.checkpoints = checkpoints;
   o.timeLimitS = timeLimitS;
+  const Experiment::Animation& a = e.animation.at(scene);
+  o.frames = a.frames;
+  o.timeStep = a.timeStep;
+  o.time = a.time;
   return o;
 }
 
@@ -156,19 +160,45 @@ Experiment loadExperiment(const std::string& path, const std::string& dir) {
 }
 
 namespace {
+// "frames", "time_step", "time" of the experiment or of one scene (`where` names it) over `a`.
+void readAnimation(const nlohmann::json& j, const std::string& where, Experiment::Animation& a) {
+  if (j.contains("frames")) a.frames = intIn(j["frames"], where + "frames", 1, 10000);
+  if (j.contains("time_step")) a.timeStep = float(positive(j["time_step"], where + "time_step"));
+  if (j.contains("time")) {
+    if (!j["time"].is_number() || !std::isfinite(j["time"].get<double>()))
+      fail("experiment: ", where, "'time' = ", j["time"].dump(), " must be a finite number");
+    a.time = j["time"].get<float>();
+  }
+}
+
 // The experiment's own fields: name, scenes, size, spp, seed, checkpoints, aovs, ε, time budget.
 void readExperimentHead(const nlohmann::json& j, const std::string& path, Experiment& e) {
   checkKeys(j, "the experiment",
             {"name", "scenes", "size", "spp", "checkpoints", "seed", "aovs", "epsilon", "relative_epsilon",
-             "dark_tolerance", "time_budget_s", "reference", "methods"});
+             "dark_tolerance", "time_budget_s", "frames", "time_step", "time", "reference", "methods"});
   e.name = stringAt(j, "name", "name", fs::path(path).stem().string());
   for (const char* k : {"scenes", "size", "spp", "methods"})
     if (!j.contains(k)) fail("experiment file '", path, "': '", k, "' is missing");
   if (!j["scenes"].is_array() || j["scenes"].empty())
     fail("experiment: 'scenes' = ", j["scenes"].dump(), " must be a non-empty list of scenes");
+  Experiment::Animation fallback;
+  readAnimation(j, "", fallback);
   for (auto& s : j["scenes"]) {
-    if (!s.is_string()) fail("experiment: scene ", s.dump(), " is not a string");
-    e.scenes.push_back(s.get<std::string>());
+    Experiment::Animation a = fallback;
+    std::string scene;
+    if (s.is_object()) {
+      checkKeys(s, "a scene", {"scene", "frames", "time_step", "time"});
+      scene = stringAt(s, "scene", "scenes[].scene");
+      if (scene.empty()) fail("experiment: scene ", s.dump(), " needs \"scene\": a scene");
+      readAnimation(s, "scene '" + scene + "' ", a);
+    } else if (s.is_string()) {
+      scene = s.get<std::string>();
+    } else {
+      fail("experiment: scene ", s.dump(), " is neither a scene nor {\"scene\": …, \"frames\": …}");
+    }
+    if (e.animation.count(scene)) fail("experiment: scene '", scene, "' is listed twice");
+    e.scenes.push_back(scene);
+    e.animation[scene] = a;
   }
   if (!j["size"].is_string()) fail("experiment: 'size' = ", j["size"].dump(), " must be \"WxH\"");
   parseSize(j["size"].get<std::string>(), e.width, e.height);
@@ -195,6 +225,18 @@ void readExperimentHead(const nlohmann::json& j, const std::string& path, Experi
   if (j.contains("dark_tolerance"))
     e.diff.darkTolerance = positive(j["dark_tolerance"], "dark_tolerance", true);
   if (j.contains("time_budget_s")) e.timeBudgetS = positive(j["time_budget_s"], "time_budget_s");
+  if (e.animated()) {  // an animation's row is per frame of its whole run
+    for (const char* k : {"checkpoints", "time_budget_s"})
+      if (j.contains(k))
+        fail("experiment: '", k,
+             "' and an animation ('frames' > 1) do not go together (an animation's renders are compared "
+             "whole, frame by frame)");
+    if (j.contains("reference") && j["reference"].is_object() &&
+        (j["reference"].contains("convergence") || j["reference"].contains("file")))
+      fail(
+          "experiment: an animation ('frames' > 1) does not go with 'reference.convergence' or "
+          "'reference.file' (the reference is an animation)");
+  }
 }
 
 // The output folder must be writable before anything renders.
@@ -511,7 +553,23 @@ std::string sweepCommand(const SweepRender& r, const std::string& vgi) {
 bool sweepRenderDone(const SweepRender& r, int spp) {
   if (!r.file.empty()) return true;
   const nlohmann::json s = readJson(stemOfRender(r) + ".json");
-  return s.is_object() && (s.value("spp_completed", 0) >= spp || s.value("time_limited", false));
+  if (!s.is_object()) return false;
+  if (r.options.frames > 1) {  // every frame with every sample
+    const nlohmann::json frames = s.value("frames", nlohmann::json::array());
+    return !s.value("interrupted", true) && int(frames.size()) == r.options.frames && frames.is_array() &&
+           frames.back().value("spp_completed", 0) >= spp;
+  }
+  return s.value("spp_completed", 0) >= spp || s.value("time_limited", false);
+}
+
+bool Experiment::animated() const {
+  for (auto& [scene, a] : animation)
+    if (a.frames > 1) return true;
+  return false;
+}
+
+std::string sweepFrameStem(const SweepRender& r, int frame) {
+  return r.options.frames > 1 ? frameStem(stemOfRender(r), frame) : stemOfRender(r);
 }
 
 int sweepRenderSpp(const SweepRender& r) { return r.args.empty() ? 1 : r.options.spp; }
@@ -554,54 +612,108 @@ std::string checkpointStem(const SweepRender& r, int spp) {
   return stemOfRender(r) + number;
 }
 
+// A render's time per image (an animation's: the mean per frame): total, in the per-sample passes,
+// and the set-up (the rest).
+void addTimes(const nlohmann::json& stats, nlohmann::json& row) {
+  auto times = [](const nlohmann::json& s, double& total, double& sample) {
+    total = s.value("total_ms", 0.0);
+    sample = 0;
+    const nlohmann::json timings = s.value("timings_ms", nlohmann::json::object());
+    for (auto& pass : s.value("sample_passes", nlohmann::json::array()))
+      sample += timings.value(pass.get<std::string>(), 0.0);
+    if (!s.contains("sample_passes")) sample = total;  // CPU methods: all per sample
+  };
+  double total = 0, sample = 0;
+  const nlohmann::json frames = stats.value("frames", nlohmann::json());
+  if (frames.is_array() && !frames.empty()) {
+    for (auto& f : frames) {
+      double t, s;
+      times(f, t, s);
+      total += t;
+      sample += s;
+    }
+    total /= double(frames.size());
+    sample /= double(frames.size());
+  } else {
+    times(stats, total, sample);
+  }
+  row["time_ms"] = total;
+  row["sample_ms"] = sample;
+  row["setup_ms"] = std::max(0.0, total - sample);
+}
+
+// One channel's metrics, frame t of `a` against frame t of `b` (one file each for a still): the
+// frames' mean static metrics and, over two or more frames, the temporal ones. Empty when a file
+// is missing.
+nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string>& a,
+                              const std::vector<std::string>& b) {
+  for (size_t t = 0; t < a.size(); ++t)
+    if (!fs::exists(a[t]) || !fs::exists(b[t])) return nlohmann::json();
+  DiffOptions relative;
+  relative.relativeEpsilon = e.relativeEpsilon;
+  relative.darkTolerance = e.diff.darkTolerance;
+  std::vector<Image> ia, ib;
+  double sum[7] = {0, 0, 0, 0, 0, 0, 0};
+  for (size_t t = 0; t < a.size(); ++t) {
+    ia.push_back(readImage(a[t]));
+    ib.push_back(readImage(b[t]));
+    const ImageDiff d = compareImages(ia.back(), ib.back(), a[t], b[t], e.diff),
+                    dr = compareImages(ia.back(), ib.back(), a[t], b[t], relative);
+    const double v[7] = {
+        d.relMse, dr.relMse,     d.relMae, d.ssim, (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0,
+        d.leak,   d.darkFraction};
+    for (int k = 0; k < 7; ++k) sum[k] += v[k] / double(a.size());
+  }
+  nlohmann::json m = {{"relmse", sum[0]},       {"relmse_relative", sum[1]}, {"rel_mae", sum[2]},
+                      {"ssim", sum[3]},         {"energy", sum[4]},          {"leak", sum[5]},
+                      {"dark_fraction", sum[6]}};
+  if (a.size() > 1) {
+    const SequenceDiff s = compareSequences(ia, ib, a.front(), b.front());
+    m["temporal_error"] = s.temporalError;
+    m["change"] = s.changeA;
+    m["change_reference"] = s.changeB;
+  }
+  return m;
+}
+
 // The rows of one render (a point or a counterpart curve): one per checkpoint
-// it reached and one for its last image, each against the reference.
+// it reached and one for its last image, each against the reference (an
+// animation: one row, its frames against the reference's).
 void addRows(const Experiment& e, const SweepRender& render, const std::vector<int>& checkpoints,
              const SweepRender& ref, const nlohmann::json& base, const std::string& machine,
              nlohmann::json& rows) {
   const nlohmann::json last = readJson(stemOfRender(render) + ".json");
-  const int completed = last.is_object() ? last.value("spp_completed", 0) : 0;
+  const int frames = render.options.frames;
+  int completed = last.is_object() ? last.value("spp_completed", 0) : 0;
+  if (frames > 1) completed = sweepRenderDone(render, render.options.spp) ? render.options.spp : 0;
   std::vector<std::pair<int, std::string>> images;
   for (int k : checkpoints)
     if (completed == 0 || k < completed) images.emplace_back(k, checkpointStem(render, k));
   if (completed > 0) images.emplace_back(completed, stemOfRender(render));
-  DiffOptions relative;
-  relative.relativeEpsilon = e.relativeEpsilon;
-  const std::string refStem = stemOfRender(ref);
+  std::vector<std::string> channels = {"image"};
+  channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
   for (auto& [spp, stem] : images) {
     const nlohmann::json stats = readJson(stem + ".json");
-    if (!stats.is_object() || !fs::exists(stem + ".exr")) continue;
+    if (!stats.is_object() || (frames == 1 && !fs::exists(stem + ".exr"))) continue;
     nlohmann::json row = base;
     row["resolved_params"] = stats.value("params", nlohmann::json::object());
     row["reference"] = ref.id;
     row["spp"] = spp;
-    double sampleMs = 0, total = stats.value("total_ms", 0.0);
-    const nlohmann::json timings = stats.value("timings_ms", nlohmann::json::object());
-    const nlohmann::json passes = stats.value("sample_passes", nlohmann::json::array());
-    for (auto& pass : passes) sampleMs += timings.value(pass.get<std::string>(), 0.0);
-    if (!stats.contains("sample_passes")) sampleMs = total;  // CPU methods: all per sample
-    row["time_ms"] = total;
-    row["sample_ms"] = sampleMs;
-    row["setup_ms"] = std::max(0.0, total - sampleMs);
+    if (frames > 1) row["frames"] = frames;
+    addTimes(stats, row);
     row["time_limited"] = stats.value("time_limited", false);
     row["gl_renderer"] = stats.value("gl_renderer", "");
     row["git_revision"] = stats.value("git_revision", "");
     row["machine"] = machine;
-    std::vector<std::string> channels = {"image"};
-    channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
     for (auto& ch : channels) {
-      const std::string a = ch == "image" ? stem + ".exr" : stem + "." + ch + ".exr";
-      const std::string b = ch == "image" ? refStem + ".exr" : refStem + "." + ch + ".exr";
-      if (!fs::exists(a) || !fs::exists(b)) continue;
-      const Image ia = readImage(a), ib = readImage(b);
-      const ImageDiff d = compareImages(ia, ib, a, b, e.diff), dr = compareImages(ia, ib, a, b, relative);
-      row[ch] = {{"relmse", d.relMse},
-                 {"relmse_relative", dr.relMse},
-                 {"rel_mae", d.relMae},
-                 {"ssim", d.ssim},
-                 {"energy", (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0},
-                 {"leak", d.leak},
-                 {"dark_fraction", d.darkFraction}};
+      const std::string suffix = ch == "image" ? ".exr" : "." + ch + ".exr";
+      std::vector<std::string> a, b;
+      for (int t = 0; t < frames; ++t) {
+        a.push_back((frames > 1 ? sweepFrameStem(render, t) : stem) + suffix);
+        b.push_back(sweepFrameStem(ref, t) + suffix);
+      }
+      const nlohmann::json m = channelMetrics(e, a, b);
+      if (!m.is_null()) row[ch] = m;
     }
     rows.push_back(row);
   }
@@ -696,12 +808,21 @@ nlohmann::json collectSweep(const Experiment& e) {
 nlohmann::json writeSweepResults(const Experiment& e) {
   const nlohmann::json rows = collectSweep(e);
   // Each finished point's signed error map against its reference (the report's third image).
+  // (An animation's: of each frame, error_NNNN.png, and error.png of its first.)
   for (const SweepPoint& p : e.points) {
-    const std::string a = stemOfRender(p.render) + ".exr",
-                      b = stemOfRender(e.references[p.reference]) + ".exr";
-    if (sweepRenderDone(p.render, p.spp) && fs::exists(b))
-      writeSignedError(signedDifference(readImage(a), readImage(b)), p.render.dir + "/error.png");
+    const int frames = e.animation.at(p.scene).frames;
+    for (int t = 0; t < frames; ++t) {
+      const std::string a = sweepFrameStem(p.render, t) + ".exr",
+                        b = sweepFrameStem(e.references[p.reference], t) + ".exr";
+      if (!sweepRenderDone(p.render, p.spp) || !fs::exists(b)) break;
+      const Image d = signedDifference(readImage(a), readImage(b));
+      if (t == 0) writeSignedError(d, p.render.dir + "/error.png");
+      if (frames > 1) writeSignedError(d, frameStem(p.render.dir + "/error", t) + ".png");
+    }
   }
+  nlohmann::json animations = nlohmann::json::object();  // the animated scenes: frames, time step, start
+  for (auto& [scene, a] : e.animation)
+    if (a.frames > 1) animations[scene] = {{"frames", a.frames}, {"time_step", a.timeStep}, {"time", a.time}};
   nlohmann::json out = {{"experiment", e.name},
                         {"file", e.path},
                         {"size", {e.width, e.height}},
@@ -711,6 +832,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
                         {"relative_epsilon", e.relativeEpsilon},
                         {"dark_tolerance", e.diff.darkTolerance},
                         {"time_budget_s", e.timeBudgetS},
+                        {"animations", animations},
                         {"convergence", e.curveCounts},
                         {"exact_device", e.exactDevice == ExactDevice::Same ? "same" : "cpu"},
                         {"points", e.points.size()},
@@ -725,6 +847,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
   std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy",
                                       "leak",   "dark_fraction"};
   if (!e.curveCounts.empty()) metrics.push_back("equal_error_time_ratio");
+  if (e.animated()) metrics.insert(metrics.end(), {"temporal_error", "change", "change_reference"});
   std::ostringstream csv;
   csv << "scene,method,label,role,point";
   for (auto& k : keys) csv << "," << k;

@@ -7,7 +7,8 @@
 // Experiment file (JSON; every key is checked, unknown keys are errors):
 //   {
 //     "name": "smoke",                       // optional
-//     "scenes": ["builtin:cornell"],          // one or more
+//     "scenes": ["builtin:cornell",           // one or more: a scene, or an animation of one
+//                {"scene": "scenes/cornell-bunny.json", "frames": 6, "time_step": 0.1, "time": 0}],
 //     "size": "32x32",
 //     "spp": 16, "checkpoints": [1, 4],       // checkpoints below spp (optional)
 //     "seed": 1,                              // optional (1)
@@ -17,6 +18,13 @@
 //                                             // (core/image_metrics.h; optional, 0 = exactly dark)
 //     "time_budget_s": 10,                    // optional: every point stops after this wall time
 //                                             // (`vgi render --time-limit`; spp is then the most)
+//     "frames": 6, "time_step": 0.1, "time": 0,   // optional: the scenes' default animation
+//                                             // (`vgi render --frames`; 1 frame: a still). An
+//                                             // animation's row holds its frames' mean static
+//                                             // metrics, the temporal ones (core/image_metrics.h:
+//                                             // temporal_error, change, change_reference) and its
+//                                             // times per frame; with an animation the experiment
+//                                             // has no checkpoints, curves or time budget
 //     "reference": {"spp": 256,               // each method's registry counterpart (default),
 //                   "convergence": [1, 4, 16],   // optional: the counterpart's own curve (next seed)
 //                                             // at these counts → each row's equal-error time ratio
@@ -40,6 +48,7 @@
 // (plus render.sppNNNNN.* per checkpoint) and command.txt in each; a render is
 // done when its JSON says every sample completed (a killed one is run again).
 #pragma once
+#include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -79,7 +88,13 @@ struct Experiment {
   DiffOptions diff;               // relMSE's ε (absolute)
   double relativeEpsilon = 0.1;   // the second relMSE's relative ε
   double timeBudgetS = 0;         // > 0: each point's wall-time limit
-  std::vector<int> curveCounts;   // the counterparts' convergence checkpoints (sorted; last = its spp)
+  struct Animation {
+    int frames = 1;  // > 1: the scene's renders are animations of this many frames
+    float timeStep = 1.0f, time = 0.0f;
+  };
+  std::map<std::string, Animation> animation;  // per scene (every scene has its entry)
+  bool animated() const;                       // a scene has frames > 1
+  std::vector<int> curveCounts;  // the counterparts' convergence checkpoints (sorted; last = its spp)
   ExactDevice exactDevice = ExactDevice::Same;  // where the convergence curves run (reference.device)
   std::vector<SweepRender> references;
   // The counterparts' convergence renders, each against references[curveReference[i]]: one per
@@ -124,6 +139,9 @@ struct EqualError {
   double timeMs = 0;
 };
 EqualError equalErrorTime(const std::vector<CurvePoint>& curve, double error);
+
+// An animation render's stem of frame `frame` (the render's own stem for a still).
+std::string sweepFrameStem(const SweepRender& r, int frame);
 
 // One row per point and checkpoint, for whatever finished: the point's scene,
 // method, label, parameters, spp, time (total, per-sample passes, set-up) and

@@ -12,7 +12,9 @@ Writes into DIR:
                                 (Markdown and LaTeX booktabs), with each point's equal-error time
                                 ratio to its counterpart where the experiment has its curve
   report.html                   the tables, the plots and, per point, its image, the
-                                reference and the error map with an A/B slider and a crop
+                                reference and the error map with an A/B slider and a crop; in an
+                                animation experiment ("frames"), per point a strip of its frames
+                                above the reference's and the error maps, with its temporal error
 Needs Debian's python3-matplotlib (scripts/setup.sh installs it).
 """
 import html
@@ -234,6 +236,25 @@ function pick(id, which, src) {
 """
 
 
+def frame_strip(r, frames, step, t0):
+    """An animation point's frames (at most 8, evenly spaced) above the reference's and the error
+    maps, with its temporal error per channel (core/image_metrics.h)."""
+    shown = sorted({round(i * (frames - 1) / max(1, min(frames, 8) - 1)) for i in range(min(frames, 8))})
+    temporal = "; ".join(
+        f"{html.escape(ch)}: temporal error {r[ch]['temporal_error']:.4f}, change {r[ch]['change']:.4f} "
+        f"(reference {r[ch]['change_reference']:.4f})"
+        for ch in sorted(r, key=lambda c: (c != "image", c)) if isinstance(r[ch], dict) and "temporal_error" in r[ch])
+    rows = [("method", f"points/{r['point']}/render_{{:04d}}.png"),
+            ("reference", f"references/{r['reference']}/ref_{{:04d}}.png"),
+            ("error", f"points/{r['point']}/error_{{:04d}}.png")]
+    h = [f"<p>Frames ({temporal}):</p><table class='strip'><tr><th></th>"
+         + "".join(f"<th>{f} (t = {t0 + f * step:g})</th>" for f in shown) + "</tr>"]
+    for name, pattern in rows:
+        h.append(f"<tr><th>{name}</th>" + "".join(
+            f"<td><img src='{pattern.format(f)}' alt='{name} frame {f}'></td>" for f in shown) + "</tr>")
+    return "".join(h) + "</table>"
+
+
 def write_html(out, res, sections):
     h = ["<!DOCTYPE html><html><head><meta charset='utf-8'>",
          f"<title>vgi sweep: {html.escape(res['experiment'])}</title>",
@@ -242,7 +263,8 @@ def write_html(out, res, sections):
          ".ab{position:relative;display:inline-block;image-rendering:pixelated}"
          ".ab img{display:block;width:384px}.ab .top{position:absolute;left:0;top:0}"
          ".crop{width:192px;height:192px;overflow:hidden;display:inline-block;margin-left:8px}"
-         ".crop img{width:768px;margin:-192px 0 0 -192px;image-rendering:pixelated}</style>",
+         ".crop img{width:768px;margin:-192px 0 0 -192px;image-rendering:pixelated}"
+         ".strip img{width:160px;image-rendering:pixelated;display:block}</style>",
          f"<script>{SLIDER_JS}</script></head><body>",
          f"<h1>{html.escape(res['experiment'])}</h1>",
          f"<p>{res['points']} points, {res['size'][0]}×{res['size'][1]}, {res['spp']} spp "
@@ -265,11 +287,14 @@ def write_html(out, res, sections):
         h.append("</table><h3>Images</h3><p>Drag the slider: left of it the first image, right of it the "
                  "second; choose either from the method, the reference and the error map (red = too bright, "
                  "blue = too dark). Right: a 4× crop of the centre.</p>")
+        anim = res.get("animations", {}).get(scene, {})
+        frames = anim.get("frames", 1)
         for r in finals:
             n += 1
             pid = f"ab{n}"
-            img = f"points/{r['point']}/render.png"
-            ref = f"references/{r['reference']}/ref.png"
+            first = "_0000" if frames > 1 else ""
+            img = f"points/{r['point']}/render{first}.png"
+            ref = f"references/{r['reference']}/ref{first}.png"
             err = f"points/{r['point']}/error.png"
             opts = [("method", img), ("reference", ref), ("error", err)]
             sel = lambda which, default: (  # noqa: E731
@@ -285,6 +310,8 @@ def write_html(out, res, sections):
                      f"<img id='{pid}t' class='top' src='{ref}' alt='B' style='clip-path:inset(0 50% 0 0)'></div>"
                      f"<div class='crop'><img src='{img}' alt='crop'></div>"
                      f"<div class='crop'><img src='{ref}' alt='crop of the reference'></div>")
+            if frames > 1:
+                h.append(frame_strip(r, frames, anim["time_step"], anim["time"]))
     h.append("</body></html>")
     with open(os.path.join(out, "report.html"), "w") as f:
         f.write("\n".join(h) + "\n")

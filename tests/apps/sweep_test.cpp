@@ -359,6 +359,23 @@ TEST(Sweep, BadExperimentFilesAreRefusedBeforeAnythingRenders) {
           {"/nonexistent/r.exr"});
   refused("unwritable", head + R"("methods": [{"method": "direct"}]})",
           {"/proc/vgi_sweep", "cannot be written"}, "/proc/vgi_sweep");
+  refused("frames_checkpoints",
+          head + R"("frames": 3, "checkpoints": [1], "methods": [{"method": "direct"}]})",
+          {"checkpoints", "frames"});
+  refused(
+      "scene_frames",
+      R"({"scenes": [{"scene": "builtin:cornell", "frames": -2}], "size": "16x16", "spp": 2, "methods": [{"method": "direct"}]})",
+      {"builtin:cornell", "frames", "-2"});
+  refused(
+      "scene_twice",
+      R"({"scenes": ["builtin:cornell", {"scene": "builtin:cornell"}], "size": "16x16", "spp": 2, "methods": [{"method": "direct"}]})",
+      {"builtin:cornell", "twice"});
+  refused("frames_convergence",
+          head + R"("frames": 3, "reference": {"convergence": [1]}, "methods": [{"method": "nearfield"}]})",
+          {"frames", "reference.convergence"});
+  refused("bad_frames", head + R"("frames": 0, "methods": [{"method": "direct"}]})", {"frames", "0"});
+  refused("bad_time_step", head + R"("frames": 2, "time_step": 0, "methods": [{"method": "direct"}]})",
+          {"time_step", "0"});
   CliRun missing = vgi("sweep " + tmp("no_such_experiment.json") + " -o " + dir);
   EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.output.find("no_such_experiment.json"), std::string::npos) << missing.output;
@@ -389,5 +406,56 @@ TEST(Sweep, CompareAcceptsAnExistingReference) {
   EXPECT_EQ(wrong.code, 2);
   EXPECT_NE(wrong.output.find("24x24"), std::string::npos) << wrong.output;
   EXPECT_NE(wrong.output.find("20x24"), std::string::npos) << wrong.output;
+}
+}  // namespace vgi
+
+namespace vgi {
+// An animation experiment ("frames"): one row per point, the frames' mean static metrics and the
+// temporal ones, per-frame error maps. Known answers: the exact method against itself (same
+// integrator, samples and seed: the same images) has zero error and zero temporal error, with the
+// same change as its reference; a GL method's change is measured, and the moving triangle changes
+// the exact images from frame to frame.
+TEST(Sweep, AnimationExperimentsMeasureTheTemporalError) {
+  const std::string dir = tmp("sweep_frames"), file = tmp("sweep_frames.json");
+  std::filesystem::remove_all(dir);
+  const std::string scene = test::writeMovingTriangleScene("sweep_frames_scene");
+  std::ofstream(file) << R"({"scenes": [{"scene": ")" << scene
+                      << R"(", "frames": 3, "time_step": 0.5}], "size": "24x24", "spp": 2,
+    "reference": {"method": "reference", "set": {"integrator": "direct"}, "spp": 2},
+    "methods": [{"method": "reference", "set": {"integrator": "direct"}}, {"method": "direct"}]})";
+  CliRun run = vgi("sweep " + file + " -o " + dir);
+  ASSERT_EQ(run.code, 0) << run.output;
+  const nlohmann::json res = nlohmann::json::parse(std::ifstream(dir + "/results.json"));
+  EXPECT_EQ(res["animations"][scene]["frames"].get<int>(), 3);
+  const nlohmann::json& rows = res["rows"];
+  ASSERT_EQ(rows.size(), 2u) << rows.dump();
+  for (auto& r : rows) {
+    EXPECT_EQ(r["frames"].get<int>(), 3);
+    ASSERT_TRUE(r.contains("image") && r["image"].contains("temporal_error")) << r.dump();
+    EXPECT_GT(r["image"]["change_reference"].get<double>(), 0.01) << "the triangle moves";
+    for (int t = 0; t < 3; ++t)
+      EXPECT_TRUE(std::filesystem::exists(dir + "/points/" + r["point"].get<std::string>() + "/error_000" +
+                                          std::to_string(t) + ".png"));
+  }
+  const nlohmann::json& same = rows[0]["method"] == "reference" ? rows[0] : rows[1];
+  const nlohmann::json& gl = rows[0]["method"] == "reference" ? rows[1] : rows[0];
+  EXPECT_EQ(same["image"]["temporal_error"].get<double>(), 0.0);
+  EXPECT_EQ(same["image"]["rel_mae"].get<double>(), 0.0);
+  EXPECT_EQ(same["image"]["change"].get<double>(), same["image"]["change_reference"].get<double>());
+  EXPECT_GT(gl["image"]["change"].get<double>(), 0.01);
+  EXPECT_TRUE(std::isfinite(gl["image"]["temporal_error"].get<double>()));
+  const std::string csv(
+      std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(dir + "/results.csv")), {});
+  EXPECT_NE(csv.find("image_temporal_error"), std::string::npos) << csv;
+  if (std::filesystem::exists(dir + "/report.html")) {  // (python3-matplotlib present)
+    const std::string report(
+        std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(dir + "/report.html")), {});
+    EXPECT_NE(report.find("class='strip'"), std::string::npos);
+    EXPECT_NE(report.find("error_0002.png"), std::string::npos);
+  }
+  // Done renders are not run again.
+  CliRun again = vgi("sweep " + file + " -o " + dir);
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_EQ(again.output.find("[1/"), std::string::npos) << again.output;
 }
 }  // namespace vgi
