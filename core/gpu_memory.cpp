@@ -80,17 +80,19 @@ nlohmann::json measuredMemory(bool gl) {
 }
 
 nlohmann::json memoryAgainstResources(nlohmann::json now, const nlohmann::json& baseline,
-                                      double resourcesBytes) {
+                                      double resourcesBytes, double methodBytes) {
   now["baseline"] = baseline;
   now["resources_bytes"] = resourcesBytes;
+  now["method_bytes"] = methodBytes;
+  const double reported = resourcesBytes + methodBytes;
+  now["reported_bytes"] = reported;
   const char* key =
       now.contains("gpu_used_bytes") && baseline.contains("gpu_used_bytes") ? "gpu_used_bytes" : "rss_bytes";
   if (now.contains(key) && baseline.contains(key)) {
     const double growth = now[key].get<double>() - baseline[key].get<double>();
     now["growth_of"] = key;
     now["growth_bytes"] = growth;
-    now["growth_over_resources"] =
-        resourcesBytes > 0 ? nlohmann::json(growth / resourcesBytes) : nlohmann::json();
+    now["growth_over_reported"] = reported > 0 ? nlohmann::json(growth / reported) : nlohmann::json();
   }
   return now;
 }

@@ -24,13 +24,15 @@ void checkSsboAllocation(double bytes, const std::string& what);
 // (NVIDIA: total and available dedicated memory) or GL_ATI_meminfo (free texture memory).
 nlohmann::json measuredMemory(bool gl);
 
-// `now` (a measuredMemory) with `baseline` (the same, measured before the resources were built) and
-// the bytes the resources report: "growth_bytes" is how much the device's memory grew since the
-// baseline — "gpu_used_bytes" where the driver reports it (growth_of says which), else "rss_bytes"
-// (llvmpipe keeps GL objects in the process) — and "growth_over_resources" that growth over the
-// reported bytes (1: the stats say what the resources cost; a driver's copies, padding, or lazily
-// committed pages move it either way; null without reported bytes).
+// `now` (a measuredMemory) with `baseline` (the same, measured before the resources were built),
+// the bytes the resources report and those the method keeps itself ("method_bytes": its state
+// across frames, RenderResult::extra's "state_bytes"); "reported_bytes" is their sum. "growth_bytes"
+// is how much the device's memory grew since the baseline — "gpu_used_bytes" where the driver
+// reports it (growth_of says which), else "rss_bytes" (llvmpipe keeps GL objects in the process) —
+// and "growth_over_reported" that growth over the reported bytes (1: the stats say what the render
+// costs; a driver's copies, padding, or lazily committed pages move it either way; null without
+// reported bytes).
 nlohmann::json memoryAgainstResources(nlohmann::json now, const nlohmann::json& baseline,
-                                      double resourcesBytes);
+                                      double resourcesBytes, double methodBytes = 0);
 
 }  // namespace vgi

@@ -271,8 +271,10 @@ nlohmann::json RenderJob::describe() const {
   return run;
 }
 
-nlohmann::json RenderJob::memory() const {
-  return memoryAgainstResources(measuredMemory(gl() != nullptr), baselineMemory_, resources_->bytes());
+nlohmann::json RenderJob::memory(const nlohmann::json& extra) const {
+  const double method = extra.is_object() ? extra.value("state_bytes", 0.0) : 0.0;
+  return memoryAgainstResources(measuredMemory(gl() != nullptr), baselineMemory_, resources_->bytes(),
+                                method);
 }
 
 void RenderJob::checkGl() const {
@@ -323,7 +325,7 @@ RenderOutput renderStillJob(RenderJob& job, const RenderOptions& opt, const Chec
   s["time_limit_s"] = opt.timeLimitS;
   s["time_limited"] = out.result.timeLimited;
   s["gl_errors"] = gl ? gl->errorCount() : 0;
-  s["memory"] = job.memory();  // with the resources built (describe ran before)
+  s["memory"] = job.memory(out.result.extra);  // with the resources built (describe ran before)
   s["wall_ms"] = msSince(t0);
   job.checkGl();
   return out;
@@ -391,7 +393,7 @@ RenderOutput renderAnimationJob(RenderJob& job, const RenderOptions& opt, const 
   s["total_ms"] = total;
   s["built"] = out.result.built;
   s["frames"] = frames;
-  s["memory"] = job.memory();
+  s["memory"] = job.memory(out.result.extra);
   s["wall_ms"] = msSince(t0);
   return out;
 }

@@ -61,12 +61,14 @@ class RenderJob {
   void lightsChanged();
   // The stats of the run (method, scene, size, camera, resolved parameters, GL renderer, revision, …).
   // Its "memory" (measured when called; a render measures again when done) holds what the process uses (core/gpu_memory.h), the same measured before any resource
-  // was built ("baseline"), the bytes the resources report ("resources_bytes"), and how much the device's
-  // (GPU where GL reports it, else resident) memory grew since the baseline against them
-  // ("growth_bytes", "growth_over_resources": 1 = the reported bytes are what it costs).
+  // was built ("baseline"), the bytes the resources and the method report ("resources_bytes",
+  // "method_bytes", "reported_bytes"), and how much the device's (GPU where GL reports it, else
+  // resident) memory grew since the baseline against them ("growth_bytes", "growth_over_reported":
+  // 1 = the reported bytes are what it costs).
   nlohmann::json describe() const;
-  // Its "memory" alone, measured now.
-  nlohmann::json memory() const;
+  // Its "memory" alone, measured now; `extra` (a render's RenderResult::extra) gives the method's
+  // "state_bytes".
+  nlohmann::json memory(const nlohmann::json& extra = nlohmann::json()) const;
   // Throws if the GL context counted errors; throws if the result has a non-finite pixel.
   void checkGl() const;
   void checkFiniteResult(const RenderResult& result) const;

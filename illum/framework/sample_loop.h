@@ -125,6 +125,10 @@ class Frame {
   }
   // CPU: the W×H pixels (rows top-down) of the sample of `channel`.
   glm::vec3* samplePixels(const std::string& channel) const;
+  // Counts `bytes` the method keeps across frames outside the shared resources (its own buffers and
+  // textures) into extra's "state_bytes", which the stats' memory reports (RenderJob::memory); call
+  // it from finishFrame.
+  void addStateBytes(double bytes) const { extra["state_bytes"] = extra.value("state_bytes", 0.0) + bytes; }
 
  private:
   SampleTargets& targets_;

@@ -145,6 +145,7 @@ void VplKit::gatherExact(Frame& f) const {
 }
 
 void VplKit::stats(Frame& f) const {
+  f.addStateBytes(double(slots_ * sizeof(shared::Vpl)));
   const std::vector<shared::Vpl> v = read();
   nlohmann::json placed = nlohmann::json::array(), flux = nlohmann::json::array();
   for (int b = 0; b < s_.bounces; ++b) {

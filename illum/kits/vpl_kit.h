@@ -62,7 +62,8 @@ class VplKit {
   void resolve(Frame& f) const { kit_.resolve(f); }
   std::vector<shared::Vpl> read() const;
   void write(const std::vector<shared::Vpl>& v) const;
-  // vpls_placed and vpl_flux per bounce (the last sample's), the clamp, the gather size.
+  // vpls_placed and vpl_flux per bounce (the last sample's), the clamp, the gather size; the VPL
+  // buffer's bytes as method state (Frame::addStateBytes).
   void stats(Frame& f) const;
   float minDistance2() const { return dMin_ * dMin_; }
 

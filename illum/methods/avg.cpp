@@ -267,6 +267,9 @@ class AvgMethod : public Method {
                                  avg_->box().resolution.z};
     f.extra["avg_cells_occupied"] = occupied;
     f.extra["avg_cell_diagonal"] = cellDiagonal_;
+    // The AVG's cells (8 words each) and the VPLs' shadow-map atlas (32-bit depth) are the method's own.
+    f.addStateBytes(double(avg_->box().cellCount()) * 8.0 * sizeof(uint32_t));
+    if (atlas_) f.addStateBytes(double(atlasW_) * double(atlasH_) * 4.0);
     if (s_.visibility == VplVisibility::ShadowMaps) {
       f.extra["vpl_shadow_atlas"] = {atlasW_, atlasH_};
       f.extra["vpl_shadow_triangles"] =

@@ -182,6 +182,7 @@ class VplMethod : public Method {
   }
   void finishFrame(Frame& f) override {
     kit_.stats(f);
+    f.addStateBytes(double(fluxFloats_ * sizeof(float)));  // the flux tree
     f.extra["voxel_diagonal"] = voxelDiagonal_;
   }
 

@@ -255,8 +255,19 @@ TEST(Cli, StatsMeasureMemoryAfterTheResourcesAreBuilt) {
   EXPECT_GT(reported, 1e6);  // light maps, grid, pyramid
   EXPECT_EQ(m["resources_bytes"].get<double>(), reported);
   EXPECT_GT(m["growth_bytes"].get<double>(), 0.0);
-  EXPECT_GT(m["growth_over_resources"].get<double>(), 0.1);
+  EXPECT_EQ(m["method_bytes"].get<double>(), 0.0);  // nearfield keeps nothing of its own
+  EXPECT_GT(m["growth_over_reported"].get<double>(), 0.1);
   EXPECT_GE(m["rss_bytes"].get<double>(), m["baseline"]["rss_bytes"].get<double>());
+  // avg keeps its visibility grid and the VPLs' shadow atlas itself: counted as the method's bytes.
+  ASSERT_EQ(vgi("render --method avg --set grid=32 --set vpls=64 --size 16x16 --spp 1 --quiet -o " +
+                tmp("mem_avg.exr"))
+                .code,
+            0);
+  const nlohmann::json a = nlohmann::json::parse(std::ifstream(tmp("mem_avg.json")));
+  const auto atlas = a["extra"]["vpl_shadow_atlas"];
+  EXPECT_EQ(a["memory"]["method_bytes"].get<double>(),
+            32.0 * 32 * 32 * 32 + atlas[0].get<double>() * atlas[1].get<double>() * 4 + 64.0 * 3 * 64)
+      << a["extra"].dump();
 }
 
 TEST(Cli, InfoAndHelpModule) {

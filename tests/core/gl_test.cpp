@@ -63,14 +63,19 @@ TEST(GpuMemory, GrowthIsMeasuredAgainstTheReportedBytes) {
   nlohmann::json m = memoryAgainstResources(now, base, 150.0);
   EXPECT_EQ(m["growth_of"], "rss_bytes");
   EXPECT_EQ(m["growth_bytes"], 300.0);
-  EXPECT_EQ(m["growth_over_resources"], 2.0);  // twice what the stats say
+  EXPECT_EQ(m["growth_over_reported"], 2.0);  // twice what the stats say
   EXPECT_EQ(m["baseline"], base);
-  EXPECT_TRUE(memoryAgainstResources(now, base, 0.0)["growth_over_resources"].is_null());
+  EXPECT_TRUE(memoryAgainstResources(now, base, 0.0)["growth_over_reported"].is_null());
+  // The method's own state counts beside the resources.
+  const nlohmann::json withState = memoryAgainstResources(now, base, 100.0, 50.0);
+  EXPECT_EQ(withState["reported_bytes"], 150.0);
+  EXPECT_EQ(withState["method_bytes"], 50.0);
+  EXPECT_EQ(withState["growth_over_reported"], 2.0);
   base["gpu_used_bytes"] = 1000.0;
   now["gpu_used_bytes"] = 1150.0;
   nlohmann::json g = memoryAgainstResources(now, base, 150.0);
   EXPECT_EQ(g["growth_of"], "gpu_used_bytes");
-  EXPECT_EQ(g["growth_over_resources"], 1.0);
+  EXPECT_EQ(g["growth_over_reported"], 1.0);
   // A real process: what it uses now is at least what it used at the start.
   std::unique_ptr<GlContext> gl = GlContext::create();
   nlohmann::json real = memoryAgainstResources(measuredMemory(true), measuredMemory(true), 1.0);
