@@ -446,12 +446,13 @@ void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref,
   std::set<std::string>& written = st.written;
   const nlohmann::json& m = j["methods"][mi];
   const std::string where = "methods[" + std::to_string(mi) + "]";
-  checkKeys(m, where, {"method", "label", "set", "grid", "spp", "reference"});
+  checkKeys(m, where, {"method", "label", "set", "grid", "spp", "seed", "reference"});
   if (!m.contains("method") || !m["method"].is_string())
     fail("experiment: ", where, " has no \"method\" name");
   const std::string method = m["method"].get<std::string>();
   const MethodInfo& info = findMethod(method, "experiment " + where + ".method");
   const int spp = m.contains("spp") ? intIn(m["spp"], where + ".spp", 1, 1 << 20) : e.spp;
+  const uint32_t seed = m.contains("seed") ? uint32_t(intIn(m["seed"], where + ".seed", 0, 1 << 30)) : e.seed;
   std::vector<int> checkpoints;
   for (int k : e.checkpoints)
     if (k < spp) checkpoints.push_back(k);
@@ -490,8 +491,7 @@ void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref,
         set.push_back(k + "=" + v);
         pt.params[k] = v;
       }
-      RenderOptions o =
-          sweepRenderOptions(e, scene, method, set, spp, {}, checkpoints, e.seed, e.timeBudgetS);
+      RenderOptions o = sweepRenderOptions(e, scene, method, set, spp, {}, checkpoints, seed, e.timeBudgetS);
       nlohmann::json resolved;
       std::vector<std::string> outputs;
       try {

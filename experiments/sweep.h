@@ -38,6 +38,10 @@
 //                   "set": {"shadow_res": 256},             // fixed parameters
 //                   "grid": {"voxels": [64, 128], "rays": [4, 16]},   // every combination
 //                   "spp": 512,                           // optional: this method's samples
+//                   "seed": 2,                            // optional: its seed (the experiment's;
+//                                                         // the reference keeps the experiment's:
+//                                                         // an exact method with another seed
+//                                                         // measures the reference's noise floor)
 //                   "reference": {"counterpart_of": "nearfield"}   // optional: its own reference,
 //                              | {"method": "reference", "set": {…}}   // (spp: the experiment's)
 //                              | {"variant": {"visibility": "exact"}}} ]  // the point itself with these

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -422,13 +423,14 @@ TEST(Sweep, AnimationExperimentsMeasureTheTemporalError) {
   std::ofstream(file) << R"({"scenes": [{"scene": ")" << scene
                       << R"(", "frames": 3, "time_step": 0.5}], "size": "24x24", "spp": 2,
     "reference": {"method": "reference", "set": {"integrator": "direct"}, "spp": 2},
-    "methods": [{"method": "reference", "set": {"integrator": "direct"}}, {"method": "direct"}]})";
+    "methods": [{"method": "reference", "set": {"integrator": "direct"}}, {"method": "direct"},
+                {"method": "reference", "label": "floor", "seed": 2, "set": {"integrator": "direct"}}]})";
   CliRun run = vgi("sweep " + file + " -o " + dir);
   ASSERT_EQ(run.code, 0) << run.output;
   const nlohmann::json res = nlohmann::json::parse(std::ifstream(dir + "/results.json"));
   EXPECT_EQ(res["animations"][scene]["frames"].get<int>(), 3);
   const nlohmann::json& rows = res["rows"];
-  ASSERT_EQ(rows.size(), 2u) << rows.dump();
+  ASSERT_EQ(rows.size(), 3u) << rows.dump();
   for (auto& r : rows) {
     EXPECT_EQ(r["frames"].get<int>(), 3);
     ASSERT_TRUE(r.contains("image") && r["image"].contains("temporal_error")) << r.dump();
@@ -437,8 +439,12 @@ TEST(Sweep, AnimationExperimentsMeasureTheTemporalError) {
       EXPECT_TRUE(std::filesystem::exists(dir + "/points/" + r["point"].get<std::string>() + "/error_000" +
                                           std::to_string(t) + ".png"));
   }
-  const nlohmann::json& same = rows[0]["method"] == "reference" ? rows[0] : rows[1];
-  const nlohmann::json& gl = rows[0]["method"] == "reference" ? rows[1] : rows[0];
+  std::map<std::string, nlohmann::json> byLabel;
+  for (auto& r : rows) byLabel[r["label"].get<std::string>()] = r;
+  const nlohmann::json &same = byLabel["reference"], &gl = byLabel["direct"], &floor = byLabel["floor"];
+  // The exact method with another seed: the reference's own noise, the floor of the temporal error.
+  EXPECT_GT(floor["image"]["rel_mae"].get<double>(), 0.0);
+  EXPECT_GT(floor["image"]["temporal_error"].get<double>(), 0.0);
   EXPECT_EQ(same["image"]["temporal_error"].get<double>(), 0.0);
   EXPECT_EQ(same["image"]["rel_mae"].get<double>(), 0.0);
   EXPECT_EQ(same["image"]["change"].get<double>(), same["image"]["change_reference"].get<double>());
