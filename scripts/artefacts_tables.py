@@ -42,6 +42,18 @@ def metric(row, channel, key):
     return row.get(channel, {}).get(key) if row else None
 
 
+def method_table(order, by, headers, scenes, cell):
+    """One row per method setting (the remedies left out), one column per scene: cell(row or None)."""
+    print("| method | " + " | ".join(headers) + " |")
+    print("|---|" + "---:|" * len(headers))
+    for k in order:
+        if k[0] in REMEDIES:
+            continue
+        some = by[k][next(iter(by[k]))]
+        print(f"| {name_of(some)} | " + " | ".join(cell(by[k].get(s)) for s in scenes) + " |")
+    print()
+
+
 def main(out):
     with open(os.path.join(out, "results.json")) as f:
         res = json.load(f)
@@ -61,33 +73,18 @@ def main(out):
     for family, title in (("leak-walls/wall", "Leak through a wall k voxels thick at 128³ (two rooms)"),
                           ("leak-closed/closed", "Leak into a sealed box, walls k voxels thick at 128³")):
         print(f"**{title}** — indirect leak (combined image's in brackets):\n")
-        print("| method | " + " | ".join(f"{w} voxel{'s' if w == '2' else ''}" for w in WALLS) + " |")
-        print("|---|" + "---:|" * len(WALLS))
-        for k in order:
-            if k[0] in REMEDIES:
-                continue
-            cells = []
-            for w in WALLS:
-                r = by[k].get(f"scenes/{family}-{w}v.json")
-                leak, img = metric(r, "indirect", "leak"), metric(r, "image", "leak")
-                cells.append("—" if leak is None and img is None else f"{fmt(leak)} ({fmt(img)})")
-            print(f"| {name_of(by[k][next(iter(by[k]))])} | " + " | ".join(cells) + " |")
-        print()
+        def leak(r):
+            value, img = metric(r, "indirect", "leak"), metric(r, "image", "leak")
+            return "—" if value is None and img is None else f"{fmt(value)} ({fmt(img)})"
+
+        method_table(order, by, [f"{w} voxel{'s' if w == '2' else ''}" for w in WALLS],
+                     [f"scenes/{family}-{w}v.json" for w in WALLS], leak)
 
     print("**Indirect energy / exact across grid resolutions** (AO methods: their AO channel is not in "
           "`indirect`; the combined image's energy in brackets):\n")
     scenes = ["scenes/leak-walls/wall-1v.json", "scenes/leak-closed/closed-1v.json", BUNNY, WALK]
-    print("| method | " + " | ".join(os.path.basename(s)[:-5] for s in scenes) + " |")
-    print("|---|" + "---:|" * len(scenes))
-    for k in order:
-        if k[0] in REMEDIES:
-            continue
-        cells = []
-        for s in scenes:
-            r = by[k].get(s)
-            cells.append(f"{fmt(metric(r, 'indirect', 'energy'), 3)} ({fmt(metric(r, 'image', 'energy'), 3)})")
-        print(f"| {name_of(by[k][next(iter(by[k]))])} | " + " | ".join(cells) + " |")
-    print()
+    method_table(order, by, [os.path.basename(s)[:-5] for s in scenes], scenes,
+                 lambda r: f"{fmt(metric(r, 'indirect', 'energy'), 3)} ({fmt(metric(r, 'image', 'energy'), 3)})")
 
     print("**Temporal error** (6 frames; indirect: temporal error, the method's change, the exact change):\n")
     print("| method | bunny: temporal error | change | exact change | Sibenik walk: temporal error | change | "
