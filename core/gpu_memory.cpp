@@ -80,11 +80,12 @@ nlohmann::json measuredMemory(bool gl) {
 }
 
 nlohmann::json memoryAgainstResources(nlohmann::json now, const nlohmann::json& baseline,
-                                      double resourcesBytes, double methodBytes) {
+                                      double resourcesBytes, double methodBytes, double targetsBytes) {
   now["baseline"] = baseline;
   now["resources_bytes"] = resourcesBytes;
   now["method_bytes"] = methodBytes;
-  const double reported = resourcesBytes + methodBytes;
+  now["targets_bytes"] = targetsBytes;
+  const double reported = resourcesBytes + methodBytes + targetsBytes;
   now["reported_bytes"] = reported;
   const char* key =
       now.contains("gpu_used_bytes") && baseline.contains("gpu_used_bytes") ? "gpu_used_bytes" : "rss_bytes";

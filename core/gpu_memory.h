@@ -32,7 +32,8 @@ nlohmann::json measuredMemory(bool gl);
 // and "growth_over_reported" that growth over the reported bytes (1: the stats say what the render
 // costs; a driver's copies, padding, or lazily committed pages move it either way; null without
 // reported bytes).
+// "targets_bytes" (the sample loop's G-buffer, film and scratch textures) counts in the reported bytes too.
 nlohmann::json memoryAgainstResources(nlohmann::json now, const nlohmann::json& baseline,
-                                      double resourcesBytes, double methodBytes = 0);
+                                      double resourcesBytes, double methodBytes = 0, double targetsBytes = 0);
 
 }  // namespace vgi

@@ -273,8 +273,8 @@ nlohmann::json RenderJob::describe() const {
 
 nlohmann::json RenderJob::memory(const nlohmann::json& extra) const {
   const double method = extra.is_object() ? extra.value("state_bytes", 0.0) : 0.0;
-  return memoryAgainstResources(measuredMemory(gl() != nullptr), baselineMemory_, resources_->bytes(),
-                                method);
+  return memoryAgainstResources(measuredMemory(gl() != nullptr), baselineMemory_, resources_->bytes(), method,
+                                targets_.bytes());
 }
 
 void RenderJob::checkGl() const {

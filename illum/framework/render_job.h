@@ -61,8 +61,8 @@ class RenderJob {
   void lightsChanged();
   // The stats of the run (method, scene, size, camera, resolved parameters, GL renderer, revision, …).
   // Its "memory" (measured when called; a render measures again when done) holds what the process uses (core/gpu_memory.h), the same measured before any resource
-  // was built ("baseline"), the bytes the resources and the method report ("resources_bytes",
-  // "method_bytes", "reported_bytes"), and how much the device's (GPU where GL reports it, else
+  // was built ("baseline"), the bytes the resources, the method and the sample loop's targets report
+  // ("resources_bytes", "method_bytes", "targets_bytes", "reported_bytes"), and how much the device's (GPU where GL reports it, else
   // resident) memory grew since the baseline against them ("growth_bytes", "growth_over_reported":
   // 1 = the reported bytes are what it costs).
   nlohmann::json describe() const;

@@ -144,7 +144,34 @@ void SampleTargets::prepare(const RenderRequest& req, bool gl, bool gbuffer, Sha
   }
 }
 
+namespace {
+size_t scratchTexelBytes(unsigned format) {
+  switch (format) {
+    case GL_RGBA32F:
+      return 16;
+    case GL_RGBA16F:
+      return 8;
+    case GL_R32F:
+    case GL_RGBA8:
+      return 4;
+    default:
+      fail("scratch texture format 0x", std::hex, format, " has no size here (SampleTargets::bytes)");
+  }
+}
+}  // namespace
+
+double SampleTargets::bytes() const {
+  const double pixels = double(w_) * double(h_), channels = double(channels_.size());
+  double b = 0;
+  if (gbuffer_) b += pixels * (4 * 16 + 4);
+  if (glFilm_) b += pixels * channels * 3 * 16;
+  if (cpuFilm_) b += pixels * channels * (12 + 24);
+  for (auto& [name, s] : scratch_) b += double(s.w) * double(s.h) * double(scratchTexelBytes(s.format));
+  return b;
+}
+
 unsigned SampleTargets::scratchTexture(const std::string& name, int width, int height, unsigned format) {
+  scratchTexelBytes(format);  // a format bytes() can count
   Scratch& s = scratch_[name];
   if (!s.texture || s.w != width || s.h != height || s.format != format) {
     s.texture = makeTexture2D(width, height, format);

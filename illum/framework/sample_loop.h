@@ -76,8 +76,13 @@ class SampleTargets {
   GBuffer* gbuffer() { return gbuffer_.get(); }
   GlFilm* glFilm() { return glFilm_.get(); }
   CpuFilm* cpuFilm() { return cpuFilm_.get(); }
-  // A 2D texture of one level, nearest filtering, kept across frames under `name`.
+  // A 2D texture of one level, nearest filtering, kept across frames under `name` (RGBA32F, RGBA16F,
+  // R32F or RGBA8).
   unsigned scratchTexture(const std::string& name, int width, int height, unsigned internalFormat);
+  // What the targets hold: the G-buffer (four RGBA32F + 32-bit depth per pixel), the film (GL: sample,
+  // sum and compensation RGBA32F per channel; CPU: float sample and double sum) and the scratch
+  // textures — the stats' memory `targets_bytes`.
+  double bytes() const;
 
  private:
   struct Scratch {
