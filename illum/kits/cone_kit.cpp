@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 
 #include <cmath>
+#include <functional>
 
 #include "core/error.h"
 #include "core/params.h"
@@ -33,6 +34,26 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
     fail("parameter 'voxelizer': '", s.grid.voxelizer,
          "' with radiance=atlas (the radiance channel comes from the atlas voxelizer's points: "
          "voxelizer=atlas)");
+  s.volume = p.getString("volume", "dense",
+                         "the volume's storage: dense (3D textures with mip chains) or svo (a sparse voxel "
+                         "octree with 3x3x3 bricks, Crassin et al. 2011; the same values at the same "
+                         "resolution)",
+                         {"dense", "svo"});
+  s.dilate = p.getBool("dilate", true,
+                       "svo: also allocate the empty nodes whose bricks a trilinear sample next to a filled "
+                       "neighbour needs (the dense volume's samples exactly; false: the articles' tree, "
+                       "with the filled/empty brick-border artefact)");
+  s.updateEvery = p.getInt("update_every", 1,
+                           "svo, dynamic scenes: rebuild the octree at every k-th frame whose grid changed "
+                           "(in between the last tree is lit)",
+                           1, 1000);
+  if (s.volume == "svo") {
+    if (s.radiance == "atlas")
+      fail(
+          "parameter 'radiance': 'atlas' with volume=svo (the octree's leaves are lit by injection: "
+          "radiance=inject)");
+    svoDepth(s.grid.resolution);  // names the resolution past the octree's 1024 cells per axis
+  }
   // Bytes per cell: sums 16 + counts 4, the count texture 4, occupancy ≈ 1.14,
   // radiance 8 × 8/7, six faces of an eighth each 8 × 8/7.
   const double cells = double(s.grid.resolution.x) * s.grid.resolution.y * s.grid.resolution.z;
@@ -40,7 +61,7 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
                             "six-direction anisotropic mip chain (front-to-back per axis direction, VCT "
                             "thesis 3.2); false: isotropic 2x2x2 means");
   const double gib = cells * (24.0 + 1.15 + 9.15 + (s.anisotropic ? 6.9 : 0.0)) / double(1u << 30);
-  if (gib > 8.0)
+  if (s.volume == "dense" && gib > 8.0)
     fail("parameter 'voxels': ", s.grid.resolution.x, "x", s.grid.resolution.y, "x", s.grid.resolution.z,
          " needs ", gib, " GiB for the cone-tracing volume (at most 8 GiB)");
   s.absWeights =
@@ -68,20 +89,41 @@ ConeVolumeNeed ConeVolumeSettings::need() const {
   return n;
 }
 
+SparseOctreeNeed ConeVolumeSettings::octreeNeed() const {
+  const ConeVolumeNeed d = need();
+  SparseOctreeNeed n;
+  n.grid = d.grid;
+  n.radiance = radiance;
+  n.anisotropic = anisotropic;
+  n.dilate = dilate;
+  n.updateEvery = updateEvery;
+  n.lightMaps = d.lightMaps;
+  n.bias = d.bias;
+  n.normalOffset = d.normalOffset;
+  return n;
+}
+
+void ConeVolumeSettings::addNeed(SceneNeeds& needs) const {
+  if (volume == "svo")
+    needs.add(octreeNeed());
+  else
+    needs.add(need());
+}
+
 void ConeVolumeSettings::addDefines(ShaderDefines& defs) const {
+  if (volume == "svo") defs["CONE_SVO"] = "1";
   if (anisotropic) defs["VCT_ANISOTROPIC"] = "1";
   if (absWeights) defs["VCT_ABS_WEIGHTS"] = "1";
 }
 
-std::vector<ProbeResult> traceConesGl(const ValueTextures& volume, ShaderLibrary& shaders,
-                                      const std::vector<ProbeCone>& cones, float step, bool skipEmpty,
-                                      float mediumAlpha) {
-  ShaderDefines defs;
-  if (volume.mips() == ValueMips::Anisotropic) defs["VCT_ANISOTROPIC"] = "1";
+namespace {
+std::vector<ProbeResult> traceCones(ShaderDefines defs, const std::function<void(unsigned)>& bind,
+                                    ShaderLibrary& shaders, const std::vector<ProbeCone>& cones,
+                                    bool skipEmpty, float mediumAlpha) {
   if (mediumAlpha >= 0.0f) defs["UNIFORM_MEDIUM"] = "1";
   const unsigned prog = shaders.program({"illum/vct/probe.comp.glsl"}, defs);
   glUseProgram(prog);
-  bindConeVolume(volume, shaders, prog, step);
+  bind(prog);
   if (mediumAlpha >= 0.0f) shaders.setUniform(prog, "uMediumAlpha", mediumAlpha);
   shaders.setUniform(prog, "uCount", unsigned(cones.size()));
   shaders.setUniform(prog, "uSkipEmpty", skipEmpty ? 1 : 0);
@@ -100,6 +142,26 @@ std::vector<ProbeResult> traceConesGl(const ValueTextures& volume, ShaderLibrary
   std::vector<ProbeResult> out(cones.size());
   if (!out.empty()) glGetNamedBufferSubData(b.get(), 0, GLsizeiptr(out.size() * 32), out.data());
   return out;
+}
+}  // namespace
+
+std::vector<ProbeResult> traceConesGl(const ValueTextures& volume, ShaderLibrary& shaders,
+                                      const std::vector<ProbeCone>& cones, float step, bool skipEmpty,
+                                      float mediumAlpha) {
+  ShaderDefines defs;
+  if (volume.mips() == ValueMips::Anisotropic) defs["VCT_ANISOTROPIC"] = "1";
+  return traceCones(
+      defs, [&](unsigned prog) { bindConeVolume(volume, shaders, prog, step); }, shaders, cones, skipEmpty,
+      mediumAlpha);
+}
+
+std::vector<ProbeResult> traceConesGl(const SparseVoxelOctree& octree, ShaderLibrary& shaders,
+                                      const std::vector<ProbeCone>& cones, float step, bool skipEmpty) {
+  ShaderDefines defs{{"CONE_SVO", "1"}};
+  if (octree.anisotropic()) defs["VCT_ANISOTROPIC"] = "1";
+  return traceCones(
+      defs, [&](unsigned prog) { bindConeOctree(octree, shaders, prog, step); }, shaders, cones, skipEmpty,
+      -1.0f);
 }
 
 std::vector<glm::vec4> coneWeights(const std::vector<glm::vec3>& axes) {

@@ -12,6 +12,7 @@
 
 #include "illum/kits/shared_params.h"
 #include "illum/resources/cone_volume.h"
+#include "illum/resources/sparse_octree.h"
 
 namespace vgi {
 
@@ -22,16 +23,24 @@ class ValueTextures;
 struct ConeVolumeSettings {
   BinaryGridNeed grid;
   std::string radiance = "inject";  // inject | atlas | none
+  std::string volume = "dense";     // dense (cone_volume) | svo (sparse_octree)
   bool anisotropic = true;
+  bool dilate = true;      // svo: allocate the nodes a neighbour's brick stencil needs
+  int updateEvery = 1;     // svo: rebuild the tree at every k-th changed grid
   bool absWeights = true;  // the faces mixed by |d| (the thesis) or d²
   float step = 1.0f;       // the march's step, in cone diameters
   ShadowParams shadow;     // the light maps' (injection and direct light)
-  // The volume these settings build (radiance none: no light maps).
+  // The dense volume these settings build (radiance none: no light maps).
   ConeVolumeNeed need() const;
+  // The sparse octree they build (volume=svo).
+  SparseOctreeNeed octreeNeed() const;
+  // Declares the volume (dense or svo), which a method then reads as get<ConeSource>().
+  void addNeed(SceneNeeds& needs) const;
   // The program defines of cones.glsl for these settings.
   void addDefines(std::map<std::string, std::string>& defines) const;
 };
-// Reads voxels, voxelizer, anisotropic, face_weights, step and (withRadiance) radiance.
+// Reads voxels, voxelizer, volume, dilate, update_every, anisotropic,
+// face_weights, step and (withRadiance) radiance.
 ConeVolumeSettings readConeVolumeParams(ParamSet& params, bool withRadiance, bool anisotropicDefault,
                                         bool absWeightsDefault, float stepDefault);
 
@@ -49,6 +58,9 @@ struct ProbeResult {
 std::vector<ProbeResult> traceConesGl(const ValueTextures& volume, ShaderLibrary& shaders,
                                       const std::vector<ProbeCone>& cones, float step, bool skipEmpty,
                                       float mediumAlpha = -1.0f);
+// The same through a sparse octree (CONE_SVO: the same march, the octree's coneSample).
+std::vector<ProbeResult> traceConesGl(const SparseVoxelOctree& octree, ShaderLibrary& shaders,
+                                      const std::vector<ProbeCone>& cones, float step, bool skipEmpty);
 
 // A cone constellation in the tangent frame (z = the normal): axes xyz and, in
 // w, each axis' share of the cosine-weighted hemisphere (the directions

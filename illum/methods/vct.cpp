@@ -7,6 +7,9 @@
 //      the atlas voxelizer's radiance channel is used (radiance=atlas); the
 //      opacity is the binary grid of `voxelizer` (default conservative: the
 //      thesis' voxelization, and the triangle–box cells close thin walls).
+//      Stored dense (3D textures) or, volume=svo, as the papers' sparse voxel
+//      octree (illum/resources/sparse_octree.h: the same values at the same
+//      resolution, read through the same coneSample).
 //   2. §3.2 pre-integration: a six-direction anisotropic chain (front-to-back
 //      composition of 2×2×2 blocks along each axis direction) or isotropic
 //      2×2×2 means (voxelize/value_textures, the value grids' own builder).
@@ -34,6 +37,9 @@
 // | voxelizer     | string | conservative     | the opacity's binary voxelizer (registry)       |
 // | radiance      | string | inject           | inject or atlas (see above)                     |
 // | anisotropic   | bool   | true             | six-direction chain; false: isotropic           |
+// | volume        | string | dense            | storage: dense (3D textures) or svo (sparse voxel octree, illum/resources/sparse_octree.h) |
+// | dilate        | bool   | true             | svo: allocate the nodes a neighbour's brick stencil needs (false: the articles' tree, with brick-border artefacts) |
+// | update_every  | int    | 1                | svo, dynamic scenes: rebuild the tree at every k-th changed grid |
 // | face_weights  | string | abs              | abs (|d|, the thesis) or squared (d²)           |
 // | step          | float  | 1                | march step in cone diameters                    |
 // | diffuse_cones | int    | 6                | 1, or n: normal + n−1 on a ring at 63.4° (6: icosahedron) |
@@ -124,7 +130,7 @@ class VctMethod : public Method {
     SceneNeeds n;
     n.gbuffer = true;
     n.add(LightMapNeed{vol_.shadow.resolution, false});  // the direct light
-    n.add(vol_.need());
+    vol_.addNeed(n);
     return n;
   }
   void prepareFrame(Frame& f) override {
@@ -174,7 +180,7 @@ class VctMethod : public Method {
   }
   bool addSample(Frame& f, int k) override {
     ShaderLibrary& shaders = f.shaders();
-    const ConeVolume& volume = f.resources.get<ConeVolume>();
+    const ConeSource& volume = f.resources.get<ConeSource>();
     {
       auto s = f.profiler.scope("direct");
       direct_->shade(f.gbuffer(), f.resources.get<LightMaps>(), f.camera, f.sampleImage("image"));
@@ -208,7 +214,7 @@ class VctMethod : public Method {
     return true;
   }
   void finishFrame(Frame& f) override {
-    f.extra["voxel_size"] = f.resources.get<ConeVolume>().voxelSize();
+    f.extra["voxel_size"] = f.resources.get<ConeSource>().voxelSize();
     f.extra["offset_world"] = offset_ * f.resources.get<GridBox>().voxelDiagonal();
     f.extra["max_distance"] = maxDistance_;
     f.extra["ao_radius"] = aoRadius_;

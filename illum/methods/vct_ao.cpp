@@ -42,6 +42,7 @@
 // | offset     | float  | 1.5                | origin offset along the normal, voxel diagonals  |
 // | plane_guard | bool  | true               | mip level capped above the receiver's plane (cones.glsl) |
 // | voxels, voxelizer, anisotropic (true), face_weights (squared), step (0.5) | | | the volume's (illum/kits/cone_kit.h) |
+// | volume, dilate, update_every | | dense, true, 1 | the volume's storage: dense, or svo (a sparse voxel octree, illum/resources/sparse_octree.h) |
 // | resolution, interleave, blur |   | 0.5, 2, true | the gather kit's                             |
 #include "illum/methods/vct_ao.h"
 
@@ -98,7 +99,7 @@ class VctAoMethod : public Method {
   SceneNeeds needs() const override {
     SceneNeeds n;
     n.gbuffer = true;
-    n.add(vol_.need());  // radiance=none: opacity only
+    vol_.addNeed(n);  // radiance=none: opacity only
     return n;
   }
   void prepareFrame(Frame& f) override {
@@ -126,7 +127,7 @@ class VctAoMethod : public Method {
       ao_.params().turn = k == 0 ? 0.0f : period * halton(k, 3);
       ao_.params().jitter = jitter_ ? period : 0.0f;
       ao_.use(f);
-      f.resources.get<ConeVolume>().bind(f.shaders(), ao_.program(), vol_.step);
+      f.resources.get<ConeSource>().bind(f.shaders(), ao_.program(), vol_.step);
       kit_.dispatchGather(f.shaders(), ao_.program(), int(constellation_.size()), 16);
     }
     kit_.resolve(f);

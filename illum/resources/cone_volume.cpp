@@ -11,6 +11,7 @@
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gl_ray_tracer.h"
 #include "voxelize/gpu_grid.h"
+#include "voxelize/sparse_octree.h"
 
 namespace vgi {
 
@@ -55,7 +56,6 @@ bool ConeVolume::relight(SceneResources& res, const ResourceNeed&, Profiler& pro
 }
 
 void ConeVolume::allocate(SceneResources& res) {
-  ShaderLibrary& shaders = res.shaders();
   const GridBox& box = res.get<GridBox>(need_.grid);
   own_ = std::make_unique<ValueTextures>(box, std::vector<std::string>{"radiance"},
                                          need_.anisotropic ? ValueMips::Anisotropic : ValueMips::Isotropic);
@@ -63,10 +63,6 @@ void ConeVolume::allocate(SceneResources& res) {
   counts_ = makeBuffer(size_t(box.cellCount()) * 4);
   sums_ = makeBuffer(size_t(box.cellCount()) * 16);
   max_ = makeBuffer(4);
-  const std::vector<std::string> files = {"voxelize/conservative.vert.glsl",
-                                          "voxelize/conservative.geom.glsl", "illum/vct/inject.frag.glsl"};
-  prog_ = shaders.program(files, {{"CONSERVATIVE_VALUES", "1"}});
-  maxProg_ = shaders.program(files, {{"CONSERVATIVE_VALUES", "1"}, {"INJECT_MAX", "1"}});
 }
 
 void ConeVolume::fill(SceneResources& res, Profiler& prof) {
@@ -75,7 +71,9 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   const uint32_t zero = 0;
   glClearNamedBufferData(counts_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  if (need_.radiance == "inject") inject(res, prof);
+  if (need_.radiance == "inject")
+    radianceMax_ = injectRadiance(res, res.get<GridBox>(need_.grid), *need_.lightMaps, need_.bias,
+                                  need_.normalOffset, counts_.get(), sums_.get(), max_.get(), nullptr, prof);
   ValueSumBuffers b;
   b.counts = counts_.get();
   b.sums[3] = sums_.get();
@@ -83,46 +81,64 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   own_->resolve(b, shaders, prof, res.get<GlPyramid>(need_.pyramid()).words());
 }
 
-void ConeVolume::inject(SceneResources& res, Profiler& prof) {
+float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed& mapsNeed, float bias,
+                     float normalOffset, unsigned counts, unsigned sums, unsigned max,
+                     const SparseVoxelOctree* octree, Profiler& prof) {
   ShaderLibrary& shaders = res.shaders();
-  const GridBox& box = res.get<GridBox>(need_.grid);
   const int side = int(std::max({box.resolution.x, box.resolution.y, box.resolution.z}));
   const GpuScene& gpu = res.get<GpuScene>();
-  const LightMaps& maps = res.get<LightMaps>(*need_.lightMaps);
-  auto draw = [&](unsigned prog) {
-    setGridUniforms(shaders, prog, box);
-    shaders.setUniform(prog, "uViewport", float(side));
-    shaders.setUniform(prog, "uShadowBias", need_.bias);
-    shaders.setUniform(prog, "uNormalOffset", need_.normalOffset);
+  const LightMaps& maps = res.get<LightMaps>(mapsNeed);
+  const std::vector<std::string> files = {"voxelize/conservative.vert.glsl",
+                                          "voxelize/conservative.geom.glsl", "illum/vct/inject.frag.glsl"};
+  ShaderDefines defs{{"CONSERVATIVE_VALUES", "1"}};
+  if (octree) defs["INJECT_SVO"] = "1";
+  const unsigned prog = shaders.program(files, defs);
+  defs["INJECT_MAX"] = "1";
+  const unsigned maxProg = shaders.program(files, defs);
+  auto draw = [&](unsigned p) {
+    setGridUniforms(shaders, p, box);
+    shaders.setUniform(p, "uViewport", float(side));
+    shaders.setUniform(p, "uShadowBias", bias);
+    shaders.setUniform(p, "uNormalOffset", normalOffset);
+    if (octree && p == prog) octree->bind(shaders, p);
     drawWithoutAttachments(side, side, [&] {
-      glUseProgram(prog);
-      gpu.bind(shaders, prog);
+      glUseProgram(p);
+      gpu.bind(shaders, p);
       maps.bind();
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, max_.get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, counts_.get());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, sums_.get());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, max);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, counts);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, sums);
       gpu.draw();
     });
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   };
+  float radianceMax = 1.0f;
   {
     // Pass 1: the largest radiance of any (triangle, cell) pair: the fixed-point range.
     auto s = prof.scope("vct_inject_max");
     const uint32_t zero = 0;
-    glClearNamedBufferData(max_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    draw(maxProg_);
+    glClearNamedBufferData(max, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    draw(maxProg);
     uint32_t bits = 0;
-    glGetNamedBufferSubData(max_.get(), 0, 4, &bits);
-    std::memcpy(&radianceMax_, &bits, 4);
-    if (!(radianceMax_ > 0.0f) || !std::isfinite(radianceMax_)) radianceMax_ = 1.0f;  // unlit: sums stay 0
+    glGetNamedBufferSubData(max, 0, 4, &bits);
+    std::memcpy(&radianceMax, &bits, 4);
+    if (!(radianceMax > 0.0f) || !std::isfinite(radianceMax)) radianceMax = 1.0f;  // unlit: sums stay 0
   }
   auto s = prof.scope("vct_inject");
-  shaders.setUniform(prog_, "uRadianceMax", radianceMax_);
-  draw(prog_);
+  shaders.setUniform(prog, "uRadianceMax", radianceMax);
+  draw(prog);
+  return radianceMax;
 }
 
 nlohmann::json ConeVolume::stats() {
   nlohmann::json j = volume_->describe();
+  j["storage"] = "dense";
+  if (own_) {
+    // The injection's sums and counts per cell are the volume's too (20 bytes a cell).
+    const double sums = double(own_->box().cellCount()) * 20.0;
+    j["injection_bytes"] = sums;
+    j["bytes"] = j["bytes"].get<double>() + sums;
+  }
   j["radiance_source"] = need_.radiance;
   if (need_.radiance == "inject") j["radiance_max"] = radianceMax_;
   return j;

@@ -26,6 +26,28 @@
 namespace vgi {
 
 class ShaderLibrary;
+class SparseVoxelOctree;
+
+// What the cone tracers read (shaders/illum/vct/cones.glsl's coneSample and
+// emptySkip): the dense ConeVolume, or the sparse octree's (CONE_SVO;
+// illum/resources/sparse_octree.h). A method reads it as get<ConeSource>().
+class ConeSource {
+ public:
+  virtual ~ConeSource() = default;
+  // Binds the volume and sets cones.glsl's uniforms on `program` (in use), marching `step` cone diameters.
+  virtual void bind(ShaderLibrary& shaders, unsigned program, float step) const = 0;
+  virtual float voxelSize() const = 0;
+};
+
+// vct's radiance injection (shaders/illum/vct/inject.frag): the light maps'
+// shadow-tested diffuse light of every (triangle, cell) pair of the three-axis
+// conservative rasterization of `box`, into fixed-point sums per slot (counts:
+// a uint per slot; sums: 4 uints, rgb); the slots are the cells (x fastest), or
+// with `octree` its leaves (cells outside it left out). `max` (4 bytes) takes
+// the first pass' largest radiance; returns it, the sums' fixed-point range.
+float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed& maps, float bias,
+                     float normalOffset, unsigned counts, unsigned sums, unsigned max,
+                     const SparseVoxelOctree* octree, Profiler& profiler);
 
 struct ConeVolumeNeed {
   static constexpr const char* kKind = "cone_volume";
@@ -40,29 +62,26 @@ struct ConeVolumeNeed {
   ValueGridNeed valueGrids() const;  // radiance=atlas: the volume
 };
 
-class ConeVolume : public Resource {
+class ConeVolume : public Resource, public ConeSource {
  public:
   explicit ConeVolume(const ConeVolumeNeed& need) : need_(need) {}
   bool update(SceneResources& res, const ResourceNeed& need, Profiler& profiler) override;
   bool relight(SceneResources& res, const ResourceNeed& need, Profiler& profiler) override;
   nlohmann::json stats() override;
-  void* offer(const std::type_info& t) override { return offerOf(t, this); }
+  void* offer(const std::type_info& t) override { return offerOf(t, this, static_cast<ConeSource*>(this)); }
 
-  // Binds the textures and sets cones.glsl's uniforms on `program` (in use), marching `step` cone diameters.
-  void bind(ShaderLibrary& shaders, unsigned program, float step) const;
+  void bind(ShaderLibrary& shaders, unsigned program, float step) const override;
   const ValueTextures& textures() const { return *volume_; }
-  float voxelSize() const { return voxel_; }
+  float voxelSize() const override { return voxel_; }
 
  private:
   void allocate(SceneResources& res);                  // the volume of its own, its buffers, programs
   void fill(SceneResources& res, Profiler& profiler);  // (re)fills it: injection, resolve
-  void inject(SceneResources& res, Profiler& profiler);
   ConeVolumeNeed need_;
   std::string filledFor_;                  // the settings of the last fill (an adopted volume may get others)
   const ValueTextures* volume_ = nullptr;  // own_, or the value grids' (radiance=atlas)
   std::unique_ptr<ValueTextures> own_;
   GlBuffer counts_, sums_, max_;
-  unsigned prog_ = 0, maxProg_ = 0;
   float radianceMax_ = 1.0f, voxel_ = 0.0f;
 };
 

@@ -10,14 +10,15 @@
 #include "illum/resources/light_maps.h"
 #include "illum/resources/occluders.h"
 #include "illum/resources/or_mip_pyramid.h"
+#include "illum/resources/sparse_octree.h"
 #include "illum/resources/value_grids.h"
 
 namespace vgi {
 
 const std::vector<ResourceKind>& resourceKinds() {
   static const std::vector<ResourceKind> kinds = {
-      gpuSceneKind(), lightMapsKind(), binaryGridKind(), orMipPyramidKind(), valueGridsKind(),
-      bvhKind(),      occludersKind(), coneVolumeKind(), gpuBvhKind(),       gpuEmittersKind(),
+      gpuSceneKind(),  lightMapsKind(),  binaryGridKind(), orMipPyramidKind(), valueGridsKind(),   bvhKind(),
+      occludersKind(), coneVolumeKind(), gpuBvhKind(),     gpuEmittersKind(),  sparseOctreeKind(),
   };
   return kinds;
 }

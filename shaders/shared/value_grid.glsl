@@ -37,6 +37,15 @@ SHARED_FN vec4 decodeRadianceMean(uvec4 sums, uint count, float maxRadiance) {
   return vec4(float(sums.x) * k, float(sums.y) * k, float(sums.z) * k, 0.0f);
 }
 
+// A cell's premultiplied radiance (L·α, α) from its sums and count: 0 where it
+// is empty, (0, 0, 0, 1) where it is occupied without points (the dense
+// volume's resolve and the sparse octree's leaves both call this).
+SHARED_FN vec4 premultipliedRadiance(uvec4 sums, uint count, bool occupied, float maxRadiance) {
+  if (!occupied) return vec4(0.0f);
+  if (count == 0u) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  return decodeRadianceMean(sums, count, maxRadiance) + vec4(0.0f, 0.0f, 0.0f, 1.0f);
+}
+
 SHARED_FN float encodeExponent(float e) { return log2(1.0f + max(e, 0.0f)); }
 SHARED_FN float decodeExponent(float x) { return exp2(x) - 1.0f; }
 SHARED_FN float exponentCodeMax() { return log2(1.0f + GLOSSY_MAX_EXPONENT); }

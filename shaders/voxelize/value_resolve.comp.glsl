@@ -59,8 +59,6 @@ void main() {
   imageStore(oGlossy, c, n > 0u ? decodeValueMean(uvec4(glossySums[i], glossySums[i + 1u], glossySums[i + 2u], glossySums[i + 3u]), n, VALUE_CHANNEL_GLOSSY) : vec4(0.0f));
 #endif
 #ifdef VALUE_RADIANCE
-  vec4 radiance = occupied ? vec4(0.0f, 0.0f, 0.0f, 1.0f) : vec4(0.0f);
-  if (n > 0u) radiance = decodeRadianceMean(uvec4(radianceSums[i], radianceSums[i + 1u], radianceSums[i + 2u], 0u), n, uRadianceMax) + vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  imageStore(oRadiance, c, radiance);
+  imageStore(oRadiance, c, premultipliedRadiance(uvec4(radianceSums[i], radianceSums[i + 1u], radianceSums[i + 2u], 0u), n, occupied, uRadianceMax));
 #endif
 }

@@ -11,6 +11,7 @@
 #include <glm/gtc/packing.hpp>
 #include <random>
 
+#include "cone_fixture.h"
 #include "core/gl_context.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
@@ -29,40 +30,8 @@ namespace {
 using test::compareHalf;
 using test::halfStep;
 using test::toHalf;
-
-GridBox unitBox(glm::uvec3 res) {
-  GridBox b;
-  b.origin = glm::vec3(0.0f);
-  b.extent = glm::vec3(res) / float(res.x);
-  b.resolution = res;
-  return b;
-}
-
-// A volume resolved on the GPU from given counts, radiance sums and an
-// occupancy grid (what ConeVolume::update hands ValueTextures::resolve).
-struct VolumeFixture {
-  std::unique_ptr<GlContext> gl = GlContext::create();
-  ShaderLibrary shaders;
-  Profiler prof{true};
-  GridBox box;
-  std::unique_ptr<ValueTextures> tex;
-  VolumeFixture(const GridBox& b, ValueMips mips, const BinaryGrid& grid, const std::vector<uint32_t>& counts,
-                const std::vector<uint32_t>& sums, float radianceMax)
-      : box(b) {
-    GlPyramid pyramid(box);
-    pyramid.build(grid, shaders);
-    GlBuffer c = makeBuffer(counts.size() * 4), s = makeBuffer(sums.size() * 4);
-    glNamedBufferSubData(c.get(), 0, GLsizeiptr(counts.size() * 4), counts.data());
-    glNamedBufferSubData(s.get(), 0, GLsizeiptr(sums.size() * 4), sums.data());
-    tex = std::make_unique<ValueTextures>(box, std::vector<std::string>{"radiance"}, mips);
-    ValueSumBuffers v;
-    v.counts = c.get();
-    v.sums[shared::VALUE_CHANNEL_RADIANCE] = s.get();
-    v.radianceMax = radianceMax;
-    tex->resolve(v, shaders, prof, pyramid.words());
-    glFinish();
-  }
-};
+using test::unitBox;
+using test::VolumeFixture;
 
 }  // namespace
 

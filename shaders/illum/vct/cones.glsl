@@ -33,32 +33,55 @@
 // in one jump — samples that would have blended in a non-empty neighbour
 // inside that texel are skipped (the artefact the thesis shows, Fig. 18a).
 //
-// Bound by ConeVolume::bind (illum/kits/cone_kit.h): the textures, the grid
-// uniforms, uVoxelSize, uMaxLod, uConeStep. A pass that defines CONE_SAMPLE
-// supplies its own coneSample() (the tests' uniform medium).
+// Bound by the volume's bindCones (illum/resources/cone_volume.h: the dense
+// ConeVolume, or the sparse octree's, CONE_SVO): the textures, the grid
+// uniforms, uVoxelSize, uMaxLod, uConeStep. Both volumes answer the same two
+// questions — coneSample (the volume at a grid point, level and direction) and
+// emptySkip — so the cones are the same code whatever the storage. A pass that
+// defines CONE_SAMPLE supplies its own coneSample() (the tests' uniform medium).
 #include "../../shared/constants.glsl"
 #include "../../shared/sampling.glsl"
 #include "../../shared/value_textures.glsl"
 #include "../../voxelize/grid_uniforms.glsl"
+#ifdef CONE_SVO
+#include "../../shared/svo_lookup.glsl"
+#endif
 uniform float uVoxelSize;  // world size of a level-0 cell
 uniform float uMaxLod;     // the chains' last level
 uniform float uConeStep;   // step = uConeStep × the cone's diameter
 
-#ifndef CONE_SAMPLE
-// The volume along unit direction d at uvw, mip level lod (premultiplied rgb, opacity w).
-vec4 coneSample(vec3 uvw, vec3 d, float lod) {
-  vec4 s0 = textureLod(valueRadiance, uvw, lod);
-#ifdef VCT_ANISOTROPIC
 #ifdef VCT_ABS_WEIGHTS
-  vec3 w = abs(d);  // the thesis' weights: Σ up to √3, so an oblique wall stays opaque
+vec3 coneFaceWeights(vec3 d) { return abs(d); }  // the thesis' weights: Σ up to √3, so an oblique wall stays opaque
 #else
-  vec3 w = anisoWeights(d);
+vec3 coneFaceWeights(vec3 d) { return anisoWeights(d); }
 #endif
+
+// World distance from grid point q along dg out of its texel at mip level `level`.
+float emptyBoxExit(vec3 q, vec3 dg, int level) {
+  float side = exp2(float(level));
+  vec3 lo = floor(q / side) * side, hi = lo + side;
+  float t = 1e30f;
+  for (int a = 0; a < 3; ++a) {
+    if (dg[a] > 1e-12f) t = min(t, (hi[a] - q[a]) / dg[a]);
+    if (dg[a] < -1e-12f) t = min(t, (lo[a] - q[a]) / dg[a]);
+  }
+  return t;
+}
+
+#if !defined(CONE_SAMPLE) && !defined(CONE_SVO)
+// The volume along unit direction d at grid point q (cells), mip level lod
+// (premultiplied rgb, opacity w).
+vec4 coneSample(vec3 q, vec3 d, float lod) {
+  vec3 uvw = q / vec3(uResolution.xyz);
+#ifdef VCT_ANISOTROPIC
+  // Level 0 itself (a fractional lod would blend the isotropic level 1 in too).
+  vec4 s0 = textureLod(valueRadiance, uvw, 0.0f);
+  vec3 w = coneFaceWeights(d);
   if (lod <= 0.0f || uMaxLod < 1.0f) return s0;
   if (lod < 1.0f) return mix(s0, valueAniso(uvw, d, 1.0f, w), lod);
   return valueAniso(uvw, d, lod, w);
 #else
-  return s0;
+  return textureLod(valueRadiance, uvw, lod);
 #endif
 }
 
@@ -73,14 +96,68 @@ float emptySkip(vec3 q, vec3 dg, float lod) {
     level = l;
   }
   if (level < 0) return 0.0f;
-  float side = exp2(float(level));
-  vec3 lo = floor(q / side) * side, hi = lo + side;
-  float t = 1e30f;
-  for (int a = 0; a < 3; ++a) {
-    if (dg[a] > 1e-12f) t = min(t, (hi[a] - q[a]) / dg[a]);
-    if (dg[a] < -1e-12f) t = min(t, (lo[a] - q[a]) / dg[a]);
+  return emptyBoxExit(q, dg, level);
+}
+#endif
+
+
+#if !defined(CONE_SAMPLE) && defined(CONE_SVO)
+// The same through the octree: level l of the dense chain is the octree's
+// level D − l; a fractional level blends two (quadrilinear), each one stencil
+// lookup and one hardware trilinear fetch per pool.
+vec4 svoIso(vec3 q, float level) {
+  SvoStencil s = svoStencil(q, uSvoDepth - uint(level));
+  if (!s.found) return vec4(0.0f);
+  return s.scale * textureLod(valueRadiance, svoPoolUvw(s.tile - uSvoIsoBase, uSvoIsoBricks, s.u), 0.0f);
+}
+vec4 svoFace(uint f, vec3 uvw) {
+  switch (f) {
+    case 0u: return textureLod(valueAniso0, uvw, 0.0f);
+    case 1u: return textureLod(valueAniso1, uvw, 0.0f);
+    case 2u: return textureLod(valueAniso2, uvw, 0.0f);
+    case 3u: return textureLod(valueAniso3, uvw, 0.0f);
+    case 4u: return textureLod(valueAniso4, uvw, 0.0f);
+    default: return textureLod(valueAniso5, uvw, 0.0f);
   }
-  return t;
+}
+vec4 svoAniso(vec3 q, vec3 d, float level, vec3 w) {
+  SvoStencil s = svoStencil(q, uSvoDepth - uint(level));
+  if (!s.found) return vec4(0.0f);
+  vec3 uvw = svoPoolUvw(s.tile, uSvoFaceBricks, s.u);
+  uvec3 f = anisoFaces(d);
+  return s.scale * (w.x * svoFace(f.x, uvw) + w.y * svoFace(f.y, uvw) + w.z * svoFace(f.z, uvw));
+}
+vec4 coneSample(vec3 q, vec3 d, float lod) {
+  float l0 = floor(lod), t = lod - l0;
+#ifdef VCT_ANISOTROPIC
+  vec3 w = coneFaceWeights(d);
+  if (lod <= 0.0f || uMaxLod < 1.0f) return svoIso(q, 0.0f);
+  if (lod < 1.0f) return mix(svoIso(q, 0.0f), svoAniso(q, d, 1.0f, w), lod);
+  vec4 a = svoAniso(q, d, l0, w);
+  return t > 0.0f ? mix(a, svoAniso(q, d, l0 + 1.0f, w), t) : a;
+#else
+  vec4 a = svoIso(q, l0);
+  return t > 0.0f ? mix(a, svoIso(q, l0 + 1.0f), t) : a;
+#endif
+}
+
+// emptySkip through the octree: the coarsest empty node on the way down to q's
+// leaf is the dense chain's largest empty texel (a node without children, or
+// an unoccupied leaf).
+float emptySkip(vec3 q, vec3 dg, float lod) {
+  uvec3 cell = uvec3(min(ivec3(floor(q)), ivec3((1 << int(uSvoDepth)) - 1)));
+  uint n = 0u;
+  int level = -1;
+  for (uint l = 0u; l <= uSvoDepth; ++l) {
+    uint v = svoNodes[n];
+    if (l < uSvoDepth ? v < SVO_TILE : v != SVO_FLAGGED) {
+      level = int(uSvoDepth - l);
+      break;
+    }
+    if (l < uSvoDepth) n = v + svoOctant(cell, uSvoDepth - 1u - l);
+  }
+  if (level < int(floor(lod))) return 0.0f;
+  return emptyBoxExit(q, dg, level);
 }
 #endif
 
@@ -125,7 +202,7 @@ ConeResult traceCone(vec3 apex, vec3 d, float tanHalf, float maxDist, float aoRa
       r.escaped = 1.0f;
       break;
     }
-    vec4 s = coneSample(q / res, d, lod);
+    vec4 s = coneSample(q, d, lod);
     ++r.samples;
     float a = clamp(s.w, 0.0f, 1.0f);
     float cell = uVoxelSize * exp2(lod);

@@ -10,7 +10,10 @@
 // (shared/value_grid.glsl), so voxelize/value_textures resolves and
 // pre-integrates them like the atlas voxelizer's radiance channel.
 // INJECT_MAX: the first pass, only the largest radiance (float bits, atomicMax:
-// the fixed-point range of the second).
+// the fixed-point range of the second). INJECT_SVO: the sums are the sparse
+// octree's leaves' (voxelize/sparse_octree.h; a cell's slot found by
+// descending the tree; a cell not in the tree is left out, as the dense
+// resolve leaves out a cell the binary grid does not hold).
 #include "../../shared/constants.glsl"
 #include "../../shared/sampling.glsl"
 #include "../../shared/brdf.glsl"
@@ -20,6 +23,9 @@
 #include "../../shared/closest_point.glsl"
 #include "../../shared/value_grid.glsl"
 #include "../../voxelize/conservative_cells.glsl"
+#ifdef INJECT_SVO
+#include "../../shared/svo_lookup.glsl"
+#endif
 flat in vec3 gWorldNormal;
 flat in vec3 gWorld0;
 flat in vec3 gWorld1;
@@ -47,6 +53,12 @@ vec2 barycentric(vec3 q, vec3 a, vec3 b, vec3 c) {
 }
 
 void visitCell(uvec3 c) {
+#if defined(INJECT_SVO) && !defined(INJECT_MAX)
+  uint slot = svoLeafSlot(c);
+  if (slot == SVO_NO_SLOT) return;
+#elif !defined(INJECT_MAX)
+  uint slot = valueIndex(c, uvec4(uResolution.xyz, 0u), 0u) / 4u;
+#endif
   vec3 q = closestPointOnTriangle(vec3(c) + 0.5f, gA, gB, gC);
   vec2 w = barycentric(q, gA, gB, gC);
   vec3 p = gWorld0 + w.x * (gWorld1 - gWorld0) + w.y * (gWorld2 - gWorld0);
@@ -67,9 +79,8 @@ void visitCell(uvec3 c) {
 #ifdef INJECT_MAX
   atomicMax(radianceMaxBits, floatBitsToUint(max(L.x, max(L.y, L.z))));
 #else
-  uvec4 res = uvec4(uResolution.xyz, 0u);
-  atomicAdd(counts[valueIndex(c, res, 0u) / 4u], 1u);
-  for (uint k = 0u; k < 3u; ++k) atomicAdd(radianceSums[valueIndex(c, res, k)], toFixedRadiance(L[k], uRadianceMax));
+  atomicAdd(counts[slot], 1u);
+  for (uint k = 0u; k < 3u; ++k) atomicAdd(radianceSums[4u * slot + k], toFixedRadiance(L[k], uRadianceMax));
 #endif
 }
 

@@ -7,7 +7,7 @@
 #ifdef UNIFORM_MEDIUM
 #define CONE_SAMPLE
 uniform float uMediumAlpha;
-vec4 coneSample(vec3 uvw, vec3 d, float lod) {
+vec4 coneSample(vec3 q, vec3 d, float lod) {
   return vec4(0.0f, 0.0f, 0.0f, 1.0f - pow(1.0f - uMediumAlpha, exp2(lod)));
 }
 #endif

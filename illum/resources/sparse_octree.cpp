@@ -1,0 +1,132 @@
+#include "illum/resources/sparse_octree.h"
+
+#include <glad/gl.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/gpu_memory.h"
+#include "core/profiler.h"
+#include "core/shader_library.h"
+#include "traverse/gl_ray_tracer.h"
+#include "voxelize/gpu_grid.h"
+
+namespace vgi {
+
+nlohmann::json SparseOctreeNeed::key() const {
+  return {{"grid", grid.key()},
+          {"radiance", radiance},
+          {"anisotropic", anisotropic},
+          {"dilate", dilate},
+          {"update_every", updateEvery}};
+}
+
+nlohmann::json SparseOctreeNeed::settings() const {
+  return {{"light_maps", lightMaps ? lightMaps->key() : nlohmann::json(nullptr)},
+          {"bias", bias},
+          {"normal_offset", normalOffset}};
+}
+
+bool SparseOctree::update(SceneResources& res, const ResourceNeed& need, Profiler& prof) {
+  need_ = need.spec<SparseOctreeNeed>();
+  const GridBox& box = res.get<GridBox>(need_.grid);
+  const glm::vec3 v = box.voxelSize();
+  voxel_ = std::max({v.x, v.y, v.z});
+  const bool lit = need_.radiance == "inject";
+  bool rebuilt = false;
+  if (!octree_ || res.changed(need_.pyramid())) {
+    if (octree_) ++gridChanges_;
+    if (!octree_ || gridChanges_ % need_.updateEvery == 0) {
+      octree_ = std::make_unique<SparseVoxelOctree>(box, need_.anisotropic, need_.dilate);
+      octree_->build(res.get<GlPyramid>(need_.pyramid()).words(), res.shaders(), prof);
+      const uint64_t leaves = std::max<uint64_t>(octree_->leafCount(), 1);
+      if (lit) {
+        checkGpuAllocation(double(leaves) * 20, "the sparse octree's leaf sums");
+        counts_ = makeBuffer(leaves * 4);
+        sums_ = makeBuffer(leaves * 16);
+        max_ = makeBuffer(4);
+      }
+      rebuilt = true;
+      lag_ = 0;
+    } else {
+      ++lag_;
+    }
+  }
+  // With area lights the light maps follow the sample's lights: beginSample relights (fills).
+  if (lit && res.sampleLights()) return rebuilt;
+  if (!rebuilt && !(lit && res.changed(*need_.lightMaps)) && filledFor_ == need_.settings().dump())
+    return false;
+  fill(res, prof);
+  return true;
+}
+
+bool SparseOctree::relight(SceneResources& res, const ResourceNeed&, Profiler& prof) {
+  if (need_.radiance != "inject") return false;
+  fill(res, prof);
+  return true;
+}
+
+void SparseOctree::fill(SceneResources& res, Profiler& prof) {
+  filledFor_ = need_.settings().dump();
+  if (need_.radiance != "inject") {
+    octree_->resolve(0, 0, 1.0f, res.shaders(), prof);
+    return;
+  }
+  const uint32_t zero = 0;
+  glClearNamedBufferData(counts_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  radianceMax_ = injectRadiance(res, octree_->box(), *need_.lightMaps, need_.bias, need_.normalOffset,
+                                counts_.get(), sums_.get(), max_.get(), octree_.get(), prof);
+  octree_->resolve(counts_.get(), sums_.get(), radianceMax_, res.shaders(), prof);
+}
+
+void bindConeOctree(const SparseVoxelOctree& octree, ShaderLibrary& shaders, unsigned prog, float step) {
+  octree.bind(shaders, prog);
+  setGridUniforms(shaders, prog, octree.box());
+  const glm::vec3 v = octree.box().voxelSize();
+  shaders.setUniform(prog, "uVoxelSize", std::max({v.x, v.y, v.z}));
+  shaders.setUniform(prog, "uMaxLod", float(octree.depth()));
+  shaders.setUniform(prog, "uConeStep", step);
+}
+
+void SparseOctree::bind(ShaderLibrary& shaders, unsigned prog, float step) const {
+  bindConeOctree(*octree_, shaders, prog, step);
+}
+
+nlohmann::json SparseOctree::stats() {
+  nlohmann::json j = octree_->describe();
+  if (need_.radiance == "inject") {
+    const double sums = double(std::max<uint64_t>(octree_->leafCount(), 1)) * 20.0;
+    j["injection_bytes"] = sums;  // the leaves' sums and counts
+    j["bytes"] = j["bytes"].get<double>() + sums;
+    j["radiance_max"] = radianceMax_;
+  }
+  j["radiance_source"] = need_.radiance;
+  j["update_every"] = need_.updateEvery;
+  j["lag_frames"] = lag_;
+  return j;
+}
+
+ResourceKind sparseOctreeKind() {
+  return {"sparse_octree",
+          "the cone tracers' volume as a sparse voxel octree with 3x3x3 bricks and (anisotropic) filtering",
+          [](const ResourceNeed& n) {
+            const SparseOctreeNeed& c = n.spec<SparseOctreeNeed>();
+            std::vector<ResourceNeed> d{c.pyramid()};
+            if (c.radiance == "inject") d.push_back(*c.lightMaps);
+            return d;
+          },
+          [](const ResourceNeed& n, const SceneNeeds&, const std::string& method, bool gl) {
+            const SparseOctreeNeed& c = n.spec<SparseOctreeNeed>();
+            requireGl(n, method, gl);
+            if (c.radiance == "inject" && !c.lightMaps)
+              fail("method '", method, "' asks for a sparse octree with radiance=inject without light maps");
+          },
+          [](const ResourceNeed&) { return std::vector<std::string>{"sparse_octree"}; },
+          [](const ResourceNeed& n, SceneResources&) -> std::unique_ptr<Resource> {
+            return std::make_unique<SparseOctree>(n.spec<SparseOctreeNeed>());
+          },
+          "volume"};
+}
+
+}  // namespace vgi
