@@ -56,17 +56,19 @@ uint32_t svoDepth(glm::uvec3 r) {
 }
 
 SvoStructure svoReferenceStructure(const std::vector<glm::uvec3>& fragments, uint32_t depth, bool dilate) {
-  std::vector<std::set<uint32_t>> flagged(depth + 1);
+  std::vector<std::set<uint32_t>> flagged(depth + 1), occupied(depth + 1);
   for (const glm::uvec3& f : fragments)
     for (uint32_t l = 0; l <= depth; ++l)
       for (uint32_t k = 0; k < (dilate ? 8u : 1u); ++k) {
         const shared::SvoTarget t = shared::svoFlagTarget(f, l, depth, shared::svoOctantOffset(k));
         if (t.valid) flagged[l].insert(shared::svoPackCell(t.cell));
+        if (t.valid && k == 0) occupied[l].insert(shared::svoPackCell(t.cell));
       }
   SvoStructure s;
   s.nodes.push_back(1);
   for (uint32_t l = 0; l <= depth; ++l) {
     s.flagged.emplace_back(flagged[l].begin(), flagged[l].end());
+    s.occupied.emplace_back(occupied[l].begin(), occupied[l].end());
     if (l < depth) s.nodes.push_back(8 * uint64_t(flagged[l].size()));
   }
   return s;
@@ -146,9 +148,9 @@ void SparseVoxelOctree::build(unsigned words, ShaderLibrary& shaders, Profiler& 
     shaders.setUniform(buildProgs_[3], "uCount", uint32_t(count));
     dispatchLinear(count);
     const uint64_t newTiles = readCounter(counter_.get());
-    if (newTiles * 8 >= (uint64_t(1) << 32))
+    if (newTiles * 8 > shared::SVO_CHILD_MASK)
       fail("the sparse octree of ", box_.resolution.x, "x", box_.resolution.y, "x", box_.resolution.z,
-           " needs more than 2^32 nodes");
+           " needs more than 2^31 nodes");
     levels_.emplace_back(tiles * 8, newTiles * 8);
     tiles = newTiles;
     grow(tiles * 8);
@@ -309,11 +311,16 @@ SvoStructure SparseVoxelOctree::readStructure() const {
   const std::vector<uint32_t> coords = readBuffer<uint32_t>(coords_.get(), nodeCount_);
   SvoStructure s;
   for (uint32_t l = 0; l <= depth_; ++l) {
-    std::vector<uint32_t> f;
-    for (uint64_t n = levels_[l].first; n < levels_[l].second; ++n)
-      if (l < depth_ ? nodes[n] >= shared::SVO_TILE : nodes[n] == shared::SVO_FLAGGED) f.push_back(coords[n]);
+    std::vector<uint32_t> f, o;
+    for (uint64_t n = levels_[l].first; n < levels_[l].second; ++n) {
+      const uint32_t child = shared::svoChild(nodes[n]);
+      if (l < depth_ ? child >= shared::SVO_TILE : child == shared::SVO_FLAGGED) f.push_back(coords[n]);
+      if (shared::svoOccupied(nodes[n])) o.push_back(coords[n]);
+    }
     std::sort(f.begin(), f.end());
+    std::sort(o.begin(), o.end());
     s.flagged.push_back(f);
+    s.occupied.push_back(o);
     s.nodes.push_back(levels_[l].second - levels_[l].first);
   }
   return s;
@@ -324,10 +331,10 @@ namespace {
 std::vector<uint32_t> nodeCells(const std::vector<uint32_t>& nodes) {
   std::vector<uint32_t> cells(nodes.size(), 0);
   for (size_t n = 0; n < nodes.size(); ++n)
-    if (nodes[n] >= shared::SVO_TILE) {
+    if (shared::svoChild(nodes[n]) >= shared::SVO_TILE) {
       const glm::uvec3 c = shared::svoUnpackCell(n == 0 ? 0u : cells[n]);
       for (uint32_t o = 0; o < 8; ++o)
-        cells[nodes[n] + o] = shared::svoPackCell(2u * c + shared::svoOctantOffset(o));
+        cells[shared::svoChild(nodes[n]) + o] = shared::svoPackCell(2u * c + shared::svoOctantOffset(o));
     }
   return cells;
 }
@@ -337,6 +344,14 @@ std::vector<uint32_t> SparseVoxelOctree::readLeafCells() const {
   const std::vector<uint32_t> nodes = readBuffer<uint32_t>(nodes_.get(), nodeCount_);
   const std::vector<uint32_t> cells = nodeCells(nodes);
   return std::vector<uint32_t>(cells.begin() + std::ptrdiff_t(leafFirst_), cells.end());
+}
+
+uint64_t SparseVoxelOctree::countUnreachedLeaves(unsigned counts) const {
+  const std::vector<uint32_t> nodes = readBuffer<uint32_t>(nodes_.get(), nodeCount_);
+  const std::vector<uint32_t> n = readBuffer<uint32_t>(counts, leafCount());
+  uint64_t holes = 0;
+  for (uint64_t i = 0; i < n.size(); ++i) holes += shared::svoOccupied(nodes[leafFirst_ + i]) && n[i] == 0;
+  return holes;
 }
 
 std::map<uint32_t, glm::vec4> SparseVoxelOctree::readLevel(uint32_t level, int face) const {

@@ -37,9 +37,10 @@ class Profiler;
 class ShaderLibrary;
 
 // The nodes with children per level (the leaf level: the occupied leaves), as
-// sorted packed cells (svoPackCell), and the nodes per level (tiles × 8).
+// sorted packed cells (svoPackCell), those of them that fragments fall in
+// (without dilation: all), and the nodes per level (tiles × 8).
 struct SvoStructure {
-  std::vector<std::vector<uint32_t>> flagged;
+  std::vector<std::vector<uint32_t>> flagged, occupied;
   std::vector<uint64_t> nodes;
 };
 // The same structure from fragments (leaf cells) on the CPU, by the shared rule
@@ -81,6 +82,8 @@ class SparseVoxelOctree {
   // Read-backs (tests).
   SvoStructure readStructure() const;
   std::vector<uint32_t> readLeafCells() const;  // per leaf slot its packed cell
+  // The occupied leaves that no injected sample reached (counts: uint per leaf slot): the holes.
+  uint64_t countUnreachedLeaves(unsigned counts) const;
   // Level m's values (face −1: the iso pool; f: face pool f) by packed cell,
   // for every node of the level.
   std::map<uint32_t, glm::vec4> readLevel(uint32_t level, int face) const;

@@ -23,9 +23,10 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
     s.radiance =
         p.getString("radiance", "inject",
                     "voxel radiance: inject (conservative rasterization lit through the shadow maps, "
-                    "the VCT thesis) or atlas (the atlas voxelizer's radiance channel, VGI 3; needs "
-                    "voxelizer=atlas)",
-                    {"inject", "atlas"});
+                    "the VCT thesis), texels (each texel of reflective shadow maps into its cell, the "
+                    "2013 article; holes where the maps are coarser than the voxels) or atlas (the atlas "
+                    "voxelizer's radiance channel, VGI 3; needs voxelizer=atlas)",
+                    {"inject", "texels", "atlas"});
   else
     s.radiance = "none";
   s.grid = readBinaryGridParams(p, 4, false, s.radiance == "atlas" ? "atlas" : "conservative");
@@ -81,8 +82,8 @@ ConeVolumeNeed ConeVolumeSettings::need() const {
   if (radiance == "atlas") n.grid.values = {"radiance"};
   n.radiance = radiance;
   n.anisotropic = anisotropic;
-  if (radiance != "none") n.lightMaps = LightMapNeed{shadow.resolution, false};
-  if (radiance == "inject") {
+  if (radiance != "none") n.lightMaps = LightMapNeed{shadow.resolution, radiance == "texels"};
+  if (injectsRadiance(radiance)) {
     n.bias = shadow.bias;
     n.normalOffset = shadow.normalOffset;
   }

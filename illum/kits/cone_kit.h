@@ -22,7 +22,7 @@ class ValueTextures;
 
 struct ConeVolumeSettings {
   BinaryGridNeed grid;
-  std::string radiance = "inject";  // inject | atlas | none
+  std::string radiance = "inject";  // inject | texels | atlas | none
   std::string volume = "dense";     // dense (cone_volume) | svo (sparse_octree)
   bool anisotropic = true;
   bool dilate = true;      // svo: allocate the nodes a neighbour's brick stencil needs

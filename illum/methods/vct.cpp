@@ -35,7 +35,7 @@
 // |---------------|--------|------------------|-------------------------------------------------|
 // | voxels        | string | 128              | grid resolution N or WxHxD                      |
 // | voxelizer     | string | conservative     | the opacity's binary voxelizer (registry)       |
-// | radiance      | string | inject           | inject or atlas (see above)                     |
+// | radiance      | string | inject           | inject, texels (the 2013 article's, from reflective shadow maps) or atlas (see above) |
 // | anisotropic   | bool   | true             | six-direction chain; false: isotropic           |
 // | volume        | string | dense            | storage: dense (3D textures) or svo (sparse voxel octree, illum/resources/sparse_octree.h) |
 // | dilate        | bool   | true             | svo: allocate the nodes a neighbour's brick stencil needs (false: the articles' tree, with brick-border artefacts) |
@@ -129,7 +129,8 @@ class VctMethod : public Method {
   SceneNeeds needs() const override {
     SceneNeeds n;
     n.gbuffer = true;
-    n.add(LightMapNeed{vol_.shadow.resolution, false});  // the direct light
+    // The direct light (radiance=texels: the same maps, reflective, inject the volume too).
+    n.add(LightMapNeed{vol_.shadow.resolution, vol_.radiance == "texels"});
     vol_.addNeed(n);
     return n;
   }

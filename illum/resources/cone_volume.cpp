@@ -37,7 +37,7 @@ bool ConeVolume::update(SceneResources& res, const ResourceNeed& need, Profiler&
     volume_ = &res.get<ValueTextures>(need_.valueGrids());
     return res.changed(need_.valueGrids());
   }
-  const bool lit = need_.radiance == "inject";
+  const bool lit = injectsRadiance(need_.radiance);
   const bool fresh = !own_;
   if (fresh) allocate(res);
   // With area lights the light maps follow the sample's lights: beginSample relights (injects).
@@ -50,7 +50,7 @@ bool ConeVolume::update(SceneResources& res, const ResourceNeed& need, Profiler&
 }
 
 bool ConeVolume::relight(SceneResources& res, const ResourceNeed&, Profiler& prof) {
-  if (need_.radiance != "inject") return false;
+  if (!injectsRadiance(need_.radiance)) return false;
   fill(res, prof);
   return true;
 }
@@ -71,9 +71,10 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   const uint32_t zero = 0;
   glClearNamedBufferData(counts_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  if (need_.radiance == "inject")
-    radianceMax_ = injectRadiance(res, res.get<GridBox>(need_.grid), *need_.lightMaps, need_.bias,
-                                  need_.normalOffset, counts_.get(), sums_.get(), max_.get(), nullptr, prof);
+  if (injectsRadiance(need_.radiance))
+    radianceMax_ =
+        injectRadiance(res, res.get<GridBox>(need_.grid), *need_.lightMaps, need_.radiance == "texels",
+                       need_.bias, need_.normalOffset, counts_.get(), sums_.get(), max_.get(), nullptr, prof);
   ValueSumBuffers b;
   b.counts = counts_.get();
   b.sums[3] = sums_.get();
@@ -81,44 +82,57 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   own_->resolve(b, shaders, prof, res.get<GlPyramid>(need_.pyramid()).words());
 }
 
-float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed& mapsNeed, float bias,
-                     float normalOffset, unsigned counts, unsigned sums, unsigned max,
+float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed& mapsNeed, bool texels,
+                     float bias, float normalOffset, unsigned counts, unsigned sums, unsigned max,
                      const SparseVoxelOctree* octree, Profiler& prof) {
   ShaderLibrary& shaders = res.shaders();
-  const int side = int(std::max({box.resolution.x, box.resolution.y, box.resolution.z}));
   const GpuScene& gpu = res.get<GpuScene>();
   const LightMaps& maps = res.get<LightMaps>(mapsNeed);
-  const std::vector<std::string> files = {"voxelize/conservative.vert.glsl",
-                                          "voxelize/conservative.geom.glsl", "illum/vct/inject.frag.glsl"};
-  ShaderDefines defs{{"CONSERVATIVE_VALUES", "1"}};
+  const std::vector<std::string> files =
+      texels ? std::vector<std::string>{"illum/vct/inject_texels.comp.glsl"}
+             : std::vector<std::string>{"voxelize/conservative.vert.glsl", "voxelize/conservative.geom.glsl",
+                                        "illum/vct/inject.frag.glsl"};
+  ShaderDefines defs;
+  if (!texels) defs["CONSERVATIVE_VALUES"] = "1";
   if (octree) defs["INJECT_SVO"] = "1";
   const unsigned prog = shaders.program(files, defs);
   defs["INJECT_MAX"] = "1";
   const unsigned maxProg = shaders.program(files, defs);
-  auto draw = [&](unsigned p) {
+  auto run = [&](unsigned p) {
     setGridUniforms(shaders, p, box);
-    shaders.setUniform(p, "uViewport", float(side));
-    shaders.setUniform(p, "uShadowBias", bias);
-    shaders.setUniform(p, "uNormalOffset", normalOffset);
     if (octree && p == prog) octree->bind(shaders, p);
-    drawWithoutAttachments(side, side, [&] {
+    auto bindAll = [&] {
       glUseProgram(p);
-      gpu.bind(shaders, p);
       maps.bind();
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, max);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, counts);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, sums);
-      gpu.draw();
-    });
+    };
+    if (texels) {
+      const int r = maps.resolution();
+      shaders.setUniform(p, "uMapResolution", r);
+      bindAll();
+      glDispatchCompute(unsigned(r + 7) / 8, unsigned(r + 7) / 8, unsigned(maps.faceCount()));
+    } else {
+      const int side = int(std::max({box.resolution.x, box.resolution.y, box.resolution.z}));
+      shaders.setUniform(p, "uViewport", float(side));
+      shaders.setUniform(p, "uShadowBias", bias);
+      shaders.setUniform(p, "uNormalOffset", normalOffset);
+      drawWithoutAttachments(side, side, [&] {
+        bindAll();
+        gpu.bind(shaders, p);
+        gpu.draw();
+      });
+    }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   };
   float radianceMax = 1.0f;
   {
-    // Pass 1: the largest radiance of any (triangle, cell) pair: the fixed-point range.
+    // Pass 1: the largest radiance of any (triangle, cell) pair or texel: the fixed-point range.
     auto s = prof.scope("vct_inject_max");
     const uint32_t zero = 0;
     glClearNamedBufferData(max, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    draw(maxProg);
+    run(maxProg);
     uint32_t bits = 0;
     glGetNamedBufferSubData(max, 0, 4, &bits);
     std::memcpy(&radianceMax, &bits, 4);
@@ -126,7 +140,7 @@ float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed
   }
   auto s = prof.scope("vct_inject");
   shaders.setUniform(prog, "uRadianceMax", radianceMax);
-  draw(prog);
+  run(prog);
   return radianceMax;
 }
 
@@ -140,7 +154,7 @@ nlohmann::json ConeVolume::stats() {
     j["bytes"] = j["bytes"].get<double>() + sums;
   }
   j["radiance_source"] = need_.radiance;
-  if (need_.radiance == "inject") j["radiance_max"] = radianceMax_;
+  if (injectsRadiance(need_.radiance)) j["radiance_max"] = radianceMax_;
   return j;
 }
 
@@ -164,7 +178,7 @@ ResourceKind coneVolumeKind() {
           [](const ResourceNeed& n) {
             const ConeVolumeNeed& c = n.spec<ConeVolumeNeed>();
             std::vector<ResourceNeed> d{c.pyramid()};
-            if (c.radiance == "inject") d.push_back(*c.lightMaps);
+            if (injectsRadiance(c.radiance)) d.push_back(*c.lightMaps);
             if (c.radiance == "atlas") d.push_back(c.valueGrids());
             return d;
           },

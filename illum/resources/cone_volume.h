@@ -8,6 +8,9 @@
 //           (shaders/illum/vct/inject.frag; Dinse 2015 §3.1), the opacity
 //           the binary grid of any voxelizer (through its pyramid's words);
 //           injected again whenever the light maps are drawn again;
+//   texels  the 2013 article's: each texel of the (reflective) light maps
+//           into the cell its surface point falls in (inject_texels.comp);
+//           cells no texel reaches stay unlit (its holes);
 //   atlas   the atlas voxelizer's radiance channel (VGI §3): the value grids
 //           are the volume (nothing of its own is allocated);
 //   none    opacity only (vct_ao), from the binary grid.
@@ -45,14 +48,20 @@ class ConeSource {
 // a uint per slot; sums: 4 uints, rgb); the slots are the cells (x fastest), or
 // with `octree` its leaves (cells outside it left out). `max` (4 bytes) takes
 // the first pass' largest radiance; returns it, the sums' fixed-point range.
-float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed& maps, float bias,
-                     float normalOffset, unsigned counts, unsigned sums, unsigned max,
+// texels: the 2013 article's injection instead (shaders/illum/vct/inject_texels.comp:
+// each reflective-shadow-map texel into the cell its surface point falls in; `maps` reflective).
+float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed& maps, bool texels,
+                     float bias, float normalOffset, unsigned counts, unsigned sums, unsigned max,
                      const SparseVoxelOctree* octree, Profiler& profiler);
+// Whether a volume's `radiance` is injected from the light maps (inject, texels).
+inline bool injectsRadiance(const std::string& radiance) {
+  return radiance == "inject" || radiance == "texels";
+}
 
 struct ConeVolumeNeed {
   static constexpr const char* kKind = "cone_volume";
   BinaryGridNeed grid;              // cubic cells; with radiance=atlas its values hold "radiance"
-  std::string radiance = "inject";  // inject | atlas | none
+  std::string radiance = "inject";  // inject | texels | atlas | none
   bool anisotropic = true;
   std::optional<LightMapNeed> lightMaps;   // inject, atlas: the direct light's maps
   float bias = 1.0f, normalOffset = 0.0f;  // inject: the maps' shadow test (texels, voxels)

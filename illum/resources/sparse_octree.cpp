@@ -32,7 +32,7 @@ bool SparseOctree::update(SceneResources& res, const ResourceNeed& need, Profile
   const GridBox& box = res.get<GridBox>(need_.grid);
   const glm::vec3 v = box.voxelSize();
   voxel_ = std::max({v.x, v.y, v.z});
-  const bool lit = need_.radiance == "inject";
+  const bool lit = injectsRadiance(need_.radiance);
   bool rebuilt = false;
   if (!octree_ || res.changed(need_.pyramid())) {
     if (octree_) ++gridChanges_;
@@ -61,22 +61,23 @@ bool SparseOctree::update(SceneResources& res, const ResourceNeed& need, Profile
 }
 
 bool SparseOctree::relight(SceneResources& res, const ResourceNeed&, Profiler& prof) {
-  if (need_.radiance != "inject") return false;
+  if (!injectsRadiance(need_.radiance)) return false;
   fill(res, prof);
   return true;
 }
 
 void SparseOctree::fill(SceneResources& res, Profiler& prof) {
   filledFor_ = need_.settings().dump();
-  if (need_.radiance != "inject") {
+  if (!injectsRadiance(need_.radiance)) {
     octree_->resolve(0, 0, 1.0f, res.shaders(), prof);
     return;
   }
   const uint32_t zero = 0;
   glClearNamedBufferData(counts_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  radianceMax_ = injectRadiance(res, octree_->box(), *need_.lightMaps, need_.bias, need_.normalOffset,
-                                counts_.get(), sums_.get(), max_.get(), octree_.get(), prof);
+  radianceMax_ =
+      injectRadiance(res, octree_->box(), *need_.lightMaps, need_.radiance == "texels", need_.bias,
+                     need_.normalOffset, counts_.get(), sums_.get(), max_.get(), octree_.get(), prof);
   octree_->resolve(counts_.get(), sums_.get(), radianceMax_, res.shaders(), prof);
 }
 
@@ -95,11 +96,13 @@ void SparseOctree::bind(ShaderLibrary& shaders, unsigned prog, float step) const
 
 nlohmann::json SparseOctree::stats() {
   nlohmann::json j = octree_->describe();
-  if (need_.radiance == "inject") {
+  if (injectsRadiance(need_.radiance)) {
     const double sums = double(std::max<uint64_t>(octree_->leafCount(), 1)) * 20.0;
     j["injection_bytes"] = sums;  // the leaves' sums and counts
     j["bytes"] = j["bytes"].get<double>() + sums;
     j["radiance_max"] = radianceMax_;
+    // Occupied leaves no injected sample reached (radiance=texels: the maps' holes).
+    j["unreached_leaves"] = octree_->countUnreachedLeaves(counts_.get());
   }
   j["radiance_source"] = need_.radiance;
   j["update_every"] = need_.updateEvery;
@@ -113,14 +116,15 @@ ResourceKind sparseOctreeKind() {
           [](const ResourceNeed& n) {
             const SparseOctreeNeed& c = n.spec<SparseOctreeNeed>();
             std::vector<ResourceNeed> d{c.pyramid()};
-            if (c.radiance == "inject") d.push_back(*c.lightMaps);
+            if (injectsRadiance(c.radiance)) d.push_back(*c.lightMaps);
             return d;
           },
           [](const ResourceNeed& n, const SceneNeeds&, const std::string& method, bool gl) {
             const SparseOctreeNeed& c = n.spec<SparseOctreeNeed>();
             requireGl(n, method, gl);
-            if (c.radiance == "inject" && !c.lightMaps)
-              fail("method '", method, "' asks for a sparse octree with radiance=inject without light maps");
+            if (injectsRadiance(c.radiance) && !c.lightMaps)
+              fail("method '", method, "' asks for a sparse octree with radiance=", c.radiance,
+                   " without light maps");
           },
           [](const ResourceNeed&) { return std::vector<std::string>{"sparse_octree"}; },
           [](const ResourceNeed& n, SceneResources&) -> std::unique_ptr<Resource> {

@@ -6,10 +6,12 @@
 //
 // Nodes: one uint each in a node pool, in tiles of 8 siblings (tile t = nodes
 // 8t … 8t+7, octant x + 2y + 4z); node 0 is the root (tile 0 holds only it).
-// A node's word is its children's first node (≥ 8), or SVO_NONE (no
-// children: an empty node, or an empty leaf), or SVO_FLAGGED (while building:
-// to be subdivided; at the leaf level, the depth D: an occupied leaf). Levels
-// are allocated one after another, so the nodes of a level are one range.
+// A node's word (svoChild of it) is its children's first node (≥ 8), or
+// SVO_NONE (no children: an empty node, or an empty leaf), or SVO_FLAGGED
+// (while building: to be subdivided; at the leaf level, the depth D: an
+// occupied leaf); its bit SVO_OCCUPIED says that fragments fall in it (a
+// node allocated only by `dilate` lacks it: empty, though it has children).
+// Levels are allocated one after another, so the nodes of a level are one range.
 //
 // Bricks: the values of the 8 children of a node (its tile) are one brick of
 // 3×3×3 texels in a brick pool 3D texture: texels 0…1 along each axis are the
@@ -35,6 +37,11 @@ const uint SVO_TILE = 8u;         // nodes per tile
 const uint SVO_BRICK = 3u;        // texels per brick side
 const uint SVO_MAX_DEPTH = 10u;   // cells packed in 10 bits per axis (1024³)
 const uint SVO_NO_SLOT = 0xffffffffu;
+const uint SVO_OCCUPIED = 0x80000000u;
+const uint SVO_CHILD_MASK = 0x7fffffffu;
+
+SHARED_FN uint svoChild(uint word) { return word & SVO_CHILD_MASK; }
+SHARED_FN bool svoOccupied(uint word) { return (word & SVO_OCCUPIED) != 0u; }
 
 SHARED_FN uint svoPackCell(uvec3 c) { return c.x | (c.y << 10u) | (c.z << 20u); }
 SHARED_FN uvec3 svoUnpackCell(uint p) { return uvec3(p & 1023u, (p >> 10u) & 1023u, (p >> 20u) & 1023u); }

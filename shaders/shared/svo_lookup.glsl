@@ -18,7 +18,7 @@ uniform uint uSvoIsoBase;      // the iso pool's brick of tile t is t − this
 uint svoFind(uvec3 cell, uint level) {
   uint n = 0u;
   for (uint l = 0u; l < level; ++l) {
-    uint child = svoNodes[n];
+    uint child = svoChild(svoNodes[n]);
     if (child < SVO_TILE) return SVO_NO_SLOT;
     n = child + svoOctant(cell, level - 1u - l);
   }
@@ -59,7 +59,7 @@ SvoStencil svoStencil(vec3 q, uint m) {
   if (!s.found) return s;
   uvec3 parent = uvec3(max(lo, ivec3(0))) >> 1u;
   uint n = svoFind(parent, m - 1u);
-  uint child = n == SVO_NO_SLOT ? SVO_NONE : svoNodes[n];
+  uint child = n == SVO_NO_SLOT ? SVO_NONE : svoChild(svoNodes[n]);
   s.found = child >= SVO_TILE;
   s.tile = child >> 3u;
   s.u = p - 2.0f * vec3(parent);

@@ -47,14 +47,15 @@ uniform uint uDepth;
 uint invocation() { return gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u + gl_GlobalInvocationID.x; }
 #ifdef FLAG
 layout(std430, binding = BINDING_SVO_FRAGMENTS) readonly buffer Fragments { uint fragments[]; };
-void flagCell(uvec3 cell) {
+// own: the fragment's own node (marked occupied), else a dilated one.
+void flagCell(uvec3 cell, bool own) {
   uint n = 0u;
   for (uint l = 0u; l < uLevel; ++l) {
-    uint child = svoNodes[n];
+    uint child = svoChild(svoNodes[n]);
     if (child < SVO_TILE) return;  // not allocated: cannot happen for a flagged ancestor
     n = child + svoOctant(cell, uLevel - 1u - l);
   }
-  svoNodes[n] = SVO_FLAGGED;
+  atomicOr(svoNodes[n], own ? SVO_FLAGGED | SVO_OCCUPIED : SVO_FLAGGED);
   svoCoords[n] = svoPackCell(cell);
 }
 void main() {
@@ -64,10 +65,10 @@ void main() {
 #ifdef DILATE
   for (uint k = 0u; k < 8u; ++k) {
     SvoTarget t = svoFlagTarget(f, uLevel, uDepth, svoOctantOffset(k));
-    if (t.valid) flagCell(t.cell);
+    if (t.valid) flagCell(t.cell, k == 0u);
   }
 #else
-  flagCell(svoFlagTarget(f, uLevel, uDepth, uvec3(0u)).cell);
+  flagCell(svoFlagTarget(f, uLevel, uDepth, uvec3(0u)).cell, true);
 #endif
 }
 #endif
@@ -76,7 +77,8 @@ void main() {
   uint i = invocation();
   if (i >= uCount) return;
   uint n = uFirst + i;
-  if (svoNodes[n] == SVO_FLAGGED) svoNodes[n] = atomicAdd(counter, 1u) * SVO_TILE;
+  uint word = svoNodes[n];
+  if (svoChild(word) == SVO_FLAGGED) svoNodes[n] = (word & SVO_OCCUPIED) | atomicAdd(counter, 1u) * SVO_TILE;
 }
 #endif
 #endif

@@ -43,7 +43,7 @@ void main() {
   uint i = invocation();
   if (i >= uCount) return;
   uint n = uFirst + i;
-  bool occupied = svoNodes[n] == SVO_FLAGGED;
+  bool occupied = svoOccupied(svoNodes[n]);
 #ifdef RADIANCE_NONE
   storeNode(n, occupied ? vec4(0.0f, 0.0f, 0.0f, 1.0f) : vec4(0.0f));
 #else
@@ -60,7 +60,7 @@ void main() {
   uint i = invocation();
   if (i >= uCount) return;
   uint n = uFirst + i;
-  uint child = svoNodes[n];
+  uint child = svoChild(svoNodes[n]);
   if (child < SVO_TILE) return;  // no children: the cleared 0 stands
   ivec3 origin = ivec3(svoBrickOrigin((child >> 3u) - uInBase, uInBricks));
   vec4 c[8];
@@ -79,7 +79,7 @@ void main() {
   uint i = invocation();
   if (i >= uCount) return;
   uint n = uFirst + i;
-  uint child = svoNodes[n];
+  uint child = svoChild(svoNodes[n]);
   if (child < SVO_TILE) return;
   uvec3 cell = svoUnpackCell(svoCoords[n]);
   ivec3 origin = ivec3(svoBrickOrigin((child >> 3u) - uOutBase, uOutBricks));
@@ -89,7 +89,7 @@ void main() {
     uvec3 o = svoOctantOffset(k);
     uvec3 nb = cell + o;
     uint m = (nb.x < side && nb.y < side && nb.z < side) ? svoFind(nb, uLevel) : SVO_NO_SLOT;
-    uint nbChild = m == SVO_NO_SLOT ? SVO_NONE : svoNodes[m];
+    uint nbChild = m == SVO_NO_SLOT ? SVO_NONE : svoChild(svoNodes[m]);
     ivec3 from = nbChild < SVO_TILE ? ivec3(0) : ivec3(svoBrickOrigin((nbChild >> 3u) - uOutBase, uOutBricks));
     // The border texels b (some component 2) whose neighbour is o: b = 2 exactly where o = 1.
     for (uint j = 0u; j < 8u; ++j) {

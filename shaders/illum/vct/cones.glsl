@@ -141,20 +141,20 @@ vec4 coneSample(vec3 q, vec3 d, float lod) {
 #endif
 }
 
-// emptySkip through the octree: the coarsest empty node on the way down to q's
-// leaf is the dense chain's largest empty texel (a node without children, or
-// an unoccupied leaf).
+// emptySkip through the octree: the coarsest node without fragments on the way
+// down to q's leaf (SVO_OCCUPIED clear: an empty tile sibling, a dilated node,
+// an empty leaf) is the dense chain's largest empty texel.
 float emptySkip(vec3 q, vec3 dg, float lod) {
   uvec3 cell = uvec3(min(ivec3(floor(q)), ivec3((1 << int(uSvoDepth)) - 1)));
   uint n = 0u;
   int level = -1;
   for (uint l = 0u; l <= uSvoDepth; ++l) {
     uint v = svoNodes[n];
-    if (l < uSvoDepth ? v < SVO_TILE : v != SVO_FLAGGED) {
+    if (!svoOccupied(v)) {
       level = int(uSvoDepth - l);
       break;
     }
-    if (l < uSvoDepth) n = v + svoOctant(cell, uSvoDepth - 1u - l);
+    if (l < uSvoDepth) n = svoChild(v) + svoOctant(cell, uSvoDepth - 1u - l);
   }
   if (level < int(floor(lod))) return 0.0f;
   return emptyBoxExit(q, dg, level);
