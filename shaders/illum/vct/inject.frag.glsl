@@ -21,11 +21,8 @@
 #include "../../shared/gpu_scene.glsl"
 #include "../../shared/light_maps.glsl"
 #include "../../shared/closest_point.glsl"
-#include "../../shared/value_grid.glsl"
 #include "../../voxelize/conservative_cells.glsl"
-#ifdef INJECT_SVO
-#include "../../shared/svo_lookup.glsl"
-#endif
+#include "inject_sums.glsl"
 flat in vec3 gWorldNormal;
 flat in vec3 gWorld0;
 flat in vec3 gWorld1;
@@ -35,13 +32,6 @@ flat in vec2 gUv1;
 flat in vec2 gUv2;
 uniform float uShadowBias;    // in shadow-map texels
 uniform float uNormalOffset;  // in shadow-map texels
-#ifdef INJECT_MAX
-layout(std430, binding = BINDING_VALUE_RADIANCE_MAX) buffer RadianceMax { uint radianceMaxBits; };
-#else
-layout(std430, binding = BINDING_VALUE_COUNTS) buffer Counts { uint counts[]; };
-layout(std430, binding = BINDING_VALUE_RADIANCE) buffer RadianceSums { uint radianceSums[]; };
-uniform float uRadianceMax;
-#endif
 
 // Barycentric weights (of b, c) of q on triangle (a, b, c).
 vec2 barycentric(vec3 q, vec3 a, vec3 b, vec3 c) {
@@ -53,12 +43,8 @@ vec2 barycentric(vec3 q, vec3 a, vec3 b, vec3 c) {
 }
 
 void visitCell(uvec3 c) {
-#if defined(INJECT_SVO) && !defined(INJECT_MAX)
-  uint slot = svoLeafSlot(c);
-  if (slot == SVO_NO_SLOT) return;
-#elif !defined(INJECT_MAX)
-  uint slot = valueIndex(c, uvec4(uResolution.xyz, 0u), 0u) / 4u;
-#endif
+  uint slot = injectSlot(c);
+  if (slot == INJECT_NO_SLOT) return;  // a cell outside the octree: not lit at all
   vec3 q = closestPointOnTriangle(vec3(c) + 0.5f, gA, gB, gC);
   vec2 w = barycentric(q, gA, gB, gC);
   vec3 p = gWorld0 + w.x * (gWorld1 - gWorld0) + w.y * (gWorld2 - gWorld0);
@@ -76,12 +62,7 @@ void visitCell(uvec3 c) {
   if (dot(n, n) > 0.0f)
     L = lightMapsDirect(diffuse, p, n, n, n, uShadowBias, uNormalOffset) +
         lightMapsDirect(diffuse, p, -n, -n, -n, uShadowBias, uNormalOffset);
-#ifdef INJECT_MAX
-  atomicMax(radianceMaxBits, floatBitsToUint(max(L.x, max(L.y, L.z))));
-#else
-  atomicAdd(counts[slot], 1u);
-  for (uint k = 0u; k < 3u; ++k) atomicAdd(radianceSums[4u * slot + k], toFixedRadiance(L[k], uRadianceMax));
-#endif
+  injectAdd(slot, L);
 }
 
 void main() { visitTriangleCells(); }
