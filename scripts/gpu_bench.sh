@@ -11,6 +11,8 @@
 #                bytes each resource reports (light maps, grid, pyramid, value textures, cone volume,
 #                BVH) beside what the process measurably uses (peak resident memory; on NVIDIA the
 #                driver's used dedicated memory, GL_NVX_gpu_memory_info)
+#   svo          vct's dense cone volume against the sparse voxel octree (volume=svo) at 1024×768 on
+#                Sibenik, 256³–1024³ (dense to 512³): build / inject / filter / cone passes, bytes
 #   equal error  the same-device experiment (scenes/experiments/same-device-gi.json): each method
 #                against reference_gl on the same GPU, the equal-error time ratio
 # --quick runs the same code at tiny sizes on the Cornell box only (the suite runs it on llvmpipe, so
@@ -70,9 +72,11 @@ scene() {  # scene NAME → its path, or nothing (and a note) when absent
 if [ $quick -eq 1 ]; then
   vox_scenes=(cornell); vox_res=(128); rays=20000; trav_res=128
   sizes=(64x48); method_scenes=(cornell); spp=2; paper_spp=2; equal_error=smoke
+  svo_scenes=(cornell); svo_res=(128); svo_dense_max=128; svo_size=64x48
 else
   vox_scenes=(sibenik dragon); vox_res=(128 256 512); rays=10000000; trav_res=256
   sizes=(1920x1080 1024x768); method_scenes=(cornell sibenik); spp=16; paper_spp=64; equal_error=same-device-gi
+  svo_scenes=(sibenik); svo_res=(256 512 1024); svo_dense_max=512; svo_size=1024x768
 fi
 run() {  # run NAME ARGS… : vgi ARGS, its output in raw/NAME.log; a failure is noted, not fatal
   local name=$1
@@ -121,6 +125,19 @@ for s in "${method_scenes[@]}"; do
     --spp "$paper_spp" --quiet -o "$out/raw/paper_${s}_voxelpath.exr" || true
 done
 
+note "svo"
+for s in "${svo_scenes[@]}"; do
+  path=$(scene "$s")
+  [ -n "$path" ] || continue
+  for r in "${svo_res[@]}"; do
+    for v in dense svo; do
+      [ "$v" = dense ] && [ "$r" -gt "$svo_dense_max" ] && continue
+      run "svo_${s}_${r}_$v" render --scene "$path" --method vct --set volume=$v --set voxels=$r --size "$svo_size" \
+        --spp "$spp" --quiet -o "$out/raw/svo_${s}_${r}_$v.exr" || true
+    done
+  done
+done
+
 note "equal error on one device ($equal_error)"
 run "equal_error" sweep "scenes/experiments/$equal_error.json" -o "$out/raw/sweep_$equal_error" || true
 
@@ -158,7 +175,8 @@ def bytes_of(extra, prefix=""):
             if k == "bytes" and isinstance(v, (int, float)): found[prefix.rstrip(".")] = v
             else: found.update(bytes_of(v, prefix + k + "."))
     return found
-for p in sorted(glob.glob(os.path.join(raw, "method_*.json")) + glob.glob(os.path.join(raw, "paper_*.json"))):
+for p in sorted(glob.glob(os.path.join(raw, "method_*.json")) + glob.glob(os.path.join(raw, "paper_*.json")) +
+               glob.glob(os.path.join(raw, "svo_*.json"))):
     s = load(p)
     if not s or "timings_ms" not in s: continue
     renderer = renderer or s.get("gl_renderer")

@@ -97,6 +97,17 @@ void SparseVoxelOctree::grow(uint64_t nodes) {
   capacity_ = cap;
 }
 
+void SparseVoxelOctree::shrink() {
+  // The pool grew by doubling while the levels were allocated: keep what the tree holds.
+  if (capacity_ <= nodeCount_) return;
+  GlBuffer n = makeBuffer(nodeCount_ * 4), c = makeBuffer(nodeCount_ * 4);
+  glCopyNamedBufferSubData(nodes_.get(), n.get(), 0, 0, GLsizeiptr(nodeCount_ * 4));
+  glCopyNamedBufferSubData(coords_.get(), c.get(), 0, 0, GLsizeiptr(nodeCount_ * 4));
+  nodes_ = std::move(n);
+  coords_ = std::move(c);
+  capacity_ = nodeCount_;
+}
+
 void SparseVoxelOctree::build(unsigned words, ShaderLibrary& shaders, Profiler& prof) {
   auto s = prof.scope("svo_build");
   const char* modes[4] = {"COUNT_FRAGMENTS", "WRITE_FRAGMENTS", "FLAG", "ALLOCATE"};
@@ -157,6 +168,7 @@ void SparseVoxelOctree::build(unsigned words, ShaderLibrary& shaders, Profiler& 
   }
   nodeCount_ = levels_.back().second;
   leafFirst_ = levels_[depth_].first;
+  shrink();
   allocatePools();
 }
 
@@ -167,8 +179,10 @@ SparseVoxelOctree::Pool SparseVoxelOctree::makePool(uint64_t bricks, uint32_t ba
   Pool p;
   p.base = base;
   bricks = std::max<uint64_t>(bricks, 1);
-  p.bricks.x = uint32_t(std::min(bricks, axis));
-  p.bricks.y = uint32_t(std::min((bricks + p.bricks.x - 1) / p.bricks.x, axis));
+  // About a cube of bricks: the last slice is the only one partly used.
+  p.bricks.x = uint32_t(std::min<uint64_t>(uint64_t(std::ceil(std::cbrt(double(bricks)))), axis));
+  p.bricks.y =
+      uint32_t(std::min<uint64_t>(uint64_t(std::ceil(std::sqrt(double(bricks) / double(p.bricks.x)))), axis));
   const uint64_t z = (bricks + uint64_t(p.bricks.x) * p.bricks.y - 1) / (uint64_t(p.bricks.x) * p.bricks.y);
   if (z > axis)
     fail("the sparse octree's brick pool: ", bricks, " bricks exceed a 3D texture of ", max3d,

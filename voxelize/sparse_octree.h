@@ -97,6 +97,7 @@ class SparseVoxelOctree {
   void allocatePools();
   Pool makePool(uint64_t bricks, uint32_t base) const;
   void grow(uint64_t nodes);
+  void shrink();
   GridBox box_;
   bool anisotropic_, dilate_;
   uint32_t depth_ = 0;

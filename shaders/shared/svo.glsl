@@ -84,4 +84,14 @@ SHARED_FN SvoTarget svoFlagTarget(uvec3 f, uint level, uint depth, uvec3 delta) 
   return t;
 }
 
+// Whether offset delta flags the same node as a smaller offset (along an
+// axis where the fragment's level-(level + 1) cell is odd, a − 1 and a have
+// one parent): the flag pass skips it, about 2.4× fewer descents.
+SHARED_FN bool svoDilationRepeats(uvec3 f, uint level, uint depth, uvec3 delta) {
+  if (level >= depth) return false;
+  uint s = depth - level - 1u;
+  return (delta.x == 1u && ((f.x >> s) & 1u) == 1u) || (delta.y == 1u && ((f.y >> s) & 1u) == 1u) ||
+         (delta.z == 1u && ((f.z >> s) & 1u) == 1u);
+}
+
 SHARED_END

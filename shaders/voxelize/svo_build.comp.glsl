@@ -64,6 +64,7 @@ void main() {
   uvec3 f = svoUnpackCell(fragments[i]);
 #ifdef DILATE
   for (uint k = 0u; k < 8u; ++k) {
+    if (svoDilationRepeats(f, uLevel, uDepth, svoOctantOffset(k))) continue;
     SvoTarget t = svoFlagTarget(f, uLevel, uDepth, svoOctantOffset(k));
     if (t.valid) flagCell(t.cell, k == 0u);
   }
