@@ -111,10 +111,11 @@ void SparseVoxelOctree::shrink() {
 void SparseVoxelOctree::build(unsigned words, ShaderLibrary& shaders, Profiler& prof) {
   auto s = prof.scope("svo_build");
   const char* modes[4] = {"COUNT_FRAGMENTS", "WRITE_FRAGMENTS", "FLAG", "ALLOCATE"};
+  unsigned progs[4];
   for (int i = 0; i < 4; ++i) {
     ShaderDefines d{{modes[i], "1"}};
     if (i == 2 && dilate_) d["DILATE"] = "1";
-    buildProgs_[i] = shaders.program({"voxelize/svo_build.comp.glsl"}, d);
+    progs[i] = shaders.program({"voxelize/svo_build.comp.glsl"}, d);
   }
   const glm::uvec3 r = box_.resolution;
   const glm::uvec4 res(r, r.z / 128u);
@@ -122,16 +123,16 @@ void SparseVoxelOctree::build(unsigned words, ShaderLibrary& shaders, Profiler& 
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_PYRAMID, words);
   // The fragment list: counted, then written.
   setCounter(counter_.get(), 0);
-  glUseProgram(buildProgs_[0]);
-  shaders.setUniform(buildProgs_[0], "uResolution", res);
+  glUseProgram(progs[0]);
+  shaders.setUniform(progs[0], "uResolution", res);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   glDispatchCompute((r.x + 3) / 4, (r.y + 3) / 4, (r.z / 32 + 3) / 4);
   fragments_ = readCounter(counter_.get());
   checkGpuAllocation(double(std::max<uint64_t>(fragments_, 1)) * 4, "the sparse octree's fragment list");
   GlBuffer fragments = makeBuffer(std::max<uint64_t>(fragments_, 1) * 4);
   setCounter(counter_.get(), 0);
-  glUseProgram(buildProgs_[1]);
-  shaders.setUniform(buildProgs_[1], "uResolution", res);
+  glUseProgram(progs[1]);
+  shaders.setUniform(progs[1], "uResolution", res);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_SVO_FRAGMENTS, fragments.get());
   glDispatchCompute((r.x + 3) / 4, (r.y + 3) / 4, (r.z / 32 + 3) / 4);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -143,20 +144,20 @@ void SparseVoxelOctree::build(unsigned words, ShaderLibrary& shaders, Profiler& 
   levels_ = {{0, 1}};
   uint64_t tiles = 1;  // tile 0: the root
   for (uint32_t l = 0; l <= depth_; ++l) {
-    glUseProgram(buildProgs_[2]);
+    glUseProgram(progs[2]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_SVO_NODES, nodes_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_SVO_COORDS, coords_.get());
-    shaders.setUniform(buildProgs_[2], "uLevel", l);
-    shaders.setUniform(buildProgs_[2], "uDepth", depth_);
-    shaders.setUniform(buildProgs_[2], "uCount", uint32_t(fragments_));
+    shaders.setUniform(progs[2], "uLevel", l);
+    shaders.setUniform(progs[2], "uDepth", depth_);
+    shaders.setUniform(progs[2], "uCount", uint32_t(fragments_));
     dispatchLinear(fragments_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     if (l == depth_) break;
-    glUseProgram(buildProgs_[3]);
+    glUseProgram(progs[3]);
     setCounter(counter_.get(), uint32_t(tiles));
     const uint64_t first = levels_[l].first, count = levels_[l].second - first;
-    shaders.setUniform(buildProgs_[3], "uFirst", uint32_t(first));
-    shaders.setUniform(buildProgs_[3], "uCount", uint32_t(count));
+    shaders.setUniform(progs[3], "uFirst", uint32_t(first));
+    shaders.setUniform(progs[3], "uCount", uint32_t(count));
     dispatchLinear(count);
     const uint64_t newTiles = readCounter(counter_.get());
     if (newTiles * 8 > shared::SVO_CHILD_MASK)
@@ -216,7 +217,10 @@ void SparseVoxelOctree::allocatePools() {
 
 void SparseVoxelOctree::resolve(unsigned counts, unsigned sums, float radianceMax, ShaderLibrary& shaders,
                                 Profiler& prof) {
-  auto pass = [&](unsigned prog, uint32_t level, const Pool* in, const Pool& out) {
+  // One dispatch over level `level`'s nodes: input `in` (or none), outputs `outs` at
+  // IMAGE_OUTPUT + k (pools of one layout: the face pools, or the iso pool alone).
+  auto pass = [&](unsigned prog, uint32_t level, const Pool* in, std::vector<const Pool*> outs) {
+    const Pool& out = *outs[0];
     glUseProgram(prog);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_SVO_NODES, nodes_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_SVO_COORDS, coords_.get());
@@ -229,7 +233,9 @@ void SparseVoxelOctree::resolve(unsigned counts, unsigned sums, float radianceMa
     shaders.setUniform(prog, "uInBricks", in ? in->bricks : glm::uvec3(1));
     shaders.setUniform(prog, "uInBase", in ? in->base : 0u);
     if (in) glBindTextureUnit(TEXUNIT_PASS_INPUT, in->texture.get());
-    glBindImageTexture(IMAGE_OUTPUT, out.texture.get(), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+    for (size_t k = 0; k < outs.size(); ++k)
+      glBindImageTexture(GLuint(IMAGE_OUTPUT + k), outs[k]->texture.get(), 0, GL_TRUE, 0, GL_READ_WRITE,
+                         GL_RGBA16F);
     dispatchLinear(count);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   };
@@ -245,7 +251,7 @@ void SparseVoxelOctree::resolve(unsigned counts, unsigned sums, float radianceMa
       shaders.setUniform(prog, "uRadianceMax", radianceMax);
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    pass(prog, depth_, nullptr, iso_);
+    pass(prog, depth_, nullptr, {&iso_});
   }
   {
     auto s = prof.scope("svo_filter");
@@ -254,23 +260,25 @@ void SparseVoxelOctree::resolve(unsigned counts, unsigned sums, float radianceMa
     const unsigned prog = shaders.program({file}, d);
     for (int l = int(depth_) - 1; l >= 0; --l) {
       if (!anisotropic_) {
-        pass(prog, uint32_t(l), &iso_, iso_);
+        pass(prog, uint32_t(l), &iso_, {&iso_});
         continue;
       }
       for (uint32_t f = 0; f < 6; ++f) {
         shaders.setUniform(prog, "uFace", f);
-        pass(prog, uint32_t(l), l + 1 == int(depth_) ? &iso_ : &faces_[f], faces_[f]);
+        pass(prog, uint32_t(l), l + 1 == int(depth_) ? &iso_ : &faces_[f], {&faces_[f]});
       }
     }
   }
   auto s = prof.scope("svo_borders");
-  const unsigned prog = shaders.program({file}, {{"BORDERS", "1"}});
+  // One pass per level for all the pools that hold it: a tile's neighbours are found once.
+  const unsigned one = shaders.program({file}, {{"BORDERS", "1"}, {"POOLS", "1"}});
+  const unsigned six = shaders.program({file}, {{"BORDERS", "1"}, {"POOLS", "6"}});
   for (uint32_t m = 1; m <= depth_; ++m) {
     // The tiles of level m are the children of level m − 1's nodes.
     if (!anisotropic_ || m == depth_)
-      pass(prog, m - 1, nullptr, iso_);
+      pass(one, m - 1, nullptr, {&iso_});
     else
-      for (const Pool& f : faces_) pass(prog, m - 1, nullptr, f);
+      pass(six, m - 1, nullptr, {&faces_[0], &faces_[1], &faces_[2], &faces_[3], &faces_[4], &faces_[5]});
   }
 }
 

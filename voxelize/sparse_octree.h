@@ -106,7 +106,6 @@ class SparseVoxelOctree {
   std::vector<std::pair<uint64_t, uint64_t>> levels_;
   GlBuffer nodes_, coords_, counter_;
   Pool iso_, faces_[6];
-  unsigned buildProgs_[4] = {0, 0, 0, 0};
 };
 
 }  // namespace vgi

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/gpu_memory.h"
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
@@ -60,31 +61,41 @@ void ConeVolume::allocate(SceneResources& res) {
   own_ = std::make_unique<ValueTextures>(box, std::vector<std::string>{"radiance"},
                                          need_.anisotropic ? ValueMips::Anisotropic : ValueMips::Isotropic);
   volume_ = own_.get();
-  counts_ = makeBuffer(size_t(box.cellCount()) * 4);
-  sums_ = makeBuffer(size_t(box.cellCount()) * 16);
-  max_ = makeBuffer(4);
+  sums_.allocate(box.cellCount());
 }
 
 void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   ShaderLibrary& shaders = res.shaders();
   filledFor_ = need_.settings().dump();
-  const uint32_t zero = 0;
-  glClearNamedBufferData(counts_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   if (injectsRadiance(need_.radiance))
-    radianceMax_ =
-        injectRadiance(res, res.get<GridBox>(need_.grid), *need_.lightMaps, need_.radiance == "texels",
-                       need_.bias, need_.normalOffset, counts_.get(), sums_.get(), max_.get(), nullptr, prof);
+    sums_.inject(res, res.get<GridBox>(need_.grid), need_.radiance, *need_.lightMaps, need_.bias,
+                 need_.normalOffset, nullptr, prof);
   ValueSumBuffers b;
-  b.counts = counts_.get();
-  b.sums[3] = sums_.get();
-  b.radianceMax = radianceMax_;
+  b.counts = sums_.counts();
+  b.sums[3] = sums_.sums();
+  b.radianceMax = sums_.radianceMax();
   own_->resolve(b, shaders, prof, res.get<GlPyramid>(need_.pyramid()).words());
 }
 
-float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed& mapsNeed, bool texels,
-                     float bias, float normalOffset, unsigned counts, unsigned sums, unsigned max,
-                     const SparseVoxelOctree* octree, Profiler& prof) {
+void InjectionSums::allocate(uint64_t slots) {
+  slots_ = std::max<uint64_t>(slots, 1);
+  checkGpuAllocation(bytes(), "the radiance injection's sums (" + std::to_string(slots_) + " slots)");
+  counts_ = makeBuffer(slots_ * 4);
+  sums_ = makeBuffer(slots_ * 16);
+  max_ = makeBuffer(4);
+  const uint32_t zero = 0;
+  glClearNamedBufferData(counts_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+}
+
+float InjectionSums::inject(SceneResources& res, const GridBox& box, const std::string& radiance,
+                            const LightMapNeed& mapsNeed, float bias, float normalOffset,
+                            const SparseVoxelOctree* octree, Profiler& prof) {
+  const unsigned counts = counts_.get(), sums = sums_.get(), max = max_.get();
+  const uint32_t zero = 0;
+  glClearNamedBufferData(counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearNamedBufferData(sums, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  const bool texels = radiance == "texels";
   ShaderLibrary& shaders = res.shaders();
   const GpuScene& gpu = res.get<GpuScene>();
   const LightMaps& maps = res.get<LightMaps>(mapsNeed);
@@ -141,6 +152,7 @@ float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed
   auto s = prof.scope("vct_inject");
   shaders.setUniform(prog, "uRadianceMax", radianceMax);
   run(prog);
+  radianceMax_ = radianceMax;
   return radianceMax;
 }
 
@@ -149,12 +161,11 @@ nlohmann::json ConeVolume::stats() {
   j["storage"] = "dense";
   if (own_) {
     // The injection's sums and counts per cell are the volume's too (20 bytes a cell).
-    const double sums = double(own_->box().cellCount()) * 20.0;
-    j["injection_bytes"] = sums;
-    j["bytes"] = j["bytes"].get<double>() + sums;
+    j["injection_bytes"] = sums_.bytes();
+    j["bytes"] = j["bytes"].get<double>() + sums_.bytes();
   }
   j["radiance_source"] = need_.radiance;
-  if (injectsRadiance(need_.radiance)) j["radiance_max"] = radianceMax_;
+  if (injectsRadiance(need_.radiance)) j["radiance_max"] = sums_.radianceMax();
   return j;
 }
 

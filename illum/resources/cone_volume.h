@@ -42,17 +42,33 @@ class ConeSource {
   virtual float voxelSize() const = 0;
 };
 
-// vct's radiance injection (shaders/illum/vct/inject.frag): the light maps'
-// shadow-tested diffuse light of every (triangle, cell) pair of the three-axis
-// conservative rasterization of `box`, into fixed-point sums per slot (counts:
-// a uint per slot; sums: 4 uints, rgb); the slots are the cells (x fastest), or
-// with `octree` its leaves (cells outside it left out). `max` (4 bytes) takes
-// the first pass' largest radiance; returns it, the sums' fixed-point range.
-// texels: the 2013 article's injection instead (shaders/illum/vct/inject_texels.comp:
-// each reflective-shadow-map texel into the cell its surface point falls in; `maps` reflective).
-float injectRadiance(SceneResources& res, const GridBox& box, const LightMapNeed& maps, bool texels,
-                     float bias, float normalOffset, unsigned counts, unsigned sums, unsigned max,
-                     const SparseVoxelOctree* octree, Profiler& profiler);
+// The fixed-point sums vct's radiance injection writes per slot — a cell of
+// the dense volume (x fastest) or a leaf of the sparse octree — as
+// shared/value_grid.glsl defines them: a count (4 bytes) and rgb sums (16),
+// with the word of the first pass' maximum, the sums' fixed-point range.
+class InjectionSums {
+ public:
+  // Buffers for `slots` slots, zero (checked against the GL memory budget).
+  void allocate(uint64_t slots);
+  // Clears the sums and injects into them (radiance inject or texels; `octree`:
+  // the slots are its leaves, cells outside it left out); returns the range.
+  //   inject  the light maps' shadow-tested diffuse light of every (triangle,
+  //           cell) pair of the three-axis conservative rasterization of `box`
+  //           (shaders/illum/vct/inject.frag);
+  //   texels  the 2013 article's: each reflective-shadow-map texel into the
+  //           cell its surface point falls in (inject_texels.comp; `maps` reflective).
+  float inject(SceneResources& res, const GridBox& box, const std::string& radiance, const LightMapNeed& maps,
+               float bias, float normalOffset, const SparseVoxelOctree* octree, Profiler& profiler);
+  unsigned counts() const { return counts_.get(); }
+  unsigned sums() const { return sums_.get(); }
+  float radianceMax() const { return radianceMax_; }
+  double bytes() const { return double(slots_) * 20.0; }
+
+ private:
+  GlBuffer counts_, sums_, max_;
+  uint64_t slots_ = 0;
+  float radianceMax_ = 1.0f;
+};
 // Whether a volume's `radiance` is injected from the light maps (inject, texels).
 inline bool injectsRadiance(const std::string& radiance) {
   return radiance == "inject" || radiance == "texels";
@@ -84,14 +100,14 @@ class ConeVolume : public Resource, public ConeSource {
   float voxelSize() const override { return voxel_; }
 
  private:
-  void allocate(SceneResources& res);                  // the volume of its own, its buffers, programs
+  void allocate(SceneResources& res);                  // the volume of its own and its sums
   void fill(SceneResources& res, Profiler& profiler);  // (re)fills it: injection, resolve
   ConeVolumeNeed need_;
   std::string filledFor_;                  // the settings of the last fill (an adopted volume may get others)
   const ValueTextures* volume_ = nullptr;  // own_, or the value grids' (radiance=atlas)
   std::unique_ptr<ValueTextures> own_;
-  GlBuffer counts_, sums_, max_;
-  float radianceMax_ = 1.0f, voxel_ = 0.0f;
+  InjectionSums sums_;  // also with radiance=none: the resolve reads zero counts
+  float voxel_ = 0.0f;
 };
 
 // Binds `volume` for cones.glsl on `program` (in use): textures and uniforms.

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "core/gpu_memory.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
 #include "traverse/gl_ray_tracer.h"
@@ -39,13 +38,7 @@ bool SparseOctree::update(SceneResources& res, const ResourceNeed& need, Profile
     if (!octree_ || gridChanges_ % need_.updateEvery == 0) {
       octree_ = std::make_unique<SparseVoxelOctree>(box, need_.anisotropic, need_.dilate);
       octree_->build(res.get<GlPyramid>(need_.pyramid()).words(), res.shaders(), prof);
-      const uint64_t leaves = std::max<uint64_t>(octree_->leafCount(), 1);
-      if (lit) {
-        checkGpuAllocation(double(leaves) * 20, "the sparse octree's leaf sums");
-        counts_ = makeBuffer(leaves * 4);
-        sums_ = makeBuffer(leaves * 16);
-        max_ = makeBuffer(4);
-      }
+      if (lit) sums_.allocate(octree_->leafCount());
       rebuilt = true;
       lag_ = 0;
     } else {
@@ -72,13 +65,9 @@ void SparseOctree::fill(SceneResources& res, Profiler& prof) {
     octree_->resolve(0, 0, 1.0f, res.shaders(), prof);
     return;
   }
-  const uint32_t zero = 0;
-  glClearNamedBufferData(counts_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  radianceMax_ =
-      injectRadiance(res, octree_->box(), *need_.lightMaps, need_.radiance == "texels", need_.bias,
-                     need_.normalOffset, counts_.get(), sums_.get(), max_.get(), octree_.get(), prof);
-  octree_->resolve(counts_.get(), sums_.get(), radianceMax_, res.shaders(), prof);
+  sums_.inject(res, octree_->box(), need_.radiance, *need_.lightMaps, need_.bias, need_.normalOffset,
+               octree_.get(), prof);
+  octree_->resolve(sums_.counts(), sums_.sums(), sums_.radianceMax(), res.shaders(), prof);
 }
 
 void bindConeOctree(const SparseVoxelOctree& octree, ShaderLibrary& shaders, unsigned prog, float step) {
@@ -97,12 +86,11 @@ void SparseOctree::bind(ShaderLibrary& shaders, unsigned prog, float step) const
 nlohmann::json SparseOctree::stats() {
   nlohmann::json j = octree_->describe();
   if (injectsRadiance(need_.radiance)) {
-    const double sums = double(std::max<uint64_t>(octree_->leafCount(), 1)) * 20.0;
-    j["injection_bytes"] = sums;  // the leaves' sums and counts
-    j["bytes"] = j["bytes"].get<double>() + sums;
-    j["radiance_max"] = radianceMax_;
+    j["injection_bytes"] = sums_.bytes();  // the leaves' sums and counts
+    j["bytes"] = j["bytes"].get<double>() + sums_.bytes();
+    j["radiance_max"] = sums_.radianceMax();
     // Occupied leaves no injected sample reached (radiance=texels: the maps' holes).
-    j["unreached_leaves"] = octree_->countUnreachedLeaves(counts_.get());
+    j["unreached_leaves"] = octree_->countUnreachedLeaves(sums_.counts());
   }
   j["radiance_source"] = need_.radiance;
   j["update_every"] = need_.updateEvery;

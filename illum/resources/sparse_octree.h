@@ -52,8 +52,8 @@ class SparseOctree : public Resource, public ConeSource {
   SparseOctreeNeed need_;
   std::string filledFor_;
   std::unique_ptr<SparseVoxelOctree> octree_;
-  GlBuffer counts_, sums_, max_;
-  float radianceMax_ = 1.0f, voxel_ = 0.0f;
+  InjectionSums sums_;  // per leaf (radiance inject, texels)
+  float voxel_ = 0.0f;
   int gridChanges_ = 0, lag_ = 0;  // grid changes seen; of them since the tree was built
 };
 

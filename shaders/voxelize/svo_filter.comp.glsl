@@ -11,7 +11,9 @@
 //            tile's brick at its octant (the root: texel (1,1,1) of brick 0);
 //   BORDERS  per node with children: its tile's brick's +x/+y/+z border
 //            texels from the neighbouring tiles' children (0 where the
-//            neighbour has none), read and written in the same pool image.
+//            neighbour has none), read and written in the same pool image —
+//            in all POOLS pools of one layout at once (the six faces, or the
+//            iso pool), so the neighbours are found once.
 // Brick b of a pool is tile t − base (uInBase, uOutBase).
 #include "../shared/svo_lookup.glsl"
 #include "../shared/value_grid.glsl"
@@ -24,7 +26,11 @@ uniform uvec3 uInBricks;   // the input pool's bricks per axis
 uniform uvec3 uOutBricks;  // the output pool's
 uniform uint uInBase;
 uniform uint uOutBase;
-uint invocation() { return gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u + gl_GlobalInvocationID.x; }
+// This invocation's node of the level, or SVO_NO_SLOT past its end.
+uint levelNode() {
+  uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * 64u + gl_GlobalInvocationID.x;
+  return i < uCount ? uFirst + i : SVO_NO_SLOT;
+}
 
 #if defined(RESOLVE) || defined(FILTER)
 layout(rgba16f, binding = IMAGE_OUTPUT) uniform writeonly image3D oPool;
@@ -40,9 +46,9 @@ layout(std430, binding = BINDING_VALUE_COUNTS) readonly buffer Counts { uint cou
 layout(std430, binding = BINDING_VALUE_RADIANCE) readonly buffer RadianceSums { uint radianceSums[]; };
 uniform float uRadianceMax;
 void main() {
-  uint i = invocation();
-  if (i >= uCount) return;
-  uint n = uFirst + i;
+  uint n = levelNode();
+  if (n == SVO_NO_SLOT) return;
+  uint i = n - uFirst;  // the leaf's slot
   bool occupied = svoOccupied(svoNodes[n]);
 #ifdef RADIANCE_NONE
   storeNode(n, occupied ? vec4(0.0f, 0.0f, 0.0f, 1.0f) : vec4(0.0f));
@@ -57,9 +63,8 @@ void main() {
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler3D uInput;
 uniform uint uFace;
 void main() {
-  uint i = invocation();
-  if (i >= uCount) return;
-  uint n = uFirst + i;
+  uint n = levelNode();
+  if (n == SVO_NO_SLOT) return;
   uint child = svoChild(svoNodes[n]);
   if (child < SVO_TILE) return;  // no children: the cleared 0 stands
   ivec3 origin = ivec3(svoBrickOrigin((child >> 3u) - uInBase, uInBricks));
@@ -74,11 +79,10 @@ void main() {
 #endif
 
 #ifdef BORDERS
-layout(rgba16f, binding = IMAGE_OUTPUT) uniform image3D oPool;
+layout(rgba16f, binding = IMAGE_OUTPUT) uniform image3D oPools[POOLS];
 void main() {
-  uint i = invocation();
-  if (i >= uCount) return;
-  uint n = uFirst + i;
+  uint n = levelNode();
+  if (n == SVO_NO_SLOT) return;
   uint child = svoChild(svoNodes[n]);
   if (child < SVO_TILE) return;
   uvec3 cell = svoUnpackCell(svoCoords[n]);
@@ -98,8 +102,8 @@ void main() {
       for (int a = 0; a < 3; ++a) if (o[a] == 1u && lo[a] != 0u) inside = false;
       if (!inside) continue;
       uvec3 b = uvec3(o.x == 1u ? 2u : lo.x, o.y == 1u ? 2u : lo.y, o.z == 1u ? 2u : lo.z);
-      vec4 v = nbChild < SVO_TILE ? vec4(0.0f) : imageLoad(oPool, from + ivec3(lo));
-      imageStore(oPool, origin + ivec3(b), v);
+      for (int p = 0; p < POOLS; ++p)
+        imageStore(oPools[p], origin + ivec3(b), nbChild < SVO_TILE ? vec4(0.0f) : imageLoad(oPools[p], from + ivec3(lo)));
     }
   }
 }
