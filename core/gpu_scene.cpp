@@ -179,6 +179,7 @@ void GpuScene::bind(ShaderLibrary& shaders, unsigned program) const {
   glBindTextureUnit(TEXUNIT_ENV_MAP, envMap_);
   shaders.setUniform(program, "uEnvColorScale", envColorScale_);
   shaders.setUniform(program, "uEnvHasMap", envHasMap_ ? 1 : 0);
+  shaders.setUniform(program, "uLightCount", int(lightCount_));
 }
 
 void GpuScene::bindVertices() const {

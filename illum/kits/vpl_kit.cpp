@@ -89,6 +89,7 @@ void VplKit::gather(Frame& f, const std::function<void(unsigned)>& bindExtra) co
 
 std::vector<shared::Vpl> VplKit::read() const {
   std::vector<shared::Vpl> v(slots_);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // a compute pass wrote them (generate, avg's shoot)
   glGetNamedBufferSubData(vpls_.get(), 0, GLsizeiptr(v.size() * sizeof(shared::Vpl)), v.data());
   return v;
 }
@@ -168,9 +169,12 @@ void VplKit::stats(Frame& f) const {
 }
 
 Counterpart vplChainsCounterpart(const nlohmann::json& p) {
-  return Counterpart{"reference",
-                     {"integrator=path", "maxdepth=" + std::to_string(p.at("bounces").get<int>() + 1)},
-                     {"direct", "indirect"}};
+  return Counterpart{
+      "reference",
+      {"integrator=path", "maxdepth=" + std::to_string(p.at("bounces").get<int>() + 1), "env=false"},
+      {"direct", "indirect"},
+      "neither side integrates the environment light (the VPLs come from the lights' maps); the "
+      "environment is the background only"};
 }
 
 }  // namespace vgi

@@ -182,6 +182,15 @@ class VplMethod : public Method {
   }
   void finishFrame(Frame& f) override {
     kit_.stats(f);
+    // Light the maps reflect but no VPL carries is a wrong image, not a dark scene: refuse it (zink once
+    // placed none here and the render showed direct light only, exit 0).
+    const double flux = fluxTotal();
+    f.extra["vpl_flux_total"] = flux;
+    if (flux > 0.0 && s_.chains > 0 && f.extra["vpls_placed"][0].get<uint64_t>() == 0)
+      fail("vpl: the light maps reflect flux ", flux,
+           " but the generation pass placed no VPL on this driver (",
+           reinterpret_cast<const char*>(glGetString(GL_RENDERER)),
+           "): the image would hold direct light only and was not written");
     f.addStateBytes(double(fluxFloats_ * sizeof(float)));  // the flux tree
     f.extra["voxel_diagonal"] = voxelDiagonal_;
   }
@@ -192,6 +201,18 @@ class VplMethod : public Method {
     f.resources.get<LightMaps>().bind();
     if (f.resources.tryGet<GlPyramid>()) bindTracer(f.resources, f.shaders(), prog);
     if (const ValueTextures* values = f.resources.tryGet<ValueTextures>()) values->bind();
+  }
+
+  // The flux the light maps reflect: the sum of every face's top node.
+  double fluxTotal() const {
+    if (fluxFloats_ == 0) return 0.0;
+    std::vector<float> tree(fluxFloats_);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(flux_.get(), 0, GLsizeiptr(tree.size() * sizeof(float)), tree.data());
+    const size_t stride = shared::fluxTreeFaceStride(res_), top = stride - 1;  // the last level: one node
+    double sum = 0.0;
+    for (size_t face = 0; face + 1 <= fluxFloats_ / stride; ++face) sum += double(tree[face * stride + top]);
+    return sum;
   }
 
   // Level 0 from the RSMs, then each level from the one below (shared/vpl.glsl).

@@ -25,6 +25,10 @@ SHARED_END
 layout(std430, binding = BINDING_MATERIALS) readonly buffer MaterialBuffer { PackedMaterial materials[]; };
 layout(std430, binding = BINDING_TRI_MATERIAL) readonly buffer TriMaterialBuffer { int triMaterial[]; };
 layout(std430, binding = BINDING_LIGHTS) readonly buffer LightBuffer { PackedLight lights[]; };
+// The number of lights (GpuScene::bind). Counts come from the host, never from `.length()` of a runtime
+// array: zink on lavapipe answered 0 or another buffer's length there (vpl placed no VPL), and a
+// length follows the bound range, which a driver may round (tests/core/gl_test.cpp, Shaders.*).
+uniform int uLightCount;
 layout(binding = TEXUNIT_ALBEDO_ARRAY) uniform sampler2DArray albedoTextures;
 layout(binding = TEXUNIT_ENV_MAP) uniform sampler2D envMap;
 uniform vec4 uEnvColorScale;  // rgb constant colour, w = map scale

@@ -126,6 +126,14 @@ layout(binding = TEXUNIT_LIGHT_POSITION) uniform sampler2DArray lightPosition;
 layout(binding = TEXUNIT_LIGHT_NORMAL) uniform sampler2DArray lightNormal;
 layout(binding = TEXUNIT_LIGHT_RADIANCE) uniform sampler2DArray lightRadiance;
 
+// The number of light-map faces: the last light's range ends there (the lights' ranges are
+// consecutive, layoutLightFaces).
+int lightFaceCount() {
+  if (uLightCount <= 0) return 0;
+  ivec4 r = lightRanges[uLightCount - 1];
+  return r.x + r.y;
+}
+
 // The face of light `light` that sees p.
 int lightFaceOf(int light, vec3 p) {
   ivec4 r = lightRanges[light];
@@ -165,7 +173,7 @@ bool lightMapLit(int light, vec3 p, vec3 n, vec3 ng, float cosI, float bias, flo
 // pass, and voxelpath's glossy lobe at path vertices.
 vec3 lightMapsDirect(BrdfParams brdf, vec3 p, vec3 n, vec3 ng, vec3 wo, float bias, float normalOffset) {
   vec3 sum = vec3(0.0f);
-  for (int i = 0; i < lights.length(); ++i) {
+  for (int i = 0; i < uLightCount; ++i) {
     LightSample ls = sampleDeltaLight(lights[i], p);
     float cosI = dot(ls.wi, n);
     bool lit = cosI > 0.0f && (ls.radiance.x + ls.radiance.y + ls.radiance.z) > 0.0f;
@@ -234,7 +242,7 @@ BackProjection rsmBackProject(vec3 o, vec3 d, float t, float voxelDiagonal, floa
   precise vec3 y = o + t * d;
   vec3 sum = vec3(0.0f);
   bool through = false;
-  for (int l = 0; l < lights.length(); ++l) {
+  for (int l = 0; l < uLightCount; ++l) {
     RsmTexel r = rsmTexelAt(l, y);
     if (r.face < 0) {
       through = through || texelFetch(lightPosition, r.texel, 0).w == 0.0f && insideLightMap(l, y);

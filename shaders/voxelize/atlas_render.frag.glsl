@@ -67,7 +67,7 @@ void main() {
   ng = dot(ng, ng) > 0.0f ? normalize(ng) : sn;
   vec3 L = vec3(0.0f);
   const vec3 pw = p + uGridOrigin;
-  for (int i = 0; i < lights.length(); ++i) {
+  for (int i = 0; i < uLightCount; ++i) {
     LightSample ls = sampleDeltaLight(lights[i], pw);
     if (ls.radiance.x + ls.radiance.y + ls.radiance.z <= 0.0f) continue;
     vec3 g = dot(ls.wi, ng) < 0.0f ? -ng : ng;  // the side facing the light

@@ -74,7 +74,7 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= uChains) return;
   int b = 0;
-  uint count = uint(lights.length());
+  uint count = uint(uLightCount);
   float total = 0.0f;
   for (uint l = 0u; l < count; ++l) total += lightPower(l);
   if (total > 0.0f) {

@@ -59,7 +59,7 @@ void main() {
   vec3 directChange = vec3(0.0f);
   if (pass.shadows != 0) {
     vec3 coneDirect = vec3(0.0f);
-    for (int i = 0; i < lights.length(); ++i) {
+    for (int i = 0; i < uLightCount; ++i) {
       LightSample ls = sampleDeltaLight(lights[i], p);
       float cosI = dot(ls.wi, n);
       if (cosI <= 0.0f || ls.radiance.x + ls.radiance.y + ls.radiance.z <= 0.0f) continue;

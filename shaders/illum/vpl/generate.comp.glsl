@@ -41,7 +41,7 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= uChains) return;
   int b = 0;
-  uint faces = uint(lightFaces.length());
+  uint faces = uint(lightFaceCount());
   float total = 0.0f;
   for (uint f = 0u; f < faces; ++f) total += faceTotal(f);
   if (total > 0.0f) {
