@@ -307,7 +307,9 @@ void addTraverseBench(CLI::App& bench) {
   cmd->add_option("--repeat", o->repeat, "timed CPU runs per tracer (the fastest counts)")
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "ray population seed")->capture_default_str();
-  cmd->add_option("--gl", o->gl, "GL backend: auto|egl|osmesa")->capture_default_str();
+  cmd->add_option("--gl", o->gl,
+                  "GL backend: auto|egl|osmesa|zink (zink: GL on Vulkan on lavapipe, the second CPU driver)")
+      ->capture_default_str();
   cmd->add_option("--bvh-width", o->bvhWidth,
                   "children per node of the bvh tracer's BVH: 2 (Aila & Laine, the methods' layout) or 4")
       ->check(CLI::IsMember({2u, 4u}))

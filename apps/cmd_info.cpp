@@ -1,11 +1,14 @@
-// vgi info --scene S [--json]: what a scene contains. The text is the JSON's
-// contents, laid out for reading.
+// vgi info --scene S [--json] [--gl B]: what a scene contains, and the OpenGL driver a render
+// would use (backend, GL_RENDERER, GL_VERSION: the same line every stats JSON carries). The text is
+// the JSON's contents, laid out for reading.
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.h"
 #include "core/emitters.h"
+#include "core/error.h"
+#include "core/gl_context.h"
 #include "core/json_text.h"
 #include "core/scene_loader.h"
 
@@ -138,6 +141,23 @@ void printSceneInfo(const nlohmann::json& j) {
   std::printf("camera     position %s target %s up %s fov %g deg\n", str(c["position"]).c_str(),
               str(c["target"]).c_str(), str(c["up"]).c_str(), c["fov_deg"].get<double>());
   for (auto& w : j["warnings"]) std::printf("warning    %s\n", text(w).c_str());
+  const nlohmann::json& g = j["gl"];
+  if (g.contains("error"))
+    std::printf("gl         none: %s\n", text(g["error"]).c_str());
+  else
+    std::printf("gl         %s: %s, %s\n", text(g["backend"]).c_str(), text(g["renderer"]).c_str(),
+                text(g["version"]).c_str());
+}
+
+// The driver `--gl` selects, or why there is none (info still describes the scene).
+nlohmann::json glInfo(const std::string& backend) {
+  const GlBackend b = parseGlBackend(backend);
+  try {
+    const std::unique_ptr<GlContext> gl = GlContext::create(b);
+    return {{"backend", gl->backendName()}, {"renderer", gl->renderer()}, {"version", gl->version()}};
+  } catch (const Error& e) {
+    return {{"error", e.what()}};
+  }
 }
 
 }  // namespace
@@ -147,11 +167,15 @@ void addInfoCommand(CLI::App& app) {
       "info", "Print what a scene contains (triangles, meshes, materials, lights, bounds)");
   auto scene = std::make_shared<std::string>("builtin:cornell");
   auto json = std::make_shared<bool>(false);
+  auto gl = std::make_shared<std::string>("auto");
   cmd->add_option("--scene", *scene, "builtin:cornell, a scene .json, or an .obj/.gltf/.glb/.ply file")
       ->capture_default_str();
   cmd->add_flag("--json", *json, "print JSON");
+  cmd->add_option("--gl", *gl, "GL backend whose driver to name: auto|egl|osmesa|zink")
+      ->capture_default_str();
   cmd->callback([=] {
-    const nlohmann::json j = sceneInfo(loadScene(*scene), *scene);
+    nlohmann::json j = sceneInfo(loadScene(*scene), *scene);
+    j["gl"] = glInfo(*gl);
     if (*json)
       std::printf("%s\n", jsonText(j, 2).c_str());
     else

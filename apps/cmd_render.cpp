@@ -25,7 +25,9 @@ void addRenderOptions(CLI::App* cmd, RenderOptions& opt, RenderArgs& args) {
   cmd->add_option("--threads", opt.threads, "CPU threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--time", opt.time, "animation time for dynamic meshes (of the first frame)")
       ->capture_default_str();
-  cmd->add_option("--gl", args.gl, "GL backend: auto|egl|osmesa")->capture_default_str();
+  cmd->add_option("--gl", args.gl,
+                  "GL backend: auto|egl|osmesa|zink (zink: GL on Vulkan on lavapipe, the second CPU driver)")
+      ->capture_default_str();
   cmd->add_option(
          "--accumulate", args.accumulate,
          "sample accumulation: compensated (Kahan sums on the GPU: no drift over 10^5 samples) or plain "

@@ -54,7 +54,9 @@ void addVoxelizeOptions(CLI::App* cmd, VoxelizeOptions& o) {
       ->capture_default_str();
   cmd->add_option("--time", o.time, "animation time")->capture_default_str();
   cmd->add_option("--threads", o.threads, "CPU threads (0 = all cores)")->capture_default_str();
-  cmd->add_option("--gl", o.gl, "GL backend: auto|egl|osmesa")->capture_default_str();
+  cmd->add_option("--gl", o.gl,
+                  "GL backend: auto|egl|osmesa|zink (zink: GL on Vulkan on lavapipe, the second CPU driver)")
+      ->capture_default_str();
   cmd->add_option("--texels-per-voxel", o.texelsPerVoxel, "atlas: texel = smallest voxel edge / this")
       ->capture_default_str();
   cmd->add_option("--atlas-resolution", o.atlasResolution,
@@ -237,6 +239,10 @@ void runVoxelize(const VoxelizeOptions& o) {
     fail("voxelizer '", info.name, "' raised ", gl->errorCount(), " GL error(s)");
   addGridQuality(s, result, scene, res.get<GridBox>(), last, o, info.name == "exact");
   s["voxelizer"] = info.name;
+  s["voxels_set"] = result.count();
+  char digest[17];
+  std::snprintf(digest, sizeof digest, "%016llx", (unsigned long long)result.digest());
+  s["grid_digest"] = digest;  // a string: JSON numbers lose 64-bit integers in many readers
   s["scene"] = o.scene;
   s["resolution"] = {grid.resolution.x, grid.resolution.y, grid.resolution.z};
   if (!s.contains("points")) s["points"] = nullptr;

@@ -3,6 +3,8 @@
 #include <glad/gl.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #ifdef VGI_SANITIZE_BUILD
 #include <dlfcn.h>
 #endif
@@ -15,7 +17,8 @@ GlBackend parseGlBackend(const std::string& name) {
   if (name == "auto") return GlBackend::Auto;
   if (name == "egl") return GlBackend::Egl;
   if (name == "osmesa") return GlBackend::Osmesa;
-  fail("--gl: unknown backend '", name, "' (auto, egl, osmesa)");
+  if (name == "zink") return GlBackend::Zink;
+  fail("--gl: unknown backend '", name, "' (auto, egl, osmesa, zink)");
 }
 
 #ifdef VGI_SANITIZE_BUILD
@@ -43,6 +46,13 @@ std::unique_ptr<GlContext> GlContext::create(GlBackend backend) {
 #endif
   if (backend == GlBackend::Egl) return createEglContext();
   if (backend == GlBackend::Osmesa) return createOsmesaContext();
+  if (backend == GlBackend::Zink) {
+    selectZinkOnLavapipe();
+    std::unique_ptr<GlContext> ctx = createEglContext();
+    if (ctx->renderer().find("zink") == std::string::npos)
+      fail("--gl zink: EGL made a context on '", ctx->renderer(), "', not zink (is Mesa's zink built in?)");
+    return ctx;
+  }
   std::string eglError;
   try {
     return createEglContext();
@@ -54,6 +64,25 @@ std::unique_ptr<GlContext> GlContext::create(GlBackend backend) {
   } catch (const Error& e) {
     fail("no OpenGL 4.5 core context could be created.\n  egl: ", eglError, "\n  osmesa: ", e.what());
   }
+}
+
+void selectZinkOnLavapipe() {
+  const char* icd = std::getenv("VK_ICD_FILENAMES");
+  if (!icd || !*icd) {
+    static const char* const kIcds[] = {"/usr/share/vulkan/icd.d/lvp_icd.x86_64.json",
+                                        "/usr/share/vulkan/icd.d/lvp_icd.json"};
+    const char* found = nullptr;
+    for (const char* p : kIcds)
+      if (std::ifstream(p)) found = p;
+    if (!found)
+      fail("--gl zink: lavapipe's Vulkan ICD (", kIcds[0],
+           ") is missing: install mesa-vulkan-drivers (scripts/setup.sh does), or set VK_ICD_FILENAMES");
+    setenv("VK_ICD_FILENAMES", found, 1);
+  }
+  setenv("GALLIUM_DRIVER", "zink", 1);
+  setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
+  // zink's Wayland/X probes complain without a runtime folder; none is used.
+  if (!std::getenv("XDG_RUNTIME_DIR")) setenv("XDG_RUNTIME_DIR", "/tmp", 0);
 }
 
 bool GlContext::isSoftware() const {
@@ -81,6 +110,25 @@ void GlContext::finishInit(const std::string& backend) {
   glDebugMessageCallback(reinterpret_cast<GLDEBUGPROC>(&GlContext::debugCallback), this);
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DONT_CARE, 0, nullptr, GL_TRUE);
   glDebugMessageControl(GL_DONT_CARE, GL_DONT_CARE, GL_DEBUG_SEVERITY_NOTIFICATION, 0, nullptr, GL_FALSE);
+  // The group markers (notifications) tell the callback which pass is running.
+  for (GLenum t : {GL_DEBUG_TYPE_PUSH_GROUP, GL_DEBUG_TYPE_POP_GROUP})
+    glDebugMessageControl(GL_DEBUG_SOURCE_APPLICATION, t, GL_DONT_CARE, 0, nullptr, GL_TRUE);
+}
+
+namespace {
+std::mutex processMutex;
+long processErrors = 0;
+std::vector<std::string> processMessages;
+}  // namespace
+
+long GlContext::processErrorCount() {
+  std::lock_guard<std::mutex> lock(processMutex);
+  return processErrors;
+}
+
+std::vector<std::string> GlContext::takeProcessErrors() {
+  std::lock_guard<std::mutex> lock(processMutex);
+  return std::move(processMessages);
 }
 
 void GlContext::debugCallback(unsigned source, unsigned type, unsigned id, unsigned severity, int length,
@@ -92,9 +140,23 @@ void GlContext::debugCallback(unsigned source, unsigned type, unsigned id, unsig
                  (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH);
   std::string msg(message, length >= 0 ? size_t(length) : std::char_traits<char>::length(message));
   std::lock_guard<std::mutex> lock(self->mutex_);
+  if (type == GL_DEBUG_TYPE_PUSH_GROUP) {
+    self->groups_.push_back(msg);
+    return;
+  }
+  if (type == GL_DEBUG_TYPE_POP_GROUP) {
+    if (!self->groups_.empty()) self->groups_.pop_back();
+    return;
+  }
   if (isError) {
     ++self->errors_;
-    std::fprintf(stderr, "GL error (id %u): %s\n", id, msg.c_str());
+    const std::string where =
+        self->groups_.empty() ? "outside a timed pass" : "pass '" + self->groups_.back() + "'";
+    const std::string text = where + ": GL error (id " + std::to_string(id) + "): " + msg;
+    std::fprintf(stderr, "%s\n", text.c_str());
+    std::lock_guard<std::mutex> plock(processMutex);
+    ++processErrors;
+    if (processMessages.size() < 100) processMessages.push_back(text);
   }
   if (self->messages_.size() < 1000) self->messages_.push_back(msg);
 }

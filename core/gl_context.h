@@ -3,8 +3,16 @@
 //           otherwise EGL surfaceless (Mesa llvmpipe)
 //   osmesa  Mesa's off-screen library (llvmpipe), the last fallback
 //   auto    egl, then osmesa
-// A KHR_debug callback is installed at creation; errors are counted so tests
-// can fail on them. Rendering goes to FBOs: no default framebuffer is needed.
+//   zink    Mesa's GL-over-Vulkan driver on lavapipe (CPU), through EGL surfaceless: a second
+//           compiler back end and Vulkan's synchronisation rules, the suite's second driver
+//           (needs mesa-vulkan-drivers; the same as GALLIUM_DRIVER=zink LIBGL_ALWAYS_SOFTWARE=1
+//           with VK_ICD_FILENAMES naming lavapipe's ICD)
+// A KHR_debug callback is installed at creation; errors (type error, or high
+// severity, from the API, the driver or the shader compiler at run time) are
+// counted per context and in the process, each named by the pass it happened
+// in (the debug groups Profiler::Scope pushes), so renders refuse to finish on
+// one and every GL test fails on one (tests/gl_error_listener.cpp).
+// Rendering goes to FBOs: no default framebuffer is needed.
 #pragma once
 #include <memory>
 #include <mutex>
@@ -13,7 +21,7 @@
 
 namespace vgi {
 
-enum class GlBackend { Auto, Egl, Osmesa };
+enum class GlBackend { Auto, Egl, Osmesa, Zink };
 GlBackend parseGlBackend(const std::string& name);  // throws on an unknown name
 
 class GlContext {
@@ -27,9 +35,13 @@ class GlContext {
   const std::string& backendName() const { return backend_; }
   bool isSoftware() const;
 
-  // KHR_debug messages of type error or high severity since the last call.
+  // KHR_debug messages of type error or high severity on this context.
   long errorCount() const;
   std::vector<std::string> takeMessages();
+  // The same over every context of the process, for a test harness: the count, and the error
+  // messages since the last take ("pass 'vpls': GL error (id 1282): …").
+  static long processErrorCount();
+  static std::vector<std::string> takeProcessErrors();
 
  protected:
   void finishInit(const std::string& backend);  // loads GL, checks 4.5, installs the callback
@@ -39,12 +51,16 @@ class GlContext {
   mutable std::mutex mutex_;
   long errors_ = 0;
   std::vector<std::string> messages_;
+  std::vector<std::string> groups_;  // the open debug groups: the passes, innermost last
 };
 
 // Backend-specific constructors (gl_context_egl.cpp, gl_context_osmesa.cpp);
 // each throws vgi::Error with the reason when it cannot make a 4.5 core context.
 std::unique_ptr<GlContext> createEglContext();
 std::unique_ptr<GlContext> createOsmesaContext();
+// Points Mesa at zink on lavapipe (the environment above) before the first context is made; throws
+// when lavapipe's ICD file is missing. Mesa reads these once per process: call it before any context.
+void selectZinkOnLavapipe();
 
 // Resolves GL entry points for the current context's backend.
 using GlProcLoader = void* (*)(const char*);

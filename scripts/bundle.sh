@@ -27,6 +27,11 @@ mkdir -p "$stage/bin" "$stage/lib" "$stage/share/vgi" "$stage/share/doc/vgi/lice
 cp "$bin" "$stage/bin/vgi"
 strip "$stage/bin/vgi"
 cp -r shaders "$stage/share/vgi/shaders"
+# The driver parity set rendered here on llvmpipe: scripts/gpu_bench.sh compares a GPU's images with
+# these (its parity section), so the first GPU session says "same image" or lists the differences.
+python3 scripts/driver_parity.py render --vgi "$bin" --gl egl "$stage/share/vgi/parity-llvmpipe" \
+  > "$out/parity-llvmpipe.log" 2>&1 || { tail -30 "$out/parity-llvmpipe.log"; exit 1; }
+rm -f "$stage"/share/vgi/parity-llvmpipe/*.png "$stage"/share/vgi/parity-llvmpipe/*.log
 
 # The closure: every library ldd resolves, but glibc's (the node's own, ABI-stable) — the
 # GL vendor drivers are not in it (glvnd's libEGL / libOpenGL load them at run time).

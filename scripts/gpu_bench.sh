@@ -15,22 +15,28 @@
 #                Sibenik, 256³–1024³ (dense to 512³): build / inject / filter / cone passes, bytes
 #   equal error  the same-device experiment (scenes/experiments/same-device-gi.json): each method
 #                against reference_gl on the same GPU, the equal-error time ratio
+#   parity       the driver parity set (scripts/driver_parity.py: every GL method and GPU-code choice,
+#                every voxelizer's grid, every tracer's hits) on this GPU against the llvmpipe images
+#                the bundle carries (share/vgi/parity-llvmpipe, or --parity-ref DIR): "same image" or
+#                the list of differences, in OUT/parity.json and gpu_bench.md
 # --quick runs the same code at tiny sizes on the Cornell box only (the suite runs it on llvmpipe, so
 # the script never rots). Scenes from ../shared/scenes (or $VGI_SCENES) are used where present.
 # The NVIDIA EGL device path needs glvnd to find the driver's vendor file; where
 # /usr/share/glvnd/egl_vendor.d has none, the script looks for one and exports
 # __EGL_VENDOR_LIBRARY_FILENAMES (and says so).
-# Usage: scripts/gpu_bench.sh [--quick] [--vgi PATH] OUT
+# Usage: scripts/gpu_bench.sh [--quick] [--vgi PATH] [--parity-ref DIR] OUT
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/.." && pwd)
 quick=0
 vgi=""
 out=""
+parity_ref=""
 while [ $# -gt 0 ]; do
   case $1 in
     --quick) quick=1 ;;
     --vgi) vgi=$2; shift ;;
+    --parity-ref) parity_ref=$2; shift ;;
     -*) echo "gpu_bench: unknown option '$1' (usage: gpu_bench.sh [--quick] [--vgi PATH] OUT)" >&2; exit 2 ;;
     *) out=$1 ;;
   esac
@@ -141,6 +147,31 @@ done
 note "equal error on one device ($equal_error)"
 run "equal_error" sweep "scenes/experiments/$equal_error.json" -o "$out/raw/sweep_$equal_error" || true
 
+note "parity"
+# Against the llvmpipe images the bundle carries; --quick (the suite, on llvmpipe itself) renders two of
+# the set on llvmpipe as the reference, so the section's code runs without a bundle.
+[ -n "$parity_ref" ] || parity_ref=$(cd "$(dirname "$vgi")/.." && pwd)/share/vgi/parity-llvmpipe
+only=()
+if [ $quick -eq 1 ]; then
+  only=(--only direct,vpl)
+  parity_ref=$out/raw/parity_llvmpipe
+  python3 "$here/driver_parity.py" render --vgi "$vgi" --gl egl "${only[@]}" "$parity_ref" >> "$log" 2>&1 ||
+    note "FAILED: the llvmpipe parity renders"
+fi
+if [ -f "$parity_ref/manifest.json" ]; then
+  python3 "$here/driver_parity.py" render --vgi "$vgi" --gl auto "${only[@]}" "$out/raw/parity" >> "$log" 2>&1 ||
+    note "FAILED: the parity renders on this device"
+  if python3 "$here/driver_parity.py" compare --vgi "$vgi" --json "$out/parity.json" "$parity_ref" "$out/raw/parity" \
+      > "$out/raw/parity.log" 2>&1; then
+    note "parity: same image as llvmpipe ($(tail -1 "$out/raw/parity.log"))"
+  else
+    note "parity: DIFFERENCES from llvmpipe (raw/parity.log):"
+    tail -n 40 "$out/raw/parity.log" | tee -a "$log" >&2
+  fi
+else
+  note "no llvmpipe parity images at $parity_ref (give --parity-ref DIR): parity left out"
+fi
+
 python3 - "$out" "$vgi" "$(( $(date +%s) - start ))" "$quick" <<'PY'
 import glob, json, os, sys
 out, vgi, seconds, quick = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4] == "1"
@@ -151,7 +182,7 @@ def load(p):
     except Exception:
         return None
 report = {"vgi": vgi, "quick": quick, "seconds": seconds, "voxelizers": [], "traverse": [], "methods": [],
-          "equal_error": []}
+          "equal_error": [], "parity": load(os.path.join(out, "parity.json"))}
 md = []
 renderer = None
 for p in sorted(glob.glob(os.path.join(raw, "vox_*.json"))):
@@ -223,6 +254,16 @@ md.append("\n| scene | method | spp | channel | relMSE | ms | equal-error time r
 for r in report["equal_error"]:
     md.append(f'| {r["scene"]} | {r["label"]} | {r["spp"]} | {r["channel"]} | {r["relmse"]:.4f} | {r["time_ms"]:.0f} | '
               f'{r["ratio"]:.2f}{" (extrapolated)" if r["extrapolated"] else ""} |')
+par = report["parity"]
+if par:
+    md.append(f'\nParity against {par["a"]["renderer"]} (rel. MAE <= {par["tolerance"]:g}): '
+              + ("same image" if not par["differences"] else f'{len(par["differences"])} difference(s)'))
+    md.append("\n| render | rel. MAE | llvmpipe ms/spp | this device ms/spp |\n|---|---|---|---|")
+    for r in par["rows"]:
+        if "rel_mae" in r:
+            md.append(f'| {r["render"]} | {r["rel_mae"]:.2g} | {r["ms_per_sample_a"]:.1f} | {r["ms_per_sample_b"]:.1f} |')
+    for d in par["differences"]:
+        md.append(f"- {d}")
 open(os.path.join(out, "gpu_bench.md"), "w").write("\n".join(md) + "\n")
 print(f"gpu_bench: wrote {out}/gpu_bench.json and gpu_bench.md ({len(report['voxelizers'])} voxelizer, "
       f"{len(report['traverse'])} tracer, {len(report['methods'])} method rows; {seconds} s)")

@@ -14,6 +14,9 @@ set -euo pipefail
 # python3-matplotlib draws `vgi sweep`'s plots (scripts/sweep_report.py); the
 # suite opens its HTML report in headless chromium (tests/apps/sweep_test.cpp). xvfb (+ xauth for
 # xvfb-run) gives `vgi view` an X server with Mesa on a machine without a display (tests/apps/view_test.cpp).
+# mesa-vulkan-drivers (lavapipe) is the suite's second GL driver, zink on Vulkan (`--gl zink`,
+# scripts/driver_parity.py); glslang-tools, the Khronos reference compiler every program passes
+# (tests/illum/modules_test.cpp).
 PKGS=(
   build-essential cmake ninja-build pkg-config git python3 python3-glad clang-format
   libembree-dev libopenimageio-dev openimageio-tools libassimp-dev zlib1g-dev libopenmesh-dev libeigen3-dev
@@ -21,6 +24,7 @@ PKGS=(
   libglfw3-dev libglm-dev libimgui-dev libcli11-dev nlohmann-json3-dev libgtest-dev
   libegl-dev libgl-dev libosmesa6-dev libegl-mesa0 libgl1-mesa-dri
   python3-matplotlib chromium xvfb xauth
+  mesa-vulkan-drivers glslang-tools
 )
 missing=()
 for p in "${PKGS[@]}"; do

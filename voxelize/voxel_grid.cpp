@@ -120,6 +120,16 @@ uint64_t BinaryGrid::count() const {
   return n;
 }
 
+uint64_t BinaryGrid::digest() const {
+  uint64_t h = 1469598103934665603ull;
+  for (uint32_t w : words_)
+    for (int b = 0; b < 4; ++b) {
+      h ^= (w >> (8 * b)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  return h;
+}
+
 uint32_t BinaryGrid::columnCount(uint32_t x, uint32_t y) const {
   uint32_t n = 0;
   for (uint32_t w = 0; w < wordsPerColumn(); ++w)

@@ -55,6 +55,9 @@ class BinaryGrid {
   void setAtomic(uint32_t x, uint32_t y, uint32_t z);  // for concurrent writers
   bool test(uint32_t x, uint32_t y, uint32_t z) const;
   uint64_t count() const;
+  // FNV-1a over the words: two builds of a grid (two drivers, two voxelizer runs) are the same grid
+  // exactly when their digests are (up to 2^-64).
+  uint64_t digest() const;
   uint32_t columnCount(uint32_t x, uint32_t y) const;  // set cells in a column
 
   std::vector<uint32_t>& words() { return words_; }

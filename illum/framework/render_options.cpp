@@ -124,6 +124,8 @@ const char* glBackendText(GlBackend b) {
       return "egl";
     case GlBackend::Osmesa:
       return "osmesa";
+    case GlBackend::Zink:
+      return "zink";
     case GlBackend::Auto:
       break;
   }
@@ -287,7 +289,8 @@ RenderOptions readRenderJob(const nlohmann::json& in, const std::string& origin)
   o.frames = int(r.integer("frames", o.frames, 1, 100000));
   o.timeStep = float(r.number("time_step", o.timeStep));
   const std::string gl = r.text("gl", glBackendText(o.gl));
-  if (gl != "auto" && gl != "egl" && gl != "osmesa") r.bad("gl", "must be auto, egl or osmesa");
+  if (gl != "auto" && gl != "egl" && gl != "osmesa" && gl != "zink")
+    r.bad("gl", "must be auto, egl, osmesa or zink");
   o.gl = parseGlBackend(gl);
   o.aovs = r.texts("aov");
   const std::string acc = r.text("accumulate", "compensated");
