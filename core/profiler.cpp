@@ -29,6 +29,9 @@ unsigned Profiler::takeQuery() {
 
 Profiler::Scope::Scope(Profiler& p, std::string name) : p_(p), name_(std::move(name)) {
   if (p_.gpu_) {
+    // A KHR_debug group per pass: the context's callback names the pass in every error it reports,
+    // and GPU debuggers (RenderDoc, Nsight) show the passes by name.
+    glPushDebugGroup(GL_DEBUG_SOURCE_APPLICATION, 0, -1, name_.c_str());
     queryBegin_ = p_.takeQuery();
     glQueryCounter(queryBegin_, GL_TIMESTAMP);
   }
@@ -40,6 +43,7 @@ Profiler::Scope::~Scope() {
     unsigned end = p_.takeQuery();
     glQueryCounter(end, GL_TIMESTAMP);
     p_.pending_.push_back({name_, queryBegin_, end});
+    glPopDebugGroup();
   }
   p_.addCpu(name_,
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count());

@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -33,6 +34,33 @@ std::string defaultShaderDir() {
 ShaderLibrary::ShaderLibrary(std::string root) : root_(std::move(root)) {
   if (!fs::is_directory(root_))
     fail("shader folder '", root_, "' does not exist (set VGI_SHADER_DIR to the project's shaders/ folder)");
+  if (const char* dir = std::getenv("VGI_SHADER_DUMP")) {
+    std::error_code ec;
+    if (*dir && !fs::create_directories(dir, ec) && !fs::is_directory(dir))
+      fail("VGI_SHADER_DUMP '", dir, "': cannot create that folder (", ec.message(), ")");
+    dumpDir_ = dir;
+  }
+}
+
+void ShaderLibrary::dump(const std::string& file, const std::string& key, const Source& src) const {
+  if (dumpDir_.empty()) return;
+  std::string name = file.substr(0, file.find(".glsl"));
+  const size_t dot = name.find_last_of('.');
+  const std::string stage = dot == std::string::npos ? "glsl" : name.substr(dot + 1);
+  name = name.substr(0, dot);
+  for (char& c : name)
+    if (c == '/' || c == '\\') c = '_';
+  uint64_t h = 1469598103934665603ull;  // FNV-1a of the program's key: one file per permutation
+  for (unsigned char c : key) h = (h ^ c) * 1099511628211ull;
+  char digest[17];
+  std::snprintf(digest, sizeof digest, "%016llx", (unsigned long long)h);
+  const std::string path = dumpDir_ + "/" + name + "." + digest + "." + stage;
+  std::ofstream out(path);
+  // The last line names the source strings: a message's line N is in file N / 100000, line N % 100000.
+  out << src.text << "// source strings:";
+  for (size_t i = 0; i < src.files.size(); ++i) out << " " << i << "=" << src.files[i];
+  out << "\n";
+  if (!out) fail("VGI_SHADER_DUMP: cannot write '", path, "'");
 }
 
 ShaderLibrary::~ShaderLibrary() {
@@ -198,6 +226,7 @@ unsigned ShaderLibrary::program(const std::vector<std::string>& files, const Sha
       throw;
     }
     for (auto& u : declaredUniforms(src.text)) info.declared.insert(u);
+    dump(f, key, src);
     GLuint s = glCreateShader(stage);
     shaders.push_back(s);
     const char* text = src.text.c_str();

@@ -3,6 +3,9 @@
 // injected `#define`s, and `#line` directives so compile errors name the real
 // file and line. `#ifdef __cplusplus … #endif` blocks (the C++ side of
 // shaders/shared/) are dropped. Programs are cached per (files, defines).
+// With $VGI_SHADER_DUMP naming a folder, every stage of every program composed is also written
+// there as the driver receives it (NAME.DIGEST.STAGE, e.g. illum_vpl_generate.1f2e….comp), for the
+// reference compiler (glslangValidator; tests/core/glslang_test.cpp) or a vendor's.
 #pragma once
 #include <glm/glm.hpp>
 #include <map>
@@ -75,7 +78,8 @@ class ShaderLibrary {
   static std::string mapLog(const std::string& log, const std::vector<std::string>& files);
 
  private:
-  std::string root_;
+  void dump(const std::string& file, const std::string& key, const Source& src) const;
+  std::string root_, dumpDir_;
   std::map<std::string, unsigned> cache_;
   struct ProgramInfo {
     std::string files;
