@@ -24,6 +24,8 @@ CounterpartChoice counterpartOnDevice(const RenderOptions& method, const Counter
   const bool gl = findMethod(method.method).needsGl;
   CounterpartChoice c;
   c.counterpart = registry;
+  auto addNote = [&](const std::string& n) { c.note += (c.note.empty() ? "" : "; ") + n; };
+  if (!registry.note.empty()) addNote(registry.note);
   const MethodInfo& exact = findMethod(registry.method);
   c.device = exact.needsGl ? "gl" : "cpu";
   if (gl && !exact.needsGl && !exact.glTwin.empty() && device == ExactDevice::Same) {
@@ -36,10 +38,10 @@ CounterpartChoice counterpartOnDevice(const RenderOptions& method, const Counter
       c.counterpart.method = exact.glTwin;
       c.device = "gl";
     } catch (const Error& e) {
-      c.note = exact.glTwin + " refuses these parameters, so the counterpart runs on the CPU: " + e.what();
+      addNote(exact.glTwin + " refuses these parameters, so the counterpart runs on the CPU: " + e.what());
     }
   } else if (gl && !exact.needsGl && device == ExactDevice::Same) {
-    c.note = registry.method + " has no GL twin";
+    addNote(registry.method + " has no GL twin");
   }
   c.sameDevice = c.device == (gl ? "gl" : "cpu");
   return c;

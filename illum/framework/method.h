@@ -99,6 +99,9 @@ struct Counterpart {
   std::string method;
   std::vector<std::string> set;  // key=value
   std::vector<std::string> aovs;
+  // What both sides leave out or count differently from the counterpart's defaults (e.g. "neither
+  // side integrates the environment light"): printed by --help-module and compare, kept in results.
+  std::string note = {};
 };
 
 struct MethodInfo {
@@ -120,6 +123,6 @@ const std::vector<MethodInfo>& methodRegistry();
 const MethodInfo& findMethod(const std::string& name, const std::string& option = "--method");
 std::string defaultMethodName();
 // A float parameter as text that parses back to the same float (a counterpart's `set`).
-std::string counterpartText(const nlohmann::json& value);
+std::string counterpartText(const nlohmann::json& value);  // a number or a bool as --set text
 
 }  // namespace vgi

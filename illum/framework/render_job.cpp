@@ -519,6 +519,12 @@ std::string describeMethod(const std::string& name, const std::string& sceneSpec
   os << "parameters (--set key=value; scene-dependent defaults shown for " << sceneSpec << "):\n";
   for (auto& d : params.docs())
     os << "  " << d.key << " (" << d.type << ", default " << d.defaultValue << "): " << d.doc << "\n";
+  if (info.counterpart) {
+    const Counterpart c = info.counterpart(params.resolved());
+    os << "exact counterpart (vgi compare): " << c.method;
+    for (auto& kv : c.set) os << " " << kv;
+    os << (c.note.empty() ? "" : " — " + c.note) << "\n";
+  }
   return os.str();
 }
 

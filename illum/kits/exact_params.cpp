@@ -81,7 +81,12 @@ ExactParams readExactParams(ParamSet& params, const Scene& scene, const char* me
       "nearfield "
       "module; 0.1 x for ao)";
   const char* envDoc =
-      "nearfield: rays that leave the radius read the environment (black where the scene has none)";
+      "the environment lights the scene: path/direct: bounce rays that leave the scene read it; nearfield: "
+      "rays that leave the radius read it (black where the scene has none). false: the environment is "
+      "the camera's background only, the counterpart of a method that does not integrate it";
+  const char* envChannelDoc =
+      "path: the channel of the environment seen from the first surface (direct, as emission met by "
+      "that bounce; or indirect, as nearfield and the cone methods count it)";
   if (check(usesDepth, "maxdepth"))
     e.maxDepth = params.getInt("maxdepth", 8, depthDoc, 1, 10000);
   else
@@ -96,10 +101,15 @@ ExactParams readExactParams(ParamSet& params, const Scene& scene, const char* me
     e.radius = params.getFloat("radius", radiusDefault, radiusDoc, 1e-30f, 1e30f);
   else
     params.declare("radius", "float", std::to_string(radiusDefault), radiusDoc);
-  if (check(nearField, "env"))
+  if (check(e.integrator != ExactIntegrator::Ao, "env"))
     e.env = params.getBool("env", true, envDoc);
   else
     params.declare("env", "bool", "true", envDoc);
+  if (check(usesDepth, "env_channel"))
+    e.envIndirect =
+        params.getString("env_channel", "direct", envChannelDoc, {"direct", "indirect"}) == "indirect";
+  else
+    params.declare("env_channel", "string", "direct", envChannelDoc);
   readVisibility(params, e, method, voxelsSupported, check);
   const char* emDoc = "path/direct/nearfield: area lights sampled by mis (light + BRDF), light or brdf";
   if (check(e.integrator != ExactIntegrator::Ao, "emitter_sampling")) {

@@ -18,7 +18,8 @@ struct ExactParams {
   const char* integratorName = "path";
   int maxDepth = 8, rrDepth = 3;  // direct: maxDepth 1
   float radius = 0;               // nearfield / ao, world units
-  bool env = true;                // nearfield
+  bool env = true;                // path/direct/nearfield: the environment lights the scene
+  bool envIndirect = false;       // path: the environment seen from the first surface counts as indirect
   bool voxelVisibility = false;   // nearfield / path: bounce rays' first hits through voxels
   glm::uvec3 voxels{128};
   float offset = 1.0f;
@@ -29,7 +30,7 @@ struct ExactParams {
   }
 };
 
-// Reads and documents integrator, maxdepth, rr_depth, radius, env, visibility,
+// Reads and documents integrator, maxdepth, rr_depth, radius, env, env_channel, visibility,
 // voxels, offset and emitter_sampling; only the integrator's own are read (a
 // key of another integrator is an error naming both). `method`: the module
 // name in messages; `voxelsSupported`: whether visibility=voxels is offered

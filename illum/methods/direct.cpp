@@ -64,7 +64,12 @@ MethodInfo directMethod() {
             return std::make_unique<DirectMethod>(p, s);
           },
           [](const nlohmann::json&) {
-            return Counterpart{"reference", {"integrator=direct"}, {}};
+            return Counterpart{
+                "reference",
+                {"integrator=direct", "env=false"},
+                {},
+                "neither side integrates the environment light (shadow maps cannot see the sky); "
+                "the environment is the background only"};
           }};
 }
 

@@ -187,7 +187,7 @@ MethodInfo nearFieldMethod() {
           [](const nlohmann::json& p) {
             return Counterpart{"reference",
                                {"integrator=nearfield", "radius=" + counterpartText(p.at("radius")),
-                                std::string("env=") + (p.at("env").get<bool>() ? "true" : "false")},
+                                "env=" + counterpartText(p.at("env"))},
                                {"direct", "indirect"}};
           }};
 }

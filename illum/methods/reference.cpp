@@ -36,7 +36,8 @@
 // | maxdepth   | int    | 8                  | path: maximum number of bounces                      |
 // | rr_depth   | int    | 3                  | path: bounces before Russian roulette starts         |
 // | radius     | float  | 0.5 / 0.1 · diag.  | nearfield (as the module) / ao: ray length, world units |
-// | env        | bool   | true               | nearfield: rays leaving `radius` read the environment |
+// | env        | bool   | true               | the environment lights (false: background only)      |
+// | env_channel | string | direct            | path: environment seen from x0 as direct or indirect |
 // | visibility | string | exact              | nearfield/path: exact, or voxels (see below)         |
 // | voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        |
 // | offset     | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diag. |
@@ -281,9 +282,12 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const
       found = intersect(o, d, 1e30f, sp);
     }
     if (!found) {
-      const vec3 e = beta * scene_->environmentRadiance(d);
-      L += e;
-      if (depth >= 2) indirect += e;
+      // The camera sees the environment as background always; as a light only with env.
+      if (depth == 0 || p_.env) {
+        const vec3 e = beta * scene_->environmentRadiance(d);
+        L += e;
+        if (depth >= 2 || (depth == 1 && p_.envIndirect)) indirect += e;
+      }
       break;
     }
     if (sp.emission != vec3(0.0f)) {

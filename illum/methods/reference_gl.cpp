@@ -71,6 +71,7 @@ class ReferenceGlMethod : public Method {
       s.setUniform(prog_, "uRrDepth", p_.rrDepth);
       s.setUniform(prog_, "uRadius", p_.radius);
       s.setUniform(prog_, "uEnv", p_.env ? 1 : 0);
+      s.setUniform(prog_, "uEnvIndirect", p_.envIndirect ? 1 : 0);
       // The scene's own delta lights are the first entries of the GPU scene's lights.
       s.setUniform(prog_, "uDeltaLights", int(f.scene.lights.size()));
       s.setUniform(prog_, "uEmitterCount", int(f.resources.get<GpuEmitters>().count()));

@@ -19,6 +19,7 @@
 namespace vgi {
 
 std::string counterpartText(const nlohmann::json& v) {
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", v.get<double>());
   return buf;

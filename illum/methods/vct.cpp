@@ -253,8 +253,13 @@ MethodInfo vctMethod() {
       [](ParamSet& p, const Scene& s) -> std::unique_ptr<Method> {
         return std::make_unique<VctMethod>(p, s);
       },
-      [](const nlohmann::json&) {
-        return Counterpart{"reference", {"integrator=path", "maxdepth=2"}, {"direct", "indirect"}};
+      [](const nlohmann::json& p) {
+        return Counterpart{
+            "reference",
+            {"integrator=path", "maxdepth=2", "env=" + counterpartText(p.at("env")), "env_channel=indirect"},
+            {"direct", "indirect"},
+            "the environment seen through the cones is indirect on both sides (as nearfield counts "
+            "it)"};
       }};
 }
 

@@ -181,7 +181,8 @@ MethodInfo voxelPathMethod() {
           [](const nlohmann::json& p) {
             return Counterpart{"reference",
                                {"integrator=path", "maxdepth=" + std::to_string(p.at("maxdepth").get<int>()),
-                                "rr_depth=" + std::to_string(p.at("rr_depth").get<int>())},
+                                "rr_depth=" + std::to_string(p.at("rr_depth").get<int>()),
+                                "env=" + counterpartText(p.at("env"))},
                                {"direct", "indirect"}};
           }};
 }

@@ -169,7 +169,7 @@ TEST(Reference, ParametersOfOtherIntegratorsAreRejected) {
   test::expectError([&] { referenceMethod().create(p, s); }, {"maxdepth", "integrator=ao"});
   ParamSet docs;
   referenceMethod().create(docs, s);
-  EXPECT_EQ(docs.docs().size(), 9u);                 // all parameters documented
+  EXPECT_EQ(docs.docs().size(), 10u);                // all parameters documented
   EXPECT_FALSE(docs.resolved().contains("radius"));  // only the path integrator's resolved
   ParamSet q;
   q.setFromString("integrator=path");
@@ -293,7 +293,7 @@ TEST(ReferenceGl, RefusesVoxelVisibilityByName) {
                     {"visibility", "voxels", "reference_gl", "CPU"});
   ParamSet docs;
   findMethod("reference_gl").create(docs, s);
-  EXPECT_EQ(docs.docs().size(), 9u);  // the reference's parameters, all documented
+  EXPECT_EQ(docs.docs().size(), 10u);  // the reference's parameters, all documented
 }
 
 }  // namespace vgi

@@ -35,7 +35,8 @@ uniform int uWriteIndirect, uWriteDirect;
 
 uniform int uMaxDepth, uRrDepth;  // path
 uniform float uRadius;            // nearfield, world units
-uniform int uEnv;                 // nearfield
+uniform int uEnv;                 // the environment lights the scene (path, direct, nearfield)
+uniform int uEnvIndirect;         // path: the environment seen from x0 counts as indirect
 uniform int uDeltaLights;
 uniform int uEmitterCount;
 uniform int uEmitterSampling;  // EMITTER_SAMPLING_*
@@ -166,9 +167,12 @@ vec3 pathLi(vec3 o, vec3 d, inout uint rng, inout vec3 indirect) {
   for (int depth = 0;; ++depth) {
     Surface sp;
     if (!intersectScene(o, d, 1e30f, sp)) {
-      const vec3 e = beta * gpuEnvironmentRadiance(d);
-      L += e;
-      if (depth >= 2) indirect += e;
+      // The camera sees the environment as background always; as a light only with uEnv.
+      if (depth == 0 || uEnv != 0) {
+        const vec3 e = beta * gpuEnvironmentRadiance(d);
+        L += e;
+        if (depth >= 2 || (depth == 1 && uEnvIndirect != 0)) indirect += e;
+      }
       break;
     }
     if (sp.emission != vec3(0.0f)) {
