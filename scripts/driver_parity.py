@@ -5,7 +5,8 @@
                          [--only NAME,…]              (only these renders, no voxelizer or tracer rows)
                          [--size WxH] [--spp N]       (another size or sample count: the driver table of
                                                       docs/BENCHMARKS.md is --size 128x128 --spp 16)
-  driver_parity.py compare A B [--json F]             two such folders: exit 0 when equal, 1 with the list
+  driver_parity.py compare A B [--json F] [--markdown] two such folders: exit 0 when equal, 1 with the list
+                                                      (--markdown: each pass's ms per sample on both)
   driver_parity.py run --vgi VGI OUT                  render with llvmpipe (--gl egl) and zink (--gl zink)
                                                       into OUT/llvmpipe and OUT/zink, then compare them
 
@@ -184,15 +185,21 @@ def renderer(folder, name):
         return "?"
 
 
-def per_sample_ms(folder, name):
-    """Set-up excluded: the per-sample passes' total over the samples, in ms per sample."""
+def pass_ms(folder, name):
+    """Set-up excluded: each per-sample pass's time over the samples (ms per sample), and the set-up's."""
     with open(os.path.join(folder, name + ".json")) as f:
         s = json.load(f)
     frames = s.get("frames") or [s]
     passes = s.get("sample_passes") or frames[0].get("sample_passes", [])
     timings = s.get("timings_ms", {})
-    spp = max(1, int(s.get("spp_completed", s.get("spp", 1)) or 1))
-    return sum(float(timings.get(p, 0.0)) for p in passes) / spp
+    spp = max(1, int(s.get("spp_completed", s.get("spp", 1)) or 1)) * max(1, len(frames))
+    per = {p: float(timings.get(p, 0.0)) / spp for p in passes}
+    setup = sum(float(v) for k, v in timings.items() if k not in passes)
+    return per, setup
+
+
+def per_sample_ms(folder, name):
+    return sum(pass_ms(folder, name)[0].values())
 
 
 def compare(args):
@@ -222,7 +229,12 @@ def compare(args):
             ta, tb = per_sample_ms(a, name), per_sample_ms(b, name)
         except (OSError, ValueError, KeyError):
             ta = tb = float("nan")
-        rows.append({"render": name, "rel_mae": worst, "ms_per_sample_a": ta, "ms_per_sample_b": tb})
+        row = {"render": name, "rel_mae": worst, "ms_per_sample_a": ta, "ms_per_sample_b": tb}
+        try:
+            (row["passes_a"], row["setup_ms_a"]), (row["passes_b"], row["setup_ms_b"]) = pass_ms(a, name), pass_ms(b, name)
+        except (OSError, ValueError, KeyError):
+            pass
+        rows.append(row)
     for v in manifest["voxelizers"]:
         ga = json.load(open(os.path.join(a, f"voxelize_{v}.json")))
         gb = json.load(open(os.path.join(b, f"voxelize_{v}.json")))
@@ -251,6 +263,16 @@ def compare(args):
     for r in rows:
         if "rel_mae" in r:
             print(f"{r['render']:28} {r['rel_mae']:10.2g} {r['ms_per_sample_a']:10.1f} {r['ms_per_sample_b']:10.1f}")
+    if args.markdown:
+        print(f"\n| render | pass | A ms/sample | B ms/sample | B / A |\n|---|---|---|---|---|")
+        for r in rows:
+            if "passes_a" not in r:
+                continue
+            for p, va in sorted(r["passes_a"].items(), key=lambda x: -x[1]):
+                vb = r["passes_b"].get(p, float("nan"))
+                print(f"| {r['render']} | {p} | {va:.2f} | {vb:.2f} | {vb / va if va > 0 else float('nan'):.1f} |")
+            print(f"| {r['render']} | set-up (once) | {r['setup_ms_a']:.0f} | {r['setup_ms_b']:.0f} | "
+                  f"{r['setup_ms_b'] / r['setup_ms_a'] if r['setup_ms_a'] > 0 else float('nan'):.1f} |")
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"a": {"folder": a, "renderer": name_a}, "b": {"folder": b, "renderer": name_b},
@@ -279,6 +301,7 @@ def main():
     c = sub.add_parser("compare")
     c.add_argument("--vgi", required=True)
     c.add_argument("--json")
+    c.add_argument("--markdown", action="store_true", help="also print every pass's time per sample on both")
     c.add_argument("a")
     c.add_argument("b")
     b = sub.add_parser("run")
@@ -296,7 +319,7 @@ def main():
                                         out=os.path.join(args.out, folder)))
     if rc:
         return rc
-    return compare(argparse.Namespace(vgi=args.vgi, json=os.path.join(args.out, "parity.json"),
+    return compare(argparse.Namespace(vgi=args.vgi, json=os.path.join(args.out, "parity.json"), markdown=False,
                                       a=os.path.join(args.out, "llvmpipe"), b=os.path.join(args.out, "zink")))
 
 

@@ -1,0 +1,51 @@
+#!/usr/bin/env python3
+"""The same integral on both sides: each lighting method against its exact counterpart (same GL
+device), per channel, as the energy ratio method / counterpart (the mean of the RGB ratios).
+
+  channel_energy.py --vgi VGI OUT [--scenes scenes/dragon.json,scenes/bunny.json] [--spp 16]
+                    [--ref-spp 256] [--size 96x96]
+
+Runs `vgi compare` per (scene, method) into OUT/<scene>_<method>/ and prints a markdown table with the
+counterpart's parameters and note (docs/BENCHMARKS.md "The same integral on both sides").
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+METHODS = ["direct", "nearfield", "voxelpath", "vpl", "avg", "vct"]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--vgi", required=True)
+    ap.add_argument("--scenes", default="scenes/dragon.json,scenes/bunny.json")
+    ap.add_argument("--methods", default=",".join(METHODS))
+    ap.add_argument("--spp", default="16")
+    ap.add_argument("--ref-spp", default="256")
+    ap.add_argument("--size", default="96x96")
+    ap.add_argument("out")
+    a = ap.parse_args()
+    rows = []
+    for scene in a.scenes.split(","):
+        for m in a.methods.split(","):
+            stem = os.path.join(a.out, f"{os.path.splitext(os.path.basename(scene))[0]}_{m}", "c")
+            os.makedirs(os.path.dirname(stem), exist_ok=True)
+            cmd = [a.vgi, "compare", "--scene", scene, "--method", m, "--spp", a.spp, "--ref-spp", a.ref_spp,
+                   "--size", a.size, "-o", stem + ".exr"]
+            if subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode != 0:
+                print(f"FAILED: {' '.join(cmd)}", file=sys.stderr)
+                return 1
+            s = json.load(open(stem + ".json"))
+            ratio = {ch: sum(e["energy_rgb"]) / 3.0 for ch, e in s["error"].items()}
+            rows.append((os.path.basename(scene), m, " ".join(s["exact"]["set"]), ratio, s["exact"].get("note", "")))
+    print(f"| scene | method | counterpart (reference_gl) | image | direct | indirect |\n|---|---|---|---|---|---|")
+    for scene, m, cp, r, note in rows:
+        cell = lambda ch: f"{r[ch]:.3f}" if ch in r else "–"
+        print(f"| {scene} | {m} | {cp} | {cell('image')} | {cell('direct')} | {cell('indirect')} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
