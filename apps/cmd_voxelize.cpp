@@ -11,6 +11,7 @@
 #include "core/build_info.h"
 #include "core/error.h"
 #include "core/gl_context.h"
+#include "core/hash.h"
 #include "core/output_files.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
@@ -240,9 +241,7 @@ void runVoxelize(const VoxelizeOptions& o) {
   addGridQuality(s, result, scene, res.get<GridBox>(), last, o, info.name == "exact");
   s["voxelizer"] = info.name;
   s["voxels_set"] = result.count();
-  char digest[17];
-  std::snprintf(digest, sizeof digest, "%016llx", (unsigned long long)result.digest());
-  s["grid_digest"] = digest;  // a string: JSON numbers lose 64-bit integers in many readers
+  s["grid_digest"] = hexDigest(result.digest());
   s["scene"] = o.scene;
   s["resolution"] = {grid.resolution.x, grid.resolution.y, grid.resolution.z};
   if (!s.contains("points")) s["points"] = nullptr;

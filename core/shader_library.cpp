@@ -3,7 +3,6 @@
 #include <glad/gl.h>
 
 #include <cctype>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +12,7 @@
 #include <tuple>
 
 #include "core/error.h"
+#include "core/hash.h"
 
 namespace fs = std::filesystem;
 
@@ -50,11 +50,8 @@ void ShaderLibrary::dump(const std::string& file, const std::string& key, const 
   name = name.substr(0, dot);
   for (char& c : name)
     if (c == '/' || c == '\\') c = '_';
-  uint64_t h = 1469598103934665603ull;  // FNV-1a of the program's key: one file per permutation
-  for (unsigned char c : key) h = (h ^ c) * 1099511628211ull;
-  char digest[17];
-  std::snprintf(digest, sizeof digest, "%016llx", (unsigned long long)h);
-  const std::string path = dumpDir_ + "/" + name + "." + digest + "." + stage;
+  // The program key's digest: one file per permutation, the stages of one program alike.
+  const std::string path = dumpDir_ + "/" + name + "." + hexDigest(fnv1a(key)) + "." + stage;
   std::ofstream out(path);
   // The last line names the source strings: a message's line N is in file N / 100000, line N % 100000.
   out << src.text << "// source strings:";

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/image.h"
 #include "core/json_text.h"
 #include "core/output_files.h"
@@ -39,11 +40,9 @@ std::string paramText(const nlohmann::json& v, const std::string& key) {
 }
 
 std::string hashId(const std::vector<std::string>& parts) {
-  uint64_t h = 1469598103934665603ull;  // FNV-1a 64
-  for (auto& p : parts) {
-    for (unsigned char c : p) h = (h ^ c) * 1099511628211ull;
-    h = (h ^ 0xffu) * 1099511628211ull;
-  }
+  uint64_t h = kFnv1aOffset;
+  const unsigned char separator = 0xffu;
+  for (auto& p : parts) h = fnv1a(&separator, 1, fnv1a(p, h));
   char buf[20];
   std::snprintf(buf, sizeof buf, "%012llx", (unsigned long long)(h & 0xffffffffffffull));
   return buf;

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "voxelize/atlas_packing.h"
 #include "voxelize/chart_parametrization.h"
 
@@ -45,16 +46,9 @@ namespace {
 
 constexpr uint32_t kCacheVersion = 1;
 
-uint64_t fnv1a(const void* data, size_t n, uint64_t h) {
-  const unsigned char* p = static_cast<const unsigned char*>(data);
-  for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ULL;
-  return h;
-}
-
 uint64_t contentHash(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T,
                      const AtlasOptions& o) {
-  uint64_t h = 1469598103934665603ULL;
-  h = fnv1a(&kCacheVersion, sizeof kCacheVersion, h);
+  uint64_t h = fnv1a(&kCacheVersion, sizeof kCacheVersion);
   h = fnv1a(P.data(), P.size() * sizeof(glm::vec3), h);
   h = fnv1a(T.data(), T.size() * sizeof(glm::uvec3), h);
   float params[5] = {o.texelWorld, float(o.resolution), float(o.gutter), o.segmentation.maxNormalDeviationDeg,

@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/image.h"
 
 namespace vgi {
@@ -120,15 +121,7 @@ uint64_t BinaryGrid::count() const {
   return n;
 }
 
-uint64_t BinaryGrid::digest() const {
-  uint64_t h = 1469598103934665603ull;
-  for (uint32_t w : words_)
-    for (int b = 0; b < 4; ++b) {
-      h ^= (w >> (8 * b)) & 0xffu;
-      h *= 1099511628211ull;
-    }
-  return h;
-}
+uint64_t BinaryGrid::digest() const { return fnv1a(words_.data(), words_.size() * sizeof(uint32_t)); }
 
 uint32_t BinaryGrid::columnCount(uint32_t x, uint32_t y) const {
   uint32_t n = 0;

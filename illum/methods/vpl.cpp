@@ -203,15 +203,18 @@ class VplMethod : public Method {
     if (const ValueTextures* values = f.resources.tryGet<ValueTextures>()) values->bind();
   }
 
-  // The flux the light maps reflect: the sum of every face's top node.
+  // The flux the light maps reflect: the sum of every face's top node (one float read per face).
   double fluxTotal() const {
     if (fluxFloats_ == 0) return 0.0;
-    std::vector<float> tree(fluxFloats_);
+    const size_t stride = shared::fluxTreeFaceStride(res_);
+    const size_t top = shared::fluxTreeOffset(res_, shared::fluxTreeLevels(res_) - 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glGetNamedBufferSubData(flux_.get(), 0, GLsizeiptr(tree.size() * sizeof(float)), tree.data());
-    const size_t stride = shared::fluxTreeFaceStride(res_), top = stride - 1;  // the last level: one node
     double sum = 0.0;
-    for (size_t face = 0; face + 1 <= fluxFloats_ / stride; ++face) sum += double(tree[face * stride + top]);
+    for (size_t face = 0; face < fluxFloats_ / stride; ++face) {
+      float v = 0.0f;
+      glGetNamedBufferSubData(flux_.get(), GLintptr((face * stride + top) * sizeof(float)), sizeof v, &v);
+      sum += double(v);
+    }
     return sum;
   }
 
