@@ -1,5 +1,6 @@
 #include "core/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -58,11 +59,17 @@ Camera Scene::cameraAt(float time) const {
   c.target = glm::mix(a.camera.target, b.camera.target, t);
   c.up = glm::mix(a.camera.up, b.camera.up, t);
   c.fovYDeg = glm::mix(a.camera.fovYDeg, b.camera.fovYDeg, t);
-  // The loader checks every key's pose; between two keys the position can pass through the target
-  // or the up turn parallel to the view: there the nearer key's camera stands in.
+  // The loader checks every key's pose; between two keys the position can pass through the target,
+  // the up can shrink to nothing (keys (0,1,0) → (0,−1,0) meet at the zero vector) or turn parallel
+  // to the view: there the nearer key's camera stands in. Each test is relative to the keys' own
+  // lengths, so a zero or vanishing vector fails it (a bound scaled by the interpolated length did not).
   const glm::vec3 dir = c.target - c.position;
-  if (glm::length(dir) < 1e-12f ||
-      glm::length(glm::cross(dir, c.up)) < 1e-6f * glm::length(dir) * glm::length(c.up))
+  const float dirLen = glm::length(dir), upLen = glm::length(c.up);
+  const float keyDir = std::max(glm::length(a.camera.target - a.camera.position),
+                                glm::length(b.camera.target - b.camera.position)),
+              keyUp = std::max(glm::length(a.camera.up), glm::length(b.camera.up));
+  if (!(dirLen > 1e-6f * keyDir) || !(upLen > 1e-3f * keyUp) ||
+      !(glm::length(glm::cross(dir / dirLen, c.up / upLen)) > 1e-3f))
     return t < 0.5f ? a.camera : b.camera;
   return c;
 }

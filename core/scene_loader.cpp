@@ -46,6 +46,21 @@ void checkSceneRanges(const Scene& scene, const std::string& origin) {
       if (!(v[k] <= kMaxRadiometric))
         fail(origin, ": ", what, " (", v.x, ", ", v.y, ", ", v.z, ") exceeds ", kMaxRadiometric);
   };
+  // A cut-away distance at or beyond the scene's farthest point along the view axis leaves nothing
+  // to see (and a near plane 1e20 out put Embree's ray origins beyond its range).
+  auto cutAway = [&](const Camera& cam, const Bounds& b, const std::string& what) {
+    if (!(cam.clipNear > 0.0f)) return;
+    const glm::vec3 fwd = glm::normalize(cam.target - cam.position);
+    float farthest = 0.0f;
+    for (int k = 0; k < 8; ++k) {
+      const glm::vec3 corner((k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y, (k & 4) ? b.hi.z : b.lo.z);
+      farthest = std::max(farthest, glm::dot(corner - cam.position, fwd));
+    }
+    if (!(cam.clipNear < farthest))
+      fail(origin, ": ", what, " ", cam.clipNear,
+           " lies at or beyond the whole scene (its farthest point is ", farthest,
+           " along the view axis): the image would be empty");
+  };
   Bounds b = scene.bounds();
   coordinate(b.lo, "the geometry's bounding-box corner");
   coordinate(b.hi, "the geometry's bounding-box corner");
@@ -55,7 +70,9 @@ void checkSceneRanges(const Scene& scene, const std::string& origin) {
     const std::string where = "camera.keyframes[" + std::to_string(k) + "]";
     coordinate(scene.cameraPath[k].camera.position, where + ".position");
     coordinate(scene.cameraPath[k].camera.target, where + ".target");
+    cutAway(scene.cameraPath[k].camera, scene.bounds(scene.cameraPath[k].time), "camera.near at " + where);
   }
+  if (scene.cameraPath.empty()) cutAway(scene.camera, b, "camera.near");
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const std::string where = "lights[" + std::to_string(i) + "]";
     coordinate(scene.lights[i].position, where + ".position");

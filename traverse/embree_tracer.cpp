@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -48,7 +49,16 @@ EmbreeTracer::~EmbreeTracer() {
 }
 
 namespace {
+// Embree asserts (aborts the process) on a ray outside RTCRay's valid range: origin and direction
+// components within ±1.844e18 and finite, tnear and tfar not NaN. Every maker of rays keeps them in
+// range (the scene's range checks); a ray that still is not is a bug, reported on the caller's thread.
+constexpr float kEmbreeLarge = 1.844e18f;
 RTCRay makeRay(glm::vec3 o, glm::vec3 d, float tnear, float tfar) {
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(o[k]) <= kEmbreeLarge) || !(std::abs(d[k]) <= kEmbreeLarge) || std::isnan(tnear) ||
+        std::isnan(tfar))
+      fail("internal: a ray outside Embree's range: origin (", o.x, ", ", o.y, ", ", o.z, "), direction (",
+           d.x, ", ", d.y, ", ", d.z, "), t in [", tnear, ", ", tfar, "]");
   RTCRay r;
   r.org_x = o.x;
   r.org_y = o.y;

@@ -32,8 +32,11 @@ FrameCamera frameCamera(const Camera& cam, const Bounds& b, int W, int H, int fr
   // with the front face and won a 1-pixel column (seen on the Cornell box).
   const float camFar =
       glm::length(glm::max(glm::abs(b.lo - cam.position), glm::abs(b.hi - cam.position))) * 1.01f + 1e-6f;
-  // A cut-away camera's near plane is its clip distance: the raster clips what lies before it.
-  const float nearP = cam.clipNear > 0.0f ? cam.clipNear : std::max(camFar * 1e-5f, 1e-7f),
+  // A cut-away camera's near plane is its clip distance: the raster clips what lies before it. One
+  // closer than the plain near plane cuts nothing away: that plane stands (a denormal near plane
+  // gave depth near/distance = 0 everywhere, the cleared value, and a black image).
+  const float plainNear = std::max(camFar * 1e-5f, 1e-7f);
+  const float nearP = std::max(cam.clipNear, plainNear),
               f = 1.0f / std::tan(0.5f * glm::radians(cam.fovYDeg));
   glm::mat4 proj(0.0f);
   proj[0][0] = f * float(H) / float(W);
