@@ -1,10 +1,12 @@
 #include "experiments/compare.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
+#include "core/json_text.h"
 #include "core/output_files.h"
 #include "core/progress.h"
 
@@ -42,6 +44,25 @@ CounterpartChoice counterpartOnDevice(const RenderOptions& method, const Counter
     }
   } else if (gl && !exact.needsGl && device == ExactDevice::Same) {
     addNote(registry.method + " has no GL twin");
+  } else if (exact.needsGl && device == ExactDevice::Cpu) {
+    // Asked for the CPU: a GL counterpart (a reference naming reference_gl) becomes the CPU method
+    // whose twin it is, or is refused — never run on GL while the results say "cpu".
+    const MethodInfo* cpu = nullptr;
+    for (const MethodInfo& m : methodRegistry())
+      if (m.glTwin == exact.name) cpu = &m;
+    if (!cpu) fail("the exact device is the CPU, but the counterpart ", exact.name, " runs on GL only");
+    RenderOptions onCpu = method;
+    onCpu.method = cpu->name;
+    onCpu.set = registry.set;
+    onCpu.preset.clear();
+    try {
+      resolveParameters(onCpu);
+    } catch (const Error& e) {
+      fail("the exact device is the CPU, but ", cpu->name, " (the CPU twin of ", exact.name,
+           ") refuses the counterpart's parameters: ", e.what());
+    }
+    c.counterpart.method = cpu->name;
+    c.device = "cpu";
   }
   c.sameDevice = c.device == (gl ? "gl" : "cpu");
   return c;
@@ -84,8 +105,19 @@ Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const Di
       c.exact.stats = nlohmann::json::object();  // not a stats file: the image alone
     }
     if (!c.exact.stats.is_object()) c.exact.stats = nlohmann::json::object();
+    // What is read from the stats is checked: a sample count and two times, as vgi writes them.
+    const nlohmann::json& st = c.exact.stats;
+    if (st.contains("spp") && !(st["spp"].is_number_integer() && st["spp"].get<double>() >= 1 &&
+                                st["spp"].get<double>() <= double(1 << 20)))
+      fail("--reference '", referenceFile, "': its stats '", stem,
+           ".json' say \"spp\": ", jsonExcerpt(st["spp"]), ", not a sample count in [1, 1048576]");
+    for (const char* key : {"total_ms", "wall_ms"})
+      if (st.contains(key) &&
+          !(st[key].is_number() && st[key].get<double>() >= 0 && std::isfinite(st[key].get<double>())))
+        fail("--reference '", referenceFile, "': its stats '", stem, ".json' say \"", key,
+             "\": ", jsonExcerpt(st[key]), ", not a time in milliseconds");
+    refSpp = st.contains("spp") ? st["spp"].get<int>() : 0;
     c.exact.stats["reference_file"] = referenceFile;
-    refSpp = c.exact.stats.value("spp", 0);
   }
   RenderOptions m = opt;
   m.aovs = c.counterpart.aovs;

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -162,12 +163,30 @@ namespace {
 // "frames", "time_step", "time" of the experiment or of one scene (`where` names it) over `a`.
 void readAnimation(const nlohmann::json& j, const std::string& where, Experiment::Animation& a) {
   if (j.contains("frames")) a.frames = intIn(j["frames"], where + "frames", 1, 10000);
-  if (j.contains("time_step")) a.timeStep = float(positive(j["time_step"], where + "time_step"));
+  // Renders take these as 32-bit floats: a value finite only as a double (1e300) is refused here,
+  // by its key, not by every render's "--time-step inf" later.
+  auto asFloat = [&](double v, const char* key) {
+    if (!(std::abs(v) <= double(std::numeric_limits<float>::max())))
+      fail("experiment: ", where, "'", key, "' = ", j[key].dump(), " is beyond a 32-bit float");
+    return float(v);
+  };
+  if (j.contains("time_step"))
+    a.timeStep = asFloat(positive(j["time_step"], where + "time_step"), "time_step");
   if (j.contains("time")) {
     if (!j["time"].is_number() || !std::isfinite(j["time"].get<double>()))
       fail("experiment: ", where, "'time' = ", j["time"].dump(), " must be a finite number");
-    a.time = j["time"].get<float>();
+    a.time = asFloat(j["time"].get<double>(), "time");
   }
+}
+
+// Every frame's time (time + k·time_step in float, as the render computes it) must be finite.
+void checkAnimation(const Experiment::Animation& a, const std::string& scene) {
+  const float last = a.time + float(a.frames - 1) * a.timeStep;
+  if (!std::isfinite(last))
+    fail("experiment: scene '", scene, "': 'time' ", a.time, " + ('frames' ", a.frames,
+         " - 1) x 'time_step' ", a.timeStep, " = ",
+         double(a.time) + double(a.frames - 1) * double(a.timeStep),
+         ", the last frame's time, is beyond a 32-bit float");
 }
 
 // The experiment's own fields: name, scenes, size, spp, seed, checkpoints, aovs, ε, time budget.
@@ -195,6 +214,7 @@ void readExperimentHead(const nlohmann::json& j, const std::string& path, Experi
     } else {
       fail("experiment: scene ", s.dump(), " is neither a scene nor {\"scene\": …, \"frames\": …}");
     }
+    checkAnimation(a, scene);
     if (e.animation.count(scene)) fail("experiment: scene '", scene, "' is listed twice");
     e.scenes.push_back(scene);
     e.animation[scene] = a;
@@ -255,6 +275,7 @@ int readReference(const nlohmann::json& ref, const std::string& path, Experiment
     if (d != "same" && d != "cpu")
       fail("experiment: 'reference.device' = ", ref["device"].dump(), " must be \"same\" or \"cpu\"");
     e.exactDevice = d == "same" ? ExactDevice::Same : ExactDevice::Cpu;
+    e.exactDeviceGiven = true;
   }
   if (ref.contains("file") && (ref.contains("method") || ref.contains("spp") || ref.contains("convergence")))
     fail("experiment: 'reference' has a 'file' and a method, spp or convergence: give one of them");
@@ -381,7 +402,8 @@ ReferenceChoice chooseReference(const Experiment& e, const nlohmann::json& ref, 
 // off. The reference image may come from either device (the same integral). `curveMethods` caches
 // the device choice per method and reference.
 void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const ReferenceChoice& rc,
-                  int refSpp, const std::string& where, std::map<std::string, std::string>& curveMethods) {
+                  int refSpp, const std::string& where,
+                  std::map<std::string, CounterpartChoice>& curveMethods) {
   const std::string &scene = o.scene, &method = o.method, &dir = e.dir;
   const std::string& rmethod = rc.method;
   const std::vector<std::string>&rset = rc.set, &raovs = rc.aovs;
@@ -408,14 +430,22 @@ void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const R
   if (!e.curveCounts.empty()) {
     const std::string key = method + "\n" + r.id;
     auto known = curveMethods.find(key);
-    if (known == curveMethods.end())
-      known =
-          curveMethods
-              .emplace(
-                  key,
-                  counterpartOnDevice(o, Counterpart{rmethod, rset, raovs}, e.exactDevice).counterpart.method)
-              .first;
-    const std::string& cmethod = known->second;
+    if (known == curveMethods.end()) {
+      CounterpartChoice choice;
+      try {
+        choice = counterpartOnDevice(o, Counterpart{rmethod, rset, raovs}, e.exactDevice);
+      } catch (const Error& ex) {
+        fail("experiment: 'reference.device' = \"cpu\": the curve of ", where, " (", rmethod, " on ", scene,
+             "): ", ex.what());
+      }
+      // "same", written in the file, is a demand: a curve that must leave the method's device is refused.
+      if (e.exactDeviceGiven && e.exactDevice == ExactDevice::Same && !choice.sameDevice)
+        fail("experiment: 'reference.device' = \"same\", but the curve of ", where, " (", method,
+             ", counterpart ", rmethod, ") cannot run on the method's device: ", choice.note,
+             " (say \"cpu\", or leave 'device' out to accept either)");
+      known = curveMethods.emplace(key, choice).first;
+    }
+    const std::string& cmethod = known->second.counterpart.method;
     const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
     const SweepRender curve = makeRender(
         dir, "curves", cmethod,
@@ -425,6 +455,7 @@ void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const R
     if (c == e.curves.end()) {
       e.curves.push_back(curve);
       e.curveReference.push_back(pt.reference);
+      e.curveChoice.push_back(known->second);
       c = e.curves.end() - 1;
     }
     pt.curve = int(c - e.curves.begin());
@@ -433,15 +464,15 @@ void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const R
 
 // What expanding the methods gathers across them.
 struct ExpandState {
-  std::map<std::string, std::string> curveMethods;  // method, reference → its curve's method
-  std::set<std::string> written;                    // the outputs the methods write
+  std::map<std::string, CounterpartChoice> curveMethods;  // method, reference → its curve's method, device
+  std::set<std::string> written;                          // the outputs the methods write
 };
 
 // Entry `mi` of "methods": its points (scenes × grid combinations), each with its reference and curve.
 void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref, int refSpp, Experiment& e,
                   ExpandState& st) {
   const std::string& dir = e.dir;
-  std::map<std::string, std::string>& curveMethods = st.curveMethods;
+  std::map<std::string, CounterpartChoice>& curveMethods = st.curveMethods;
   std::set<std::string>& written = st.written;
   const nlohmann::json& m = j["methods"][mi];
   const std::string where = "methods[" + std::to_string(mi) + "]";
@@ -663,14 +694,15 @@ nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string
         d.leak,   d.darkFraction};
     for (int k = 0; k < 7; ++k) sum[k] += v[k] / double(a.size());
   }
-  nlohmann::json m = {{"relmse", sum[0]},       {"relmse_relative", sum[1]}, {"rel_mae", sum[2]},
-                      {"ssim", sum[3]},         {"energy", sum[4]},          {"leak", sum[5]},
-                      {"dark_fraction", sum[6]}};
+  // A metric without a value (against a black reference) is "undefined" in the row, the JSON and the CSV.
+  nlohmann::json m;
+  const char* names[7] = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy", "leak", "dark_fraction"};
+  for (int k = 0; k < 7; ++k) m[names[k]] = finiteOrUndefined(sum[k]);
   if (a.size() > 1) {
     const SequenceDiff s = compareSequences(ia, ib, a.front(), b.front());
-    m["temporal_error"] = s.temporalError;
-    m["change"] = s.changeA;
-    m["change_reference"] = s.changeB;
+    m["temporal_error"] = finiteOrUndefined(s.temporalError);
+    m["change"] = finiteOrUndefined(s.changeA);
+    m["change_reference"] = finiteOrUndefined(s.changeB);
   }
   return m;
 }
@@ -768,7 +800,10 @@ nlohmann::json collectSweep(const Experiment& e) {
                                  {"label", label + " (exact, seed " + std::to_string(e.seed + 1) + ")"},
                                  {"role", "counterpart"},
                                  {"params", nlohmann::json::object()},
-                                 {"point", e.curves[i].id}};
+                                 {"point", e.curves[i].id},
+                                 {"device", e.curveChoice[i].device},
+                                 {"same_device", e.curveChoice[i].sameDevice},
+                                 {"note", e.curveChoice[i].note}};
     const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
     addRows(e, e.curves[i], below, ref, base, machine, curveRows[i]);
     for (auto& r : curveRows[i]) rows.push_back(r);
@@ -788,10 +823,12 @@ nlohmann::json collectSweep(const Experiment& e) {
       for (auto& ch : channels) {
         if (!row.contains(ch) || p.curve < 0 || curveRows[size_t(p.curve)].empty()) continue;
         std::vector<CurvePoint> curve;
+        // (An error with no value, "undefined" against a black reference, has no equal-error time.)
         for (auto& c : curveRows[size_t(p.curve)])
-          if (c.contains(ch))
+          if (c.contains(ch) && c[ch]["relmse_relative"].is_number())
             curve.push_back({c["time_ms"].get<double>(), c["sample_ms"].get<double>(),
                              c[ch]["relmse_relative"].get<double>()});
+        if (!row[ch]["relmse_relative"].is_number()) continue;
         const EqualError eq = equalErrorTime(curve, row[ch]["relmse_relative"].get<double>());
         if (!eq.valid) continue;
         row[ch]["equal_error_time_ms"] = eq.timeMs;
@@ -834,6 +871,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
                         {"animations", animations},
                         {"convergence", e.curveCounts},
                         {"exact_device", e.exactDevice == ExactDevice::Same ? "same" : "cpu"},
+                        {"exact_device_given", e.exactDeviceGiven},
                         {"points", e.points.size()},
                         {"rows", rows}};
   writeJsonFile(out, e.dir + "/results.json");
@@ -870,7 +908,8 @@ nlohmann::json writeSweepResults(const Experiment& e) {
     for (auto& ch : channels)
       for (auto& m : metrics) {
         csv << ",";
-        if (r.contains(ch) && r[ch].contains(m)) csv << r[ch][m].get<double>();
+        if (r.contains(ch) && r[ch].contains(m))
+          csv << (r[ch][m].is_number() ? jsonText(r[ch][m]) : std::string(kUndefined));
       }
     csv << "," << field(r["gl_renderer"]) << "," << field(r["machine"]) << "," << field(r["git_revision"])
         << "\n";

@@ -30,8 +30,13 @@
 //                                             // at these counts → each row's equal-error time ratio
 //                   "device": "same"}         // optional: the curve runs on each method's device
 //                                             // (a GL method's: reference_gl) — or "cpu": the
-//                                             // registry's counterpart; the reference image is the
-//                                             // registry's (or the given method's) either way
+//                                             // CPU counterpart (a reference_gl reference's curve
+//                                             // runs `reference`); the reference image is the
+//                                             // registry's (or the given method's) either way.
+//                                             // Left out: the method's device where the twin takes
+//                                             // the parameters, else the CPU; "same" written out is
+//                                             // refused where it cannot be done. Each curve's row
+//                                             // says where it ran ("device", "same_device", "note")
 //                | {"method": "reference", "set": {"integrator": "ao"}, "spp": 256}
 //                | {"file": "ref.exr"}        // an existing image (one scene; its AOVs next to it)
 //     "methods": [ {"method": "nearfield", "label": "NF",
@@ -100,11 +105,13 @@ struct Experiment {
   bool animated() const;                       // a scene has frames > 1
   std::vector<int> curveCounts;  // the counterparts' convergence checkpoints (sorted; last = its spp)
   ExactDevice exactDevice = ExactDevice::Same;  // where the convergence curves run (reference.device)
+  bool exactDeviceGiven = false;  // the file says "device" (then "same" is a demand, not a preference)
   std::vector<SweepRender> references;
   // The counterparts' convergence renders, each against references[curveReference[i]]: one per
   // reference and device (a reference shared by a GL and a CPU method has two).
   std::vector<SweepRender> curves;
   std::vector<size_t> curveReference;
+  std::vector<CounterpartChoice> curveChoice;  // per curve: its device, and why not the method's
   std::vector<SweepPoint> points;
 };
 
