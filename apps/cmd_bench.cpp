@@ -389,7 +389,9 @@ void addMotionBench(CLI::App& bench) {
       if (t.stillMs > 0) std::snprintf(ratio, sizeof ratio, "%.3f", t.movingMs / t.stillMs);
       std::printf("%-24s %12.3f %12.3f %8s\n", name.c_str(), t.stillMs, t.movingMs, ratio);
     }
-    std::printf("%-24s %12.3f %12.3f %8.3f\n", "all passes", c.stillMs, c.movingMs, c.ratio());
+    char all[32] = "undefined";  // still 0, moving not (as in the JSON)
+    if (std::isfinite(c.ratio())) std::snprintf(all, sizeof all, "%.3f", c.ratio());
+    std::printf("%-24s %12.3f %12.3f %8s\n", "all passes", c.stillMs, c.movingMs, all);
   });
 }
 

@@ -1,5 +1,7 @@
 // vgi diff A B [--json]: error of image A against reference B.
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -26,12 +28,25 @@ void addDiffOptions(CLI::App* cmd, DiffOptions& d) {
       ->capture_default_str();
 }
 
+namespace {
+// One number as printf's `spec` writes it, or "undefined" (a metric without a value: a ratio
+// against a black reference), right-aligned in the same width.
+std::string num(const char* spec, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, spec, v);
+  if (std::isfinite(v)) return buf;
+  std::string u = kUndefined;
+  const size_t width = std::strlen(buf);
+  return width > u.size() ? std::string(width - u.size(), ' ') + u : u;
+}
+}  // namespace
+
 std::string diffLine(const ImageDiff& d) {
-  char buf[320];
-  std::snprintf(buf, sizeof buf, "%12.6g %12.5f %9.4f   %.4f %.4f %.4f   %.3f %.3f %.3f   %9.3g (%.2f)",
-                d.relMse, d.relMae, d.ssim, d.relMaeRgb[0], d.relMaeRgb[1], d.relMaeRgb[2], d.energyRgb[0],
-                d.energyRgb[1], d.energyRgb[2], d.leak, d.darkFraction);
-  return buf;
+  return num("%12.6g", d.relMse) + " " + num("%12.5f", d.relMae) + " " + num("%9.4f", d.ssim) + "   " +
+         num("%.4f", d.relMaeRgb[0]) + " " + num("%.4f", d.relMaeRgb[1]) + " " + num("%.4f", d.relMaeRgb[2]) +
+         "   " + num("%.3f", d.energyRgb[0]) + " " + num("%.3f", d.energyRgb[1]) + " " +
+         num("%.3f", d.energyRgb[2]) + "   " + num("%9.3g", d.leak) + " (" + num("%.2f", d.darkFraction) +
+         ")";
 }
 const char* diffHeader() {
   return "      relMSE     rel. MAE      SSIM   rel. MAE r / g / b       energy r / g / b (A/B)   leak (dark "
@@ -68,8 +83,9 @@ void diffSequences(const std::string& a, const std::string& b, int frames, const
     j["per_frame"] = perFrame;
     std::printf("%s\n", jsonText(j, 2).c_str());
   } else {
-    std::printf("temporal error %.6g (frame-to-frame change: A %.6g, B %.6g; %d frames)\n", s.temporalError,
-                s.changeA, s.changeB, s.frames);
+    std::printf("temporal error %s (frame-to-frame change: A %s, B %s; %d frames)\n",
+                num("%.6g", s.temporalError).c_str(), num("%.6g", s.changeA).c_str(),
+                num("%.6g", s.changeB).c_str(), s.frames);
   }
 }
 }  // namespace
@@ -128,10 +144,14 @@ void addDiffCommand(CLI::App& app) {
       std::printf("%s\n", jsonText(j, 2).c_str());
     } else {
       std::printf(
-          "rmse        %.6g\nmae         %.6g\nrelmse      %.6g (epsilon %.3g)\nrel_mae     %.6g (r %.4f, g "
-          "%.4f, b %.4f)\nenergy A/B  %.4f %.4f %.4f\nssim        %.6f\nleak        %.6g (dark share %.4f)\n",
-          d.rmse, d.mae, d.relMse, d.epsilon, d.relMae, d.relMaeRgb[0], d.relMaeRgb[1], d.relMaeRgb[2],
-          d.energyRgb[0], d.energyRgb[1], d.energyRgb[2], d.ssim, d.leak, d.darkFraction);
+          "rmse        %s\nmae         %s\nrelmse      %s (epsilon %s)\nrel_mae     %s (r %s, g %s, b %s)\n"
+          "energy A/B  %s %s %s\nssim        %s\nleak        %s (dark share %s)\n",
+          num("%.6g", d.rmse).c_str(), num("%.6g", d.mae).c_str(), num("%.6g", d.relMse).c_str(),
+          num("%.3g", d.epsilon).c_str(), num("%.6g", d.relMae).c_str(), num("%.4f", d.relMaeRgb[0]).c_str(),
+          num("%.4f", d.relMaeRgb[1]).c_str(), num("%.4f", d.relMaeRgb[2]).c_str(),
+          num("%.4f", d.energyRgb[0]).c_str(), num("%.4f", d.energyRgb[1]).c_str(),
+          num("%.4f", d.energyRgb[2]).c_str(), num("%.6f", d.ssim).c_str(), num("%.6g", d.leak).c_str(),
+          num("%.4f", d.darkFraction).c_str());
     }
   });
 }

@@ -66,9 +66,15 @@ void addSweepCommand(CLI::App& app) {
            e.dir, " by hand");
     const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
     const std::string report = python + " '" + script + "' '" + e.dir + "' 2>&1";
-    if (std::system(report.c_str()) != 0)
-      fail("sweep: the report (", script,
-           ") failed; it needs python3-matplotlib (scripts/setup.sh installs it)");
+    if (std::system(report.c_str()) != 0) {
+      // Say why only when that is why: a script that failed on its input is not a missing package.
+      const bool haveMatplotlib =
+          std::system((python + " -c 'import matplotlib' >/dev/null 2>&1").c_str()) == 0;
+      fail("sweep: the report (", script, ") failed",
+           haveMatplotlib ? " (its output is above)"
+                          : ": it needs python3-matplotlib (scripts/setup.sh installs it), which is missing",
+           "; the results are written: ", e.dir, "/results.json and results.csv");
+    }
     std::fprintf(stderr, "sweep %s: wrote the plots, pareto.md / pareto.tex and %s/report.html\n",
                  e.name.c_str(), e.dir.c_str());
   });

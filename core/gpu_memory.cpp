@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/json_text.h"
 
 namespace vgi {
 
@@ -93,7 +94,9 @@ nlohmann::json memoryAgainstResources(nlohmann::json now, const nlohmann::json& 
     const double growth = now[key].get<double>() - baseline[key].get<double>();
     now["growth_of"] = key;
     now["growth_bytes"] = growth;
-    now["growth_over_reported"] = reported > 0 ? nlohmann::json(growth / reported) : nlohmann::json();
+    // A method that reports no bytes has no ratio: "undefined" (core/json_text.h), not null.
+    now["growth_over_reported"] =
+        reported > 0 ? finiteOrUndefined(growth / reported) : nlohmann::json(kUndefined);
   }
   return now;
 }

@@ -30,8 +30,8 @@ nlohmann::json measuredMemory(bool gl);
 // is how much the device's memory grew since the baseline — "gpu_used_bytes" where the driver
 // reports it (growth_of says which), else "rss_bytes" (llvmpipe keeps GL objects in the process) —
 // and "growth_over_reported" that growth over the reported bytes (1: the stats say what the render
-// costs; a driver's copies, padding, or lazily committed pages move it either way; null without
-// reported bytes).
+// costs; a driver's copies, padding, or lazily committed pages move it either way;
+// "undefined" without reported bytes).
 // "targets_bytes" (the sample loop's G-buffer, film and scratch textures) counts in the reported bytes too.
 nlohmann::json memoryAgainstResources(nlohmann::json now, const nlohmann::json& baseline,
                                       double resourcesBytes, double methodBytes = 0, double targetsBytes = 0);

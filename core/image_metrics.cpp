@@ -7,28 +7,34 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/json_text.h"
 
 namespace vgi {
 
+// A metric whose denominator is 0 (a black reference, nothing lit, no change) has no value: it is
+// written "undefined" (core/json_text.h), not null.
 nlohmann::json ImageDiff::toJson() const {
-  auto rgb = [](const double* v) { return nlohmann::json{v[0], v[1], v[2]}; };
-  return {{"rmse", rmse},
-          {"relmse", relMse},
-          {"relmse_epsilon", epsilon},
-          {"mae", mae},
-          {"rel_mae", relMae},
+  auto num = [](double v) { return finiteOrUndefined(v); };
+  auto rgb = [&](const double* v) { return nlohmann::json{num(v[0]), num(v[1]), num(v[2])}; };
+  return {{"rmse", num(rmse)},
+          {"relmse", num(relMse)},
+          {"relmse_epsilon", num(epsilon)},
+          {"mae", num(mae)},
+          {"rel_mae", num(relMae)},
           {"rel_mae_rgb", rgb(relMaeRgb)},
           {"energy_rgb", rgb(energyRgb)},
           {"mean_a_rgb", rgb(meanA)},
           {"mean_b_rgb", rgb(meanB)},
-          {"ssim", ssim},
-          {"leak", leak},
-          {"dark_fraction", darkFraction}};
+          {"ssim", num(ssim)},
+          {"leak", num(leak)},
+          {"dark_fraction", num(darkFraction)}};
 }
 
 nlohmann::json SequenceDiff::toJson() const {
-  return {
-      {"frames", frames}, {"temporal_error", temporalError}, {"change_a", changeA}, {"change_b", changeB}};
+  return {{"frames", frames},
+          {"temporal_error", finiteOrUndefined(temporalError)},
+          {"change_a", finiteOrUndefined(changeA)},
+          {"change_b", finiteOrUndefined(changeB)}};
 }
 
 namespace {
@@ -127,6 +133,11 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
   const double ae = absErr[0] + absErr[1] + absErr[2], level = sumB[0] + sumB[1] + sumB[2];
   d.rmse = std::sqrt(se / n);
   d.relMse = rel / n;
+  // ε relative to a black reference's mean is 0: relMSE has no scale (it was 1e27 through the floor).
+  if (options.relativeEpsilon > 0 && level == 0) {
+    d.epsilon = NAN;
+    d.relMse = se == 0 ? 0.0 : NAN;
+  }
   d.mae = ae / n;
   d.relMae = ratio(ae, level);
   for (int k = 0; k < 3; ++k) {

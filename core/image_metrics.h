@@ -32,6 +32,11 @@
 //            frames differ by √2 × the noise), unless its seeds repeat per frame.
 //   change   Σ_t Σ |Δx_t| / Σ_{t≥1} Σ |x_t| of each sequence alone (`changeA`,
 //            `changeB`): how much each one moves from frame to frame.
+//
+// A ratio whose denominator is 0 has no value: rel. MAE, energy and relMSE with a relative ε
+// against a black reference, the leak where nothing is lit, the temporal metrics of a dark
+// sequence. It is +inf or NaN here (0 where the numerator is 0 too) and "undefined" in JSON
+// (toJson, core/json_text.h) and in `vgi diff`'s text.
 #pragma once
 #include <nlohmann/json_fwd.hpp>
 #include <string>

@@ -1,5 +1,6 @@
 #include "core/json_text.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -9,8 +10,33 @@
 
 namespace vgi {
 
+nlohmann::json finiteOrUndefined(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(kUndefined);
+}
+
+namespace {
+bool hasNonFinite(const nlohmann::json& j) {
+  if (j.is_number_float()) return !std::isfinite(j.get<double>());
+  if (j.is_structured())
+    for (const auto& v : j)
+      if (hasNonFinite(v)) return true;
+  return false;
+}
+void replaceNonFinite(nlohmann::json& j) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) j = kUndefined;
+  if (j.is_structured())
+    for (auto& v : j) replaceNonFinite(v);
+}
+}  // namespace
+
 std::string jsonText(const nlohmann::json& j, int indent) {
-  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+  auto text = [&](const nlohmann::json& v) {
+    return v.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+  };
+  if (!hasNonFinite(j)) return text(j);
+  nlohmann::json copy = j;  // nlohmann writes NaN and ±inf as null: they become "undefined"
+  replaceNonFinite(copy);
+  return text(copy);
 }
 
 namespace {

@@ -9,6 +9,13 @@
 
 namespace vgi {
 
+// A number with no finite value — a metric whose denominator is 0 (the energy ratio or relative
+// error against a black reference, the leak where nothing is lit), a ratio of times that overflowed —
+// is the string "undefined" in every file and --json output vgi writes, never null.
+constexpr const char* kUndefined = "undefined";
+nlohmann::json finiteOrUndefined(double v);  // v, or "undefined" where it is NaN or ±inf
+
+// The text of `j` (indent < 0: one line); non-finite numbers are written as kUndefined.
 std::string jsonText(const nlohmann::json& j, int indent = -1);
 
 // At most `limit` characters of the value, "…" marking a cut. Containers are

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/json_text.h"
 
 namespace vgi {
 
@@ -19,8 +20,11 @@ std::map<std::string, double> meanPassTimes(const nlohmann::json& stats, const s
     if (!frames[f].contains("timings_ms") || !frames[f]["timings_ms"].is_object())
       fail(name, ": frame ", f, " has no timings_ms");
     for (auto& [pass, ms] : frames[f]["timings_ms"].items()) {
-      if (!ms.is_number())
-        fail(name, ": frame ", f, " timings_ms.", pass, " = ", ms.dump(), " is not a number");
+      // A time a render measured: a number of milliseconds ≥ 0, and below 10¹² (30 years), so that
+      // sums over passes and frames stay finite (a −5 gave a ratio of −25; 1.7e308 gave null).
+      if (!ms.is_number() || !(ms.get<double>() >= 0) || !(ms.get<double>() <= 1e12))
+        fail(name, ": frame ", f, " timings_ms.", pass, " = ", jsonExcerpt(ms),
+             " is not a time in milliseconds (a number in [0, 1e12])");
       mean[pass] += ms.get<double>() / double(frames.size() - 1);
     }
   }
@@ -35,13 +39,14 @@ double MotionCost::ratio() const {
 nlohmann::json MotionCost::toJson() const {
   nlohmann::json p = nlohmann::json::object();
   for (auto& [name, t] : passes)
-    p[name] = {{"still_ms", t.stillMs},
-               {"moving_ms", t.movingMs},
-               {"ratio", t.stillMs > 0 ? nlohmann::json(t.movingMs / t.stillMs) : nlohmann::json()}};
+    p[name] = {
+        {"still_ms", t.stillMs},
+        {"moving_ms", t.movingMs},
+        {"ratio", t.stillMs > 0 ? finiteOrUndefined(t.movingMs / t.stillMs) : nlohmann::json(kUndefined)}};
   return {{"frames", frames},
           {"still_ms", stillMs},
           {"moving_ms", movingMs},
-          {"ratio", std::isfinite(ratio()) ? nlohmann::json(ratio()) : nlohmann::json()},
+          {"ratio", finiteOrUndefined(ratio())},
           {"passes", p}};
 }
 

@@ -30,6 +30,17 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def num(x):
+    """A metric as a float, or None where it has no value: vgi writes "undefined" for a ratio against
+    a black reference (core/json_text.h); older files may hold null."""
+    return float(x) if isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) else None
+
+
+def fmt(x, spec):
+    v = num(x)
+    return "undefined" if v is None else format(v, spec)
+
+
 def slug(s):
     return re.sub(r"[^A-Za-z0-9]+", "_", s).strip("_") or "scene"
 
@@ -58,13 +69,13 @@ def channels_of(rows):
 
 def pareto(rows, channel):
     """Rows not dominated in (time, error): nothing is both faster and more accurate."""
-    pts = [r for r in rows if channel in r]
-    pts.sort(key=lambda r: (r["time_ms"], r[channel]["rel_mae"]))
+    pts = [r for r in rows if channel in r and num(r[channel].get("rel_mae")) is not None]
+    pts.sort(key=lambda r: (r["time_ms"], num(r[channel]["rel_mae"])))
     front, best = [], math.inf
     for r in pts:
-        if r[channel]["rel_mae"] < best:
+        if num(r[channel]["rel_mae"]) < best:
             front.append(r)
-            best = r[channel]["rel_mae"]
+            best = num(r[channel]["rel_mae"])
     return front
 
 
@@ -109,8 +120,9 @@ def main(out):
         for mi, (metric, mname) in enumerate(metrics):
             for ax, ch in zip(axes[mi], chans):
                 for pid, p in order:
-                    xs = [r["time_ms"] for r in p if ch in r]
-                    ys = [max(r[ch][metric], 1e-9) for r in p if ch in r]
+                    shown = [r for r in p if ch in r and num(r[ch].get(metric)) is not None]
+                    xs = [r["time_ms"] for r in shown]
+                    ys = [max(num(r[ch][metric]), 1e-9) for r in shown]
                     if xs:
                         (line,) = ax.plot(xs, ys, ms=3, label=point_name(p[0]), **styles[pid])
                         handles.setdefault(pid, line)
@@ -143,13 +155,13 @@ def main(out):
                     t = json.load(f).get("timings_ms", {})
             timings.append(t)
             for k, v in t.items():
-                if k not in passes and v >= 0.5:
+                if k not in passes and (num(v) or 0.0) >= 0.5:
                     passes.append(k)
         fig, ax = plt.subplots(figsize=(10, 0.45 * len(finals) + 1.8))
         left = [0.0] * len(finals)
         cmap = plt.get_cmap("tab20")
         for i, k in enumerate(passes):
-            vals = [t.get(k, 0.0) for t in timings]
+            vals = [num(t.get(k)) or 0.0 for t in timings]
             ax.barh(range(len(finals)), vals, left=left, color=cmap(i % 20), label=k)
             left = [a + b for a, b in zip(left, vals)]
         ax.set_yticks(range(len(finals)))
@@ -190,11 +202,11 @@ def main(out):
             cells = ["*" if on_front else ""]
             for c in chans:
                 if c in r:
-                    cells += [f"{r[c]['rel_mae']:.4f}", f"{r[c]['relmse']:.5f}"]
+                    cells += [fmt(r[c].get("rel_mae"), ".4f"), fmt(r[c].get("relmse"), ".5f")]
                     if ratio:
                         q = r[c].get("equal_error_time_ratio")
                         cells.append("" if q is None else
-                                     ("~" if r[c].get("equal_error_extrapolated") else "") + f"{q:.3g}")
+                                     ("~" if r[c].get("equal_error_extrapolated") else "") + fmt(q, ".3g"))
                 else:
                     cells += ["", ""] + ([""] if ratio else [])
             tcells = [x.replace("~", "$\\sim$").replace("*", "$\\bullet$") for x in cells]
@@ -241,8 +253,8 @@ def frame_strip(r, frames, step, t0):
     maps, with its temporal error per channel (core/image_metrics.h)."""
     shown = sorted({round(i * (frames - 1) / max(1, min(frames, 8) - 1)) for i in range(min(frames, 8))})
     temporal = "; ".join(
-        f"{html.escape(ch)}: temporal error {r[ch]['temporal_error']:.4f}, change {r[ch]['change']:.4f} "
-        f"(reference {r[ch]['change_reference']:.4f})"
+        f"{html.escape(ch)}: temporal error {fmt(r[ch]['temporal_error'], '.4f')}, "
+        f"change {fmt(r[ch].get('change'), '.4f')} (reference {fmt(r[ch].get('change_reference'), '.4f')})"
         for ch in sorted(r, key=lambda c: (c != "image", c)) if isinstance(r[ch], dict) and "temporal_error" in r[ch])
     rows = [("method", f"points/{r['point']}/render_{{:04d}}.png"),
             ("reference", f"references/{r['reference']}/ref_{{:04d}}.png"),
@@ -302,7 +314,7 @@ def write_html(out, res, sections):
                 + "".join(f"<option value='{src}'{' selected' if name == default else ''}>{name}</option>"
                           for name, src in opts) + "</select>")
             h.append(f"<h4>{html.escape(point_name(r))} — {r['spp']} spp, image rel. MAE "
-                     f"{r['image']['rel_mae']:.4f}</h4>" if "image" in r else f"<h4>{html.escape(point_name(r))}</h4>")
+                     f"{fmt(r['image'].get('rel_mae'), '.4f')}</h4>" if "image" in r else f"<h4>{html.escape(point_name(r))}</h4>")
             h.append(f"<div>{sel('b', 'method')} | {sel('t', 'reference')} "
                      f"<input type='range' min='0' max='100' value='50' id='{pid}s' "
                      f"oninput=\"slide('{pid}t', this.value)\"></div>")

@@ -37,7 +37,15 @@ TEST(MotionCost, ADoubledFrameDoublesTheCost) {
       motionCost(animation({{"shade", 2.0}, {"voxelize", 1.0}, {"dynamic", 3.0}}, 4), still);
   EXPECT_EQ(extra.passes.at("dynamic").stillMs, 0.0);
   EXPECT_EQ(extra.ratio(), 2.0);
-  EXPECT_TRUE(extra.toJson()["passes"]["dynamic"]["ratio"].is_null());
+  EXPECT_EQ(extra.toJson()["passes"]["dynamic"]["ratio"], "undefined");  // not null
+  // Times are milliseconds in [0, 1e12]: a negative one (a ratio of −25) or one whose sums overflow
+  // (1.7e308: moving_ms null) is refused naming the file, the frame and the pass.
+  for (double bad : {-5.0, 1.7e308, 1e13})
+    test::expectError(
+        [&] {
+          motionCost(animation({{"shade", bad}}, 3), still, "m.json", "s.json");
+        },
+        {"m.json", "frame 1", "timings_ms.shade", "not a time in milliseconds"});
   test::expectError(
       [&] {
         motionCost(animation({{"a", 1.0}}, 1), still, "m.json", "s.json");

@@ -10,6 +10,7 @@
 #include "core/gl_context.h"
 #include "core/gl_handles.h"
 #include "core/gpu_memory.h"
+#include "core/json_text.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
 #include "shaders/shared/brdf.glsl"
@@ -75,7 +76,7 @@ TEST(GpuMemory, GrowthIsMeasuredAgainstTheReportedBytes) {
   EXPECT_EQ(m["growth_bytes"], 300.0);
   EXPECT_EQ(m["growth_over_reported"], 2.0);  // twice what the stats say
   EXPECT_EQ(m["baseline"], base);
-  EXPECT_TRUE(memoryAgainstResources(now, base, 0.0)["growth_over_reported"].is_null());
+  EXPECT_EQ(memoryAgainstResources(now, base, 0.0)["growth_over_reported"], kUndefined);
   // The method's own state counts beside the resources.
   const nlohmann::json withState = memoryAgainstResources(now, base, 100.0, 50.0);
   EXPECT_EQ(withState["reported_bytes"], 150.0);
