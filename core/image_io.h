@@ -21,6 +21,34 @@ struct Pixels {
 // The largest image read (pixels): a header may claim anything.
 constexpr size_t kMaxPixels = size_t(1) << 28;
 
+// An image's pixels are those of its display window (OpenEXR's; OpenImageIO's "full" window): a file
+// whose data window is offset from it, smaller or larger (an EXR cropped to what is not black) is
+// placed there, 0 where it has no data and clipped where it has data outside. `data` holds the data
+// window's pixels, dataW x dataH at (dataX, dataY); the display window is fullW x fullH at (fullX, fullY).
+inline Pixels inDisplayWindow(Pixels data, long dataX, long dataY, long fullX, long fullY, long fullW,
+                              long fullH) {
+  if (dataX == fullX && dataY == fullY && data.width == fullW && data.height == fullH) return data;
+  Pixels p;
+  p.width = int(fullW);
+  p.height = int(fullH);
+  p.channels = data.channels;
+  p.srgb = data.srgb;
+  p.values.assign(size_t(fullW) * size_t(fullH) * size_t(p.channels), 0.0f);
+  const size_t c = size_t(p.channels);
+  for (long y = 0; y < data.height; ++y) {
+    const long fy = dataY + y - fullY;
+    if (fy < 0 || fy >= fullH) continue;
+    for (long x = 0; x < data.width; ++x) {
+      const long fx = dataX + x - fullX;
+      if (fx < 0 || fx >= fullW) continue;
+      for (size_t k = 0; k < c; ++k)
+        p.values[(size_t(fy) * size_t(fullW) + size_t(fx)) * c + k] =
+            data.values[(size_t(y) * size_t(data.width) + size_t(x)) * c + k];
+    }
+  }
+  return p;
+}
+
 // Each throws vgi::Error naming `what` (or the path) and the problem.
 Pixels read(const std::string& path, const std::string& what);
 void writeExr(const std::string& path, int width, int height, const float* rgb);          // float RGB, zip

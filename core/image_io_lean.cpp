@@ -62,7 +62,12 @@ Pixels readExr(const std::string& path, const std::string& what) {
       fb.insert(names[c].c_str(), Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), xs, ys));
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
-    return p;
+    const Imath::Box2i display = header.displayWindow();
+    const long fw = long(display.max.x) - display.min.x + 1, fh = long(display.max.y) - display.min.y + 1;
+    if (fw <= 0 || fh <= 0) fail(what, " '", path, "' has an empty display window");
+    if (size_t(fw) * size_t(fh) > kMaxPixels)
+      fail(what, " '", path, "' is too large (display window ", fw, "x", fh, ")");
+    return inDisplayWindow(std::move(p), dw.min.x, dw.min.y, display.min.x, display.min.y, fw, fh);
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {

@@ -28,7 +28,13 @@ Pixels read(const std::string& path, const std::string& what) {
   p.values.resize(size_t(p.width) * size_t(p.height) * size_t(p.channels));
   if (!in->read_image(0, 0, 0, p.channels, TypeDesc::FLOAT, p.values.data()))
     fail("cannot decode ", what, " '", path, "': ", in->geterror());
-  return p;
+  // The display ("full") window; formats without one have it equal to the data window.
+  const long fw = spec.full_width > 0 ? spec.full_width : spec.width,
+             fh = spec.full_height > 0 ? spec.full_height : spec.height;
+  if (size_t(fw) * size_t(fh) > kMaxPixels)
+    fail(what, " '", path, "' is too large (display window ", fw, "x", fh, ")");
+  return inDisplayWindow(std::move(p), spec.x, spec.y, spec.full_width > 0 ? spec.full_x : spec.x,
+                         spec.full_height > 0 ? spec.full_y : spec.y, fw, fh);
 }
 
 namespace {

@@ -83,6 +83,55 @@ TEST(ImageIo, BothReadersGiveTheSamePixelsForEveryFormat) {
   }
 }
 
+// An EXR's pixels are its display window's: a data window offset from it (4 rows down, from x = −4),
+// inside it or around it is placed where it lies, 0 outside it (OpenEXR's definition), clipped
+// beyond it — through both readers (they once read the data window as if it started at (0, 0)).
+TEST(ImageIo, ExrPixelsAreReadInTheDisplayWindow) {
+  const std::string dir = tmpDir("image_io_windows");
+  std::filesystem::create_directories(dir);
+  const int fullW = 8, fullH = 6;
+  struct Case {
+    const char* name;
+    int x0, y0, w, h;  // the data window
+  };
+  const Case cases[] = {{"rows_down.exr", 0, 4, 8, 6},  {"x_from_minus4.exr", -4, 0, 8, 6},
+                        {"inside.exr", 2, 1, 3, 2},     {"around.exr", -2, -1, 12, 9},
+                        {"disjoint.exr", 20, 20, 4, 4}, {"same.exr", 0, 0, 8, 6}};
+  for (const Case& c : cases) {
+    const std::string path = dir + "/" + c.name;
+    const std::vector<float> values = ramp(c.w, c.h, 3, 2.0f);
+    {
+      auto out = OIIO::ImageOutput::create(path);
+      ASSERT_TRUE(out) << path;
+      OIIO::ImageSpec spec(c.w, c.h, 3, OIIO::TypeDesc::FLOAT);
+      spec.x = c.x0;
+      spec.y = c.y0;
+      spec.full_x = 0;
+      spec.full_y = 0;
+      spec.full_width = fullW;
+      spec.full_height = fullH;
+      ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+      ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, values.data())) << out->geterror();
+      ASSERT_TRUE(out->close());
+    }
+    for (const io::Pixels& p : {io::oiio::read(path, "image"), io::lean::read(path, "image")}) {
+      ASSERT_EQ(p.width, fullW) << c.name;
+      ASSERT_EQ(p.height, fullH) << c.name;
+      ASSERT_EQ(p.channels, 3) << c.name;
+      for (int y = 0; y < fullH; ++y)
+        for (int x = 0; x < fullW; ++x)
+          for (int k = 0; k < 3; ++k) {
+            const int dx = x - c.x0, dy = y - c.y0;
+            const bool inData = dx >= 0 && dx < c.w && dy >= 0 && dy < c.h;
+            const float want =
+                inData ? values[(size_t(dy) * size_t(c.w) + size_t(dx)) * 3 + size_t(k)] : 0.0f;
+            ASSERT_EQ(p.values[(size_t(y) * fullW + size_t(x)) * 3 + size_t(k)], want)
+                << c.name << " pixel (" << x << ", " << y << ") channel " << k;
+          }
+    }
+  }
+}
+
 TEST(ImageIo, EachWritersFilesReadBackTheSameThroughBoth) {
   const std::string dir = tmpDir("image_io_write");
   std::filesystem::create_directories(dir);
