@@ -118,14 +118,21 @@ RenderOptions resolveOptions(const CLI::App* cmd, const RenderCommand& c) {
   return opt;
 }
 
-// -o and --stats can be written, and --stats is none of the render's own files.
+bool samePath(const std::string& a, const std::string& b) {
+  return std::filesystem::weakly_canonical(a) == std::filesystem::weakly_canonical(b);
+}
+
+// -o and --stats can be written, and --stats is none of the render's other files. The render's own
+// stats (-o a.exr writes a.json) may be named: that file holds the stats already (and its list of
+// outputs), so --stats then writes nothing more.
 void checkOutputs(const RenderCommand& c, const RenderOptions& opt) {
   checkOutputPath(c.out);
   if (c.stats.empty()) return;
   checkOutputFile(c.stats, "--stats");
-  for (const std::string& f : renderOutputNames(c.out, opt))
-    if (std::filesystem::weakly_canonical(f) == std::filesystem::weakly_canonical(c.stats))
-      fail("--stats '", c.stats, "' is also a file this render writes for -o '", c.out, "' (", f,
+  const std::vector<std::string> own = renderOutputNames(c.out, opt);  // the stats JSON first
+  for (size_t i = 1; i < own.size(); ++i)
+    if (samePath(own[i], c.stats))
+      fail("--stats '", c.stats, "' is also a file this render writes for -o '", c.out, "' (", own[i],
            "): give another path");
 }
 
@@ -177,7 +184,7 @@ void runRenderCommand(const CLI::App* cmd, const RenderCommand& c) {
   if (!(c.exposure > 0.0f) || c.exposure > 1e6f) fail("--exposure ", c.exposure, ": must be in (0, 1e6]");
   const RenderOptions opt = resolveOptions(cmd, c);
   if (c.printJob) {
-    checkRenderOptions(opt);
+    checkRenderJob(opt);  // only a job `vgi render --job` renders
     std::printf("%s\n", jsonText(renderJobJson(opt), 2).c_str());
     return;
   }
@@ -185,7 +192,8 @@ void runRenderCommand(const CLI::App* cmd, const RenderCommand& c) {
   installInterruptHandler();
   std::vector<std::string> files;
   const RenderOutput result = opt.frames == 1 ? renderStill(opt, c, files) : renderAnimation(opt, c, files);
-  if (!c.stats.empty()) writeJsonFile(result.stats, c.stats);
+  if (!c.stats.empty() && !samePath(c.stats, renderOutputNames(c.out, opt).front()))
+    writeJsonFile(result.stats, c.stats);
   if (opt.frames > 1) {
     std::fprintf(stderr, "wrote %s and %zu frame files\n", files[0].c_str(), files.size() - 1);
     if (result.stats["interrupted"].get<bool>()) throw Interrupted{};

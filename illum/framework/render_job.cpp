@@ -118,25 +118,58 @@ void placeLight(std::vector<Light>& lights, int index, glm::vec3 position) {
   lights[size_t(index)].position = position;
 }
 
-RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options) {
-  checkRenderOptions(opt_);
-  findMethod(opt_.method);  // a misspelt --method is named before the scene is loaded
-  scene_ = loadScene(opt_.scene);
-  if (opt_.camera) {  // the pose at every time (no path); the scene's cut-away distance stays
-    const float clipNear = scene_.camera.clipNear;
-    scene_.camera = *opt_.camera;
-    scene_.camera.clipNear = clipNear;
-    scene_.cameraPath.clear();
-    checkSceneRanges(scene_, "--camera '" + cameraText(*opt_.camera) + "'");
+namespace {
+// The scene a job renders, checked: the options, the method's name, the scene file, the camera
+// (--camera) and the lights (--light) moved into it.
+Scene jobScene(const RenderOptions& opt) {
+  checkRenderOptions(opt);
+  findMethod(opt.method);  // a misspelt --method is named before the scene is loaded
+  Scene scene = loadScene(opt.scene);
+  if (opt.camera) {  // the pose at every time (no path); the scene's cut-away distance stays
+    const float clipNear = scene.camera.clipNear;
+    scene.camera = *opt.camera;
+    scene.camera.clipNear = clipNear;
+    scene.cameraPath.clear();
+    checkSceneRanges(scene, "--camera '" + cameraText(*opt.camera) + "'");
   }
-  for (auto& [index, position] : opt_.lightPositions) {
+  for (auto& [index, position] : opt.lightPositions) {
     try {
-      placeLight(scene_.lights, index, position);
-      checkSceneRanges(scene_, "the moved light");
+      placeLight(scene.lights, index, position);
+      checkSceneRanges(scene, "the moved light");
     } catch (const Error& e) {
-      fail("--light ", lightPositionText(index, position), ": ", e.what(), " in '", opt_.scene, "'");
+      fail("--light ", lightPositionText(index, position), ": ", e.what(), " in '", opt.scene, "'");
     }
   }
+  return scene;
+}
+
+// Method `o.method` on `scene` with its parameters, its outputs (--aov) and its needs checked.
+std::unique_ptr<Method> checkedMethod(const RenderOptions& o, const MethodInfo& info, const Scene& scene,
+                                      ParamSet& params) {
+  std::unique_ptr<Method> method = createMethod(o, info, scene, params);
+  const std::vector<std::string> outputs = method->outputs();
+  for (auto& a : o.aovs)
+    if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) {
+      std::string known;
+      for (auto& out : outputs) known += (known.empty() ? "" : ", ") + out;
+      fail("--aov '", a, "': method '", info.name, "' has no such output (",
+           known.empty() ? "it has none besides the image" : "known: " + known, ")");
+    }
+  method->needs().check(info.name, info.needsGl);
+  return method;
+}
+}  // namespace
+
+void checkRenderJob(const RenderOptions& options) {
+  const Scene scene = jobScene(options);
+  RenderOptions o = options;
+  o.method = methodFor(options, scene);
+  ParamSet params;
+  checkedMethod(o, findMethod(o.method), scene, params);
+}
+
+RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options) {
+  scene_ = jobScene(opt_);
   gl_ = gl;
   setMethod(methodFor(opt_, scene_), opt_.set, opt_.aovs);
   baselineMemory_ = measuredMemory(this->gl() != nullptr);
@@ -152,22 +185,13 @@ void RenderJob::setMethod(const std::string& name, const std::vector<std::string
   o.aovs = aovs;
   const MethodInfo& info = findMethod(o.method);
   auto params = std::make_unique<ParamSet>();
-  std::unique_ptr<Method> method = createMethod(o, info, scene_, *params);
-  const std::vector<std::string> outputs = method->outputs();
-  for (auto& a : o.aovs)
-    if (std::find(outputs.begin(), outputs.end(), a) == outputs.end()) {
-      std::string known;
-      for (auto& out : outputs) known += (known.empty() ? "" : ", ") + out;
-      fail("--aov '", a, "': method '", info.name, "' has no such output (",
-           known.empty() ? "it has none besides the image" : "known: " + known, ")");
-    }
+  std::unique_ptr<Method> method = checkedMethod(o, info, scene_, *params);
   if (info.needsGl && !gl_) {
     ownGl_ = GlContext::create(o.gl);
     gl_ = ownGl_.get();
   }
   if (info.needsGl && !shaders_) shaders_ = std::make_unique<ShaderLibrary>();
   const SceneNeeds needs = method->needs();
-  needs.check(info.name, info.needsGl);
   // Everything checked: the new method replaces the old one. The resources are kept when the new
   // method needs the same (a parameter that does not change them, e.g. the ray count).
   const bool keep = resources_ && resources_->needs() == needs && info_->needsGl == info.needsGl;

@@ -25,6 +25,10 @@ struct RenderOutput {
 // Places point or spot light `index` at `position`; throws naming the index if there is no such light
 // or it is directional.
 void placeLight(std::vector<Light>& lights, int index, glm::vec3 position);
+// Everything a RenderJob checks before it makes a GL context: the options, the scene with --camera
+// and --light applied, the method's parameters, outputs (--aov) and needs. Throws naming the option
+// and value. `vgi render --print-job` prints only a job this accepts.
+void checkRenderJob(const RenderOptions& options);
 // What a render is made of, built from its options: the scene (its camera
 // replaced by --camera), the method with its parameters (preset, then --set),
 // a GL context if the method needs one (or the caller's: the viewer's
@@ -114,7 +118,7 @@ nlohmann::json resolveParameters(const RenderOptions& options, std::vector<std::
 std::string checkpointStem(const std::string& stem, int spp);
 std::string frameStem(const std::string& stem, int frame);
 // Every file a render with options `o` writes for output path `path` (images, AOVs, checkpoints,
-// frames, the stats JSON): what another output of the same command must not be.
+// frames, the stats JSON — first): what another output of the same command must not be.
 std::vector<std::string> renderOutputNames(const std::string& path, const RenderOptions& o);
 
 // Writes <stem>.exr, <stem>.png and <stem>.json (stats) for output path `path`

@@ -11,6 +11,7 @@
 namespace vgi {
 
 using test::CliRun;
+using test::dataPath;
 using test::tmp;
 using test::vgi;
 
@@ -107,9 +108,17 @@ TEST(Cli, CompareRendersTheExactCounterpartWithTheSameParameters) {
 // back with --job, is the same job again.
 TEST(Cli, RenderArgsAndTheJobJsonRoundTripThroughTheCommandLine) {
   RenderOptions still;  // every option away from its default
-  still.scene = "scenes/leak-rooms-lit.json";
+  // Three delta lights, so that --light can move two of them by index, and a preset.
+  const std::string threeLights = tmp("three_lights.json");
+  std::ofstream(threeLights) << R"({"meshes": [{"path": ")" << dataPath("../../scenes/leak-rooms.obj")
+                             << R"("}], "lights": [
+    {"type": "point", "position": [0.5, 0.5, 0.5], "intensity": 1.0},
+    {"type": "point", "position": [0.2, 0.5, 0.5], "intensity": 0.5},
+    {"type": "point", "position": [0.8, 0.5, 0.5], "intensity": 0.5}],
+    "presets": {"fast": {"diffuse_cones": "6"}}})";
+  still.scene = threeLights;
   still.method = "vct";
-  still.set = {"grid=64", "aperture=50"};
+  still.set = {"voxels=128", "aperture=50"};
   still.preset = "fast";
   still.width = 40;
   still.height = 30;
