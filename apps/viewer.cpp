@@ -56,14 +56,25 @@ void Viewer::rememberSetting() {
 
 void Viewer::restorePreviousSetting() {
   const std::string failed = error_;
-  const Setting back = *previous_;
+  Setting back = std::move(*previous_);
   previous_.reset();
-  attempt("restoring " + back.method, [&] {
-    job_->setMethod(back.method, back.set, back.aovs);
+  const bool scene = back.job != nullptr;
+  if (scene) {  // the scene before: its job as it was
     session_.reset();
-  });
-  error_ = failed + " (kept the previous setting)";
-  std::fprintf(stderr, "vgi view: kept the previous setting (%s)\n", back.method.c_str());
+    job_ = std::move(back.job);
+    home_ = back.home;
+    movedLights_ = back.movedLights;
+  }
+  if (!scene || job_->info().name != back.method || job_->options().set != back.set ||
+      job_->options().aovs != back.aovs) {
+    attempt("restoring " + back.method, [&] {
+      job_->setMethod(back.method, back.set, back.aovs);
+      session_.reset();
+    });
+  }
+  const std::string what = scene ? "scene (" + job_->options().scene + ")" : "setting (" + back.method + ")";
+  error_ = failed + " (kept the previous " + (scene ? "scene" : "setting") + ")";
+  std::fprintf(stderr, "vgi view: kept the previous %s\n", what.c_str());
   dirty_ = true;
   stalled_ = false;
 }
@@ -107,6 +118,14 @@ void Viewer::loadScene(const std::string& spec) {
     o.lightPositions.clear();
     auto job = std::make_unique<RenderJob>(o, gl_.get());
     session_.reset();
+    // Until the new scene renders a sample, the old job is kept to come back to (the first one kept
+    // stands: two changes before a sample go back to the last scene that rendered).
+    if (!previous_ || !previous_->job) {
+      rememberSetting();
+      previous_->job = std::move(job_);
+      previous_->home = home_;
+      previous_->movedLights = movedLights_;
+    }
     job_ = std::move(job);
     startFromPathCamera();
     movedLights_.clear();

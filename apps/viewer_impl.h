@@ -78,10 +78,14 @@ class Viewer {
   void setParameter(const std::string& key, const std::string& value);
   void switchMethod(const std::string& name);
   // The method and parameters before a change, until the change has rendered a sample: if its
-  // resources cannot be built, frame() restores them.
+  // resources cannot be built, frame() restores them. A scene change keeps the whole previous job
+  // (its scene, camera and moved lights): a scene that loads but cannot be built gives way to it.
   struct Setting {
     std::string method;
     std::vector<std::string> set, aovs;
+    std::unique_ptr<RenderJob> job;  // the job before a scene change, else null
+    Camera home;
+    std::set<int> movedLights;
   };
   std::optional<Setting> previous_;
   void rememberSetting();

@@ -94,7 +94,6 @@ bool SceneResources::update(float time, Profiler& prof) {
     lightsChanged_ = false;
     return false;
   }
-  first_ = false;
   lightsChanged_ = false;
   // The GL lights: the scene's delta lights, and with area lights a spot light per emitter point.
   const bool glLights = std::any_of(entries_.begin(), entries_.end(),
@@ -102,11 +101,19 @@ bool SceneResources::update(float time, Profiler& prof) {
   emitters_ = std::make_unique<Emitters>(Emitters::ofScene(scene_, time));
   sampleLights_ = glLights && !emitters_->empty();
   placeLights();
+  // A resource that fails to build is dropped, and the next update builds again from it on (the
+  // viewer retries, or restores its previous scene): built once means every entry built.
   for (auto& e : entries_) {
-    if (!e.resource) e.resource = e.kind->create(e.need, *this);
-    e.changed = e.resource->update(*this, e.need, prof);
+    try {
+      if (!e.resource) e.resource = e.kind->create(e.need, *this);
+      e.changed = e.resource->update(*this, e.need, prof);
+    } catch (...) {
+      e.resource.reset();
+      throw;
+    }
     e.rebuilt = e.changed;
   }
+  first_ = false;
   return true;
 }
 

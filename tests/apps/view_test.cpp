@@ -152,6 +152,35 @@ TEST(View, ScriptReplaysLikeRenderAndSurvivesBadInput) {
   EXPECT_EQ(window.width, 48 + 360);
 }
 
+// A scene that loads but whose resources cannot be built (400 point lights need more light-map faces
+// than the GL allows) gives way to the last scene that rendered, as an unbuildable setting does; it
+// once left a half-built job ("internal: a method read a GridBox it did not declare", "nothing
+// rendered yet", exit 0).
+TEST(View, AScriptKeepsTheLastSceneThatRendered) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = freshDir("view_unbuildable");
+  {
+    std::ofstream scene(dir + "/many_lights.json");
+    scene << R"({"meshes": [{"path": "builtin:cornell"}], "lights": [)";
+    for (int i = 0; i < 400; ++i)
+      scene << (i ? "," : "") << R"({"type": "point", "intensity": 0.01, "position": [)" << 0.1 + 0.002 * i
+            << ", 0.4, 0.3]}";
+    scene << "]}";
+  }
+  std::ofstream(dir + "/script.json")
+      << R"([{"frames": 1}, {"scene": ")" << dir << R"(/many_lights.json"}, {"frames": 2}, {"screenshot": ")"
+      << dir << R"(/kept.exr"}])";
+  CliRun v = underXvfb("--size 24x24 --script " + dir + "/script.json");
+  ASSERT_EQ(v.code, 0) << v.output;
+  for (const char* needle : {"2400 light-map faces", "kept the previous scene (builtin:cornell)"})
+    EXPECT_NE(v.output.find(needle), std::string::npos) << needle << " in " << v.output;
+  for (const char* wrong : {"internal", "nothing rendered yet"})
+    EXPECT_EQ(v.output.find(wrong), std::string::npos) << wrong << " in " << v.output;
+  const nlohmann::json s = stats(dir + "/kept.json");
+  EXPECT_EQ(s["scene"], "builtin:cornell");
+  EXPECT_GE(s["spp"].get<int>(), 1);
+}
+
 // Ctrl-C: the viewer stops, still writes the screenshot of what it accumulated, and exits 130.
 TEST(View, CtrlCWritesWhatWasAccumulatedAndExits130) {
   if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
