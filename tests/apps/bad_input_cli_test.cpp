@@ -12,6 +12,9 @@
 
 #include "apps/cli_util.h"
 #include "core/image.h"
+#include "core/image_metrics.h"
+#include "core/json_text.h"
+#include "experiments/sweep.h"
 #include "illum/framework/render_job.h"
 
 namespace vgi {
@@ -181,6 +184,12 @@ TEST(BadInputCli, ExperimentFieldsOfTheWrongTypeOrSizeAreRefusedByPath) {
       {"grid_too_big.json", {"methods[0].grid", "10000"}},
       {"aov_misspelled.json", {"'aovs'", "indirekt", "direct, indirect"}},
       {"aov_not_written.json", {"'aovs'", "indirect", "none"}},
+      // Animation values finite as doubles but not as the renders' floats: refused at load, by key.
+      {"time_step_overflow.json", {"scene 'builtin:cornell'", "'time_step'", "1e+300", "32-bit float"}},
+      {"last_frame_overflow.json",
+       {"'time' 3e+38", "'time_step' 3e+38", "last frame's time", "32-bit float"}},
+      // "device": "same" is done or refused: the curve of a counterpart reference_gl cannot run.
+      {"device_same_refused.json", {"'reference.device' = \"same\"", "methods[0]", "visibility", "\"cpu\""}},
   };
   const std::string dir = tmp("bad_experiment_out");
   for (auto& [file, needles] : cases) {
@@ -195,6 +204,189 @@ TEST(BadInputCli, ExperimentFieldsOfTheWrongTypeOrSizeAreRefusedByPath) {
     EXPECT_EQ(r.output.find("internal"), std::string::npos) << file << ": " << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir + "/references")) << file << ": something rendered";
   }
+}
+
+// Issue 45, class 4: reference.device is what the curves do, and results.json says what they did. "cpu"
+// with a reference naming reference_gl runs its CPU twin (it ran on GL while the file said "cpu").
+TEST(BadInputCli, TheReferenceDeviceIsDoneAndRecorded) {
+  const std::string file = tmp("device_cpu.json"), dir = tmp("device_cpu_out");
+  std::filesystem::remove_all(dir);
+  std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "8x8", "spp": 1,
+    "reference": {"device": "cpu", "spp": 1, "convergence": [1], "method": "reference_gl",
+                  "set": {"integrator": "ao", "radius": 0.2}},
+    "methods": [{"method": "voxel_ao", "set": {"voxels": "16x16x128", "radius": 0.2}}]})";
+  const Experiment e = loadExperiment(file, dir);
+  ASSERT_EQ(e.curves.size(), 1u);
+  EXPECT_EQ(e.curves[0].options.method, "reference");
+  EXPECT_EQ(e.curveChoice[0].device, "cpu");
+  CliRun r = vgi("sweep " + file + " -o " + dir);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json res = nlohmann::json::parse(std::ifstream(dir + "/results.json"));
+  EXPECT_EQ(res["exact_device"], "cpu");
+  EXPECT_EQ(res["exact_device_given"], true);
+  int curves = 0;
+  for (auto& row : res["rows"])
+    if (row["role"] == "counterpart") {
+      ++curves;
+      EXPECT_EQ(row["method"], "reference");
+      EXPECT_EQ(row["device"], "cpu");
+      EXPECT_EQ(row["same_device"], false);
+    }
+  EXPECT_EQ(curves, 1);
+}
+
+// Issue 45, class 1 and 2: every ray handed to Embree is valid and no image is silently empty. A near
+// plane beyond the scene (1e20 put the reference's ray origins beyond Embree's range: SIGABRT) is
+// refused by key; a denormal one renders what no near plane renders (it was black for the raster
+// methods); a camera path whose up passes through the zero vector renders its keys' camera there.
+TEST(BadInputCli, CutAwaysAndCameraPathsGiveValidRaysAndNoEmptyImage) {
+  for (const char* method : {"reference --set integrator=direct", "direct", "vct_ao"})
+    expectRefused(renderBad("near_beyond_scene.json", std::string("--method ") + method),
+                  {"near_beyond_scene.json", "camera.near", "1e+20", "beyond the whole scene"});
+  expectRefused(
+      vgi("compare --method direct --exact-device cpu --scene '" + dataPath("bad/near_beyond_scene.json") +
+          "' --size 8x8 --spp 1 --ref-spp 1 --quiet -o " + tmp("nb.exr")),
+      {"camera.near", "beyond the whole scene"});
+  expectRefused(renderBad("near_beyond_path_key.json", "--method direct"),
+                {"camera.near at camera.keyframes[1]", "1.2", "0.759"});
+  // --camera moves the eye: the scene's cut-away is checked against the new pose too.
+  const std::string pose = R"("position": [0.278, 0.273, -0.8], "target": [0.278, 0.273, 0])";
+  std::ofstream(tmp("near_1_2.json"))
+      << R"({"meshes": [{"path": "builtin:cornell"}], "camera": {)" << pose << R"(, "near": 1.2}})";
+  std::ofstream(tmp("no_near.json")) << R"({"meshes": [{"path": "builtin:cornell"}], "camera": {)" << pose
+                                     << "}}";
+  expectRefused(vgi("render --scene " + tmp("near_1_2.json") +
+                    " --camera 0.278,0.273,-0.2,0.278,0.273,0,0,1,0 --method direct --size 8x8 --quiet -o " +
+                    tmp("nc.exr")),
+                {"--camera", "camera.near", "beyond the whole scene"});
+  auto meanOf = [](const std::string& exr) {
+    double sum = 0;
+    const Image img = readImage(exr);
+    for (auto& p : img.pixels) sum += double(p.x) + p.y + p.z;
+    return sum / double(img.pixels.size());
+  };
+  for (const char* method : {"direct", "vct_ao", "reference"}) {
+    const std::string stem = tmp(std::string("denormal_") + method), plain = stem + "_plain";
+    expectRendered(vgi("render --scene '" + dataPath("bad/near_denormal.json") + "' --method " + method +
+                       " --size 16x16 --spp 1 --quiet -o " + stem + ".exr"),
+                   stem);
+    ASSERT_EQ(vgi("render --scene " + tmp("no_near.json") + " --method " + method +
+                  " --size 16x16 --spp 1 --quiet -o " + plain + ".exr")
+                  .code,
+              0);
+    EXPECT_GT(meanOf(stem + ".exr"), 0.01) << method << ": black";
+    // A near plane of 1e-39 cuts nothing away: the image of the same camera without one.
+    EXPECT_EQ(compareImages(readImage(stem + ".exr"), readImage(plain + ".exr")).relMae, 0.0) << method;
+  }
+  const std::string flip = dataPath("bad/up_flip_path.json");
+  for (const char* method : {"reference --set integrator=direct", "direct"}) {
+    const std::string stem = tmp("flip_mid");
+    expectRendered(vgi("render --scene '" + flip + "' --method " + method +
+                       " --time 0.5 --size 16x16 --spp 1 --quiet -o " + stem + ".exr"),
+                   stem);
+    EXPECT_GT(meanOf(stem + ".exr"), 0.01) << method;
+  }
+  const std::string frames = tmp("flip_frames");
+  ASSERT_EQ(
+      vgi("render --scene '" + flip + "' --method direct --frames 3 --time-step 0.5 --size 16x16 --spp 1 " +
+          "--quiet -o " + frames + ".exr")
+          .code,
+      0);
+  for (int f = 0; f < 3; ++f) EXPECT_GT(meanOf(frameStem(frames, f) + ".exr"), 0.01) << "frame " << f;
+  CliRun cmp = vgi("compare --method direct --scene '" + flip +
+                   "' --time 0.5 --size 16x16 --spp 1 --ref-spp 1 --quiet -o " + tmp("flip_cmp.exr"));
+  EXPECT_EQ(cmp.code, 0) << cmp.output;
+}
+
+// Issue 45, class 5: a metric with no value is "undefined" (core/json_text.h), never null, in every
+// output; the sweep's report survives a black reference (it crashed, and vgi blamed matplotlib).
+TEST(BadInputCli, MetricsWithoutAValueSaySoAndTheReportSurvivesThem) {
+  Image lit(8, 8), black(8, 8);
+  for (auto& p : lit.pixels) p = glm::vec3(0.5f, 0.25f, 0.125f);
+  for (auto& p : black.pixels) p = glm::vec3(0.0f);
+  writeImage(lit, tmp("lit.exr"));
+  writeImage(black, tmp("black.exr"));
+  auto noNull = [](const CliRun& r) {
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("null"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("nan"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("inf"), std::string::npos) << r.output;
+  };
+  CliRun j = vgi("diff " + tmp("lit.exr") + " " + tmp("black.exr") + " --json");
+  noNull(j);
+  const nlohmann::json d = nlohmann::json::parse(j.output);
+  EXPECT_EQ(d["leak"], "undefined");
+  EXPECT_EQ(d["rel_mae"], "undefined");
+  EXPECT_EQ(d["energy_rgb"][0], "undefined");
+  EXPECT_GT(d["rmse"].get<double>(), 0.0);  // what has a value keeps it
+  noNull(vgi("diff " + tmp("lit.exr") + " " + tmp("black.exr")));
+  noNull(vgi("diff " + tmp("lit.exr") + " " + tmp("lit.exr") + " --dark-tolerance 1e308 --json"));
+  noNull(vgi("diff " + tmp("lit.exr") + " " + tmp("black.exr") + " --relative-epsilon 0.1 --json"));
+  for (int f = 0; f < 2; ++f) {
+    Image changing = lit;
+    for (auto& p : changing.pixels) p *= float(1 + f);  // it changes; the dark reference does not
+    writeImage(changing, frameStem(tmp("seq_lit"), f) + ".exr");
+    writeImage(black, frameStem(tmp("seq_dark"), f) + ".exr");
+  }
+  CliRun seq = vgi("diff --frames 2 " + tmp("seq_lit.exr") + " " + tmp("seq_dark.exr") + " --json");
+  noNull(seq);
+  EXPECT_EQ(nlohmann::json::parse(seq.output)["temporal_error"], "undefined");
+  // A sweep against an all-black reference file: results, CSV and report, every metric a number or "undefined".
+  const std::string file = tmp("black_ref.json"), dir = tmp("black_ref_out");
+  std::filesystem::remove_all(dir);
+  std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "8x8", "spp": 2, "checkpoints": [1],
+    "reference": {"file": ")"
+                      << tmp("black.exr") << R"("}, "methods": [{"method": "direct"}]})";
+  CliRun sweep = vgi("sweep " + file + " -o " + dir);
+  ASSERT_EQ(sweep.code, 0) << sweep.output;
+  EXPECT_EQ(sweep.output.find("Traceback"), std::string::npos) << sweep.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/report.html"));
+  std::ifstream res(dir + "/results.json");
+  const std::string text((std::istreambuf_iterator<char>(res)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("null"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(text)["rows"][0]["image"]["rel_mae"], "undefined");
+}
+
+// Issue 45, class 6: --print-job prints only a job `vgi render --job` renders.
+TEST(BadInputCli, PrintJobValidatesWhatItPrints) {
+  expectRefused(vgi("render --method vtc --print-job"), {"--method", "vtc"});
+  expectRefused(vgi("render --method vct --set volumee=svo --print-job"), {"volumee=svo", "volume"});
+  expectRefused(vgi("render --method vct --aov bogus --print-job"), {"--aov 'bogus'"});
+  expectRefused(vgi("render --scene /nonexistent/s.obj --print-job"), {"/nonexistent/s.obj"});
+  expectRefused(vgi("render --light 7=0,0,0 --print-job"), {"--light", "7"});
+  CliRun ok = vgi("render --method vct --set volume=svo --size 8x8 --spp 1 --print-job");
+  ASSERT_EQ(ok.code, 0) << ok.output;
+  std::ofstream(tmp("printed_job.json")) << ok.output;
+  expectRendered(vgi("render --job " + tmp("printed_job.json") + " -o " + tmp("printed_job_out.exr")),
+                 tmp("printed_job_out"));
+}
+
+// Issue 45, class 8: the stats beside a --reference image are checked before they are used.
+TEST(BadInputCli, CompareChecksTheStatsBesideAReferenceImage) {
+  const std::string stem = tmp("ref_stats");
+  ASSERT_EQ(
+      vgi("render --method reference --set integrator=ao --size 8x8 --spp 1 --quiet -o " + stem + ".exr")
+          .code,
+      0);
+  const nlohmann::json good = nlohmann::json::parse(std::ifstream(stem + ".json"));
+  for (const auto& [key, value] : std::vector<std::pair<std::string, nlohmann::json>>{{"spp", "many"},
+                                                                                      {"spp", nullptr},
+                                                                                      {"spp", 1e300},
+                                                                                      {"spp", 0},
+                                                                                      {"total_ms", "soon"},
+                                                                                      {"wall_ms", -1}}) {
+    nlohmann::json bad = good;
+    bad[key] = value;
+    std::ofstream(stem + ".json") << bad.dump();
+    CliRun r =
+        vgi("compare --method voxel_ao --set voxels=16x16x128 --size 8x8 --spp 1 --quiet --reference " +
+            stem + ".exr -o " + tmp("ref_stats_cmp.exr"));
+    expectRefused(r, {stem + ".json", "\"" + key + "\"", jsonExcerpt(value)});
+  }
+  std::ofstream(stem + ".json") << good.dump();
+  CliRun ok = vgi("compare --method voxel_ao --set voxels=16x16x128 --size 8x8 --spp 1 --quiet --reference " +
+                  stem + ".exr -o " + tmp("ref_stats_cmp.exr"));
+  EXPECT_EQ(ok.code, 0) << ok.output;
 }
 
 // Nothing is reported written that was not: a results file that is a directory is an error naming
@@ -217,7 +409,7 @@ TEST(BadInputCli, OutputsThatCannotBeWrittenOrCollideAreRefused) {
   const std::string stem = tmp("collide");
   for (const std::string& extra :
        {std::string("--stats ") + stem + ".exr", std::string("--stats ") + stem + ".png",
-        std::string("--stats ") + stem + ".json", "--aov indirect --stats " + stem + ".indirect.exr",
+        "--aov indirect --stats " + stem + ".indirect.exr",
         "--spp 4 --checkpoints 2 --stats " + stem + ".spp00002.png",
         "--frames 2 --stats " + stem + "_0001.exr"}) {
     CliRun r = vgi("render --method nearfield --set voxels=16x16x128 --size 8x8 --quiet " + extra + " -o " +
@@ -226,6 +418,11 @@ TEST(BadInputCli, OutputsThatCannotBeWrittenOrCollideAreRefused) {
     EXPECT_NE(r.output.find("--stats"), std::string::npos) << extra << ": " << r.output;
     EXPECT_NE(r.output.find("also a file this render writes"), std::string::npos) << r.output;
   }
+  // The render's own stats file is what --stats would write: accepted, written once, with its outputs.
+  expectRendered(vgi("render --method nearfield --set voxels=16x16x128 --size 8x8 --spp 1 --quiet --stats " +
+                     stem + ".json -o " + stem + ".exr"),
+                 stem);
+  EXPECT_TRUE(nlohmann::json::parse(std::ifstream(stem + ".json")).contains("outputs"));
   // Another name is fine.
   expectRendered(vgi("render --method nearfield --set voxels=16x16x128 --size 8x8 --spp 1 --quiet --stats " +
                      stem + ".stats.json -o " + stem + ".exr"),
