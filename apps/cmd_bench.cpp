@@ -23,6 +23,7 @@
 #include "core/profiler.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
+#include "core/warnings.h"
 #include "experiments/motion_cost.h"
 #include "traverse/embree_tracer.h"
 #include "traverse/gl_ray_tracer.h"
@@ -120,6 +121,7 @@ struct TraverseSetup {
 TraverseSetup setupTraverse(const TraverseOptions& o, const VoxelizerInfo& vox, glm::uvec3 res) {
   TraverseSetup t;
   t.scene = loadScene(o.scene);
+  printWarnings(t.scene.report.warnings);
   t.flat = flatten(t.scene);
   if (vox.needsGl || !o.noGl) {
     t.gl = GlContext::create(parseGlBackend(o.gl));

@@ -15,6 +15,7 @@
 #include "core/output_files.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
+#include "core/warnings.h"
 #include "illum/framework/resources.h"
 #include "illum/resources/binary_grid.h"
 #include "illum/resources/value_grids.h"
@@ -197,6 +198,7 @@ void runVoxelize(const VoxelizeOptions& o) {
   checkVoxelizeOptions(o, info);
   const BinaryGridNeed grid = gridNeed(o, info);
   Scene scene = loadScene(o.scene);
+  printWarnings(scene.report.warnings);
   const bool gpu = info.needsGl || !grid.values.empty();
   std::unique_ptr<GlContext> gl;
   std::unique_ptr<ShaderLibrary> shaders;

@@ -7,6 +7,8 @@
 #include <fstream>
 #ifdef VGI_SANITIZE_BUILD
 #include <dlfcn.h>
+
+#include <nlohmann/json.hpp>
 #endif
 
 #include "core/error.h"
@@ -37,6 +39,21 @@ void keepMesaLoaded() {
   }();
   (void)once;
 }
+// zink likewise: the Vulkan loader unloads lavapipe (the ICD selectZinkOnLavapipe named) at
+// vkDestroyInstance, and lavapipe's leaks at exit (two callocs, 112 bytes) then stand in
+// "<unknown module>". The ICD's own library_path is kept loaded, so scripts/lsan.supp names it.
+void keepVulkanDriverLoaded() {
+  static const bool once = [] {
+    dlopen("libvulkan.so.1", RTLD_NOW | RTLD_GLOBAL | RTLD_NODELETE);
+    const char* icd = std::getenv("VK_ICD_FILENAMES");
+    std::ifstream in(icd ? icd : "");
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+    if (j.is_object() && j.contains("ICD") && j["ICD"].value("library_path", "") != "")
+      dlopen(j["ICD"]["library_path"].get<std::string>().c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
+    return true;
+  }();
+  (void)once;
+}
 }  // namespace
 #endif
 
@@ -48,6 +65,9 @@ std::unique_ptr<GlContext> GlContext::create(GlBackend backend) {
   if (backend == GlBackend::Osmesa) return createOsmesaContext();
   if (backend == GlBackend::Zink) {
     selectZinkOnLavapipe();
+#ifdef VGI_SANITIZE_BUILD
+    keepVulkanDriverLoaded();
+#endif
     std::unique_ptr<GlContext> ctx = createEglContext();
     if (ctx->renderer().find("zink") == std::string::npos)
       fail("--gl zink: EGL made a context on '", ctx->renderer(), "', not zink (is Mesa's zink built in?)");

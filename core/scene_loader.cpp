@@ -210,14 +210,15 @@ void readMaterialOverride(const JsonCtx& c, const json& j, const std::string& wh
       c.error(where + ".exponent", "must be in [0, 100000], got " + jsonExcerpt(j["exponent"]));
   }
   if (j.contains("texture")) {
+    // The scene file names this texture itself: one it cannot read is refused, never replaced by the
+    // constant albedo (a model file's missing texture only warns: its author is not the user).
     std::string p = (dir / c.string(j["texture"], where + ".texture")).string();
     try {
       scene.textures.push_back(loadTexture(p));
-      m.albedoTexture = int(scene.textures.size()) - 1;
     } catch (const Error& e) {
-      scene.report.warnings.push_back(std::string(e.what()) + " (material '" + m.name +
-                                      "' keeps its constant albedo)");
+      c.error(where + ".texture", e.what());
     }
+    m.albedoTexture = int(scene.textures.size()) - 1;
   }
   conserveEnergy(m, c.file + ": " + where, scene.report);
 }
@@ -402,13 +403,14 @@ void readEnvironment(JsonCtx& c, const json& ej, Scene& scene, const fs::path& d
     if (scene.environment.scale < 0) c.error("environment.scale", "must not be negative");
   }
   if (ej.contains("map")) {
+    // Refused, not replaced by the constant colour: the image would not be what the file asks for.
     std::string p = (dir / c.string(ej["map"], "environment.map")).string();
     try {
       scene.textures.push_back(loadTexture(p, "environment map"));
-      scene.environment.mapTexture = int(scene.textures.size()) - 1;
     } catch (const Error& e) {
-      scene.report.warnings.push_back(std::string(e.what()) + " (environment uses its constant colour)");
+      c.error("environment.map", e.what());
     }
+    scene.environment.mapTexture = int(scene.textures.size()) - 1;
   }
 }
 

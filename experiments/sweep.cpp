@@ -23,6 +23,7 @@
 #include "core/json_text.h"
 #include "core/output_files.h"
 #include "core/params.h"
+#include "core/warnings.h"
 #include "experiments/compare.h"
 #include "illum/framework/method.h"
 #include "illum/framework/render_job.h"
@@ -623,7 +624,15 @@ int runSweep(const Experiment& e, const std::string& vgi) {
         (WIFEXITED(rc) && WEXITSTATUS(rc) == 130))
       throw SweepInterrupted("sweep: interrupted during " + r->id + " (" + std::to_string(n - 1) + " of " +
                              std::to_string(todo.size()) + " renders done); run it again to resume");
-    if (rc != 0 || !sweepRenderDone(*r, spp)) failed.push_back(r->id + " (see " + r->dir + "/log.txt)");
+    // The render's warnings reach the person running the sweep (once each), its error the failure list.
+    std::string error;
+    std::ifstream log(r->dir + "/log.txt");
+    for (std::string line; std::getline(log, line);) {
+      if (line.rfind("vgi: warning: ", 0) == 0) printWarning(line.substr(14));
+      if (line.rfind("vgi: error: ", 0) == 0) error = ": " + line.substr(5);
+    }
+    if (rc != 0 || !sweepRenderDone(*r, spp))
+      failed.push_back(r->id + error + " (see " + r->dir + "/log.txt)");
   }
   if (!failed.empty()) {
     std::string list;

@@ -14,6 +14,8 @@ import json
 import os
 import sys
 
+import script_args as sa
+
 WALLS = ["0.25", "0.5", "1", "2"]
 BUNNY, WALK = "scenes/cornell-bunny.json", "scenes/sibenik-walk.json"
 REMEDIES = ["vct isotropic", "vct thin voxels", "vct offset 0.5", "vct full-rate gather",
@@ -55,8 +57,7 @@ def method_table(order, by, headers, scenes, cell):
 
 
 def main(out):
-    with open(os.path.join(out, "results.json")) as f:
-        res = json.load(f)
+    res = sa.sweep_results("DIR", out, "artefacts")
     rows = [r for r in res["rows"] if r.get("role") == "point"]
     # One key per method setting, in the experiment's order.
     order, by = [], {}
@@ -123,5 +124,6 @@ def main(out):
 
 if __name__ == "__main__":
     if len(sys.argv) != 2:
-        sys.exit("usage: artefacts_tables.py DIR")
-    main(sys.argv[1])
+        print("usage: artefacts_tables.py DIR   (DIR: the output folder of `vgi sweep scenes/experiments/artefacts.json -o DIR`)", file=sys.stderr)
+        sys.exit(2)
+    sa.run_main(lambda: main(sys.argv[1]))

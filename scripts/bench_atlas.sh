@@ -5,14 +5,17 @@
 # triangles without texels, and the CPU build time. Usage: scripts/bench_atlas.sh [out-dir]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/script_args.sh
+[ $# -le 1 ] || sa_usage "[out-dir]"
 out=${1:-out/bench_atlas}
-mkdir -p "$out"
+sa_vgi vgi build/apps/vgi
+sa_out out-dir "$out"
 echo "| scene | grid | meshes | triangles | charts (LSCM) | largest atlas | utilization | max stretch | triangles without texels | sampled by neighbours | build ms |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for s in ../shared/scenes/stanford-bunny/bun_zipper.ply ../shared/scenes/stanford-dragon/dragon_vrip_res2.ply scenes/sibenik.json; do
   [ -f "$s" ] || continue
   for n in 128 256; do
-    build/apps/vgi voxelize --scene "$s" --voxels $n --voxelizer atlas --no-cache --stats "$out/a.json" > /dev/null || continue
+    sa_run "$out/a.log" build/apps/vgi voxelize --scene "$s" --voxels $n --voxelizer atlas --no-cache --stats "$out/a.json"
     python3 - "$out/a.json" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))

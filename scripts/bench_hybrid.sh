@@ -5,8 +5,12 @@
 # runs, GL; the atlas: atlas_render + insert), per scene and resolution.
 # Usage: scripts/bench_hybrid.sh
 set -euo pipefail
+. "$(dirname "$0")/script_args.sh"
+[ $# = 0 ] || sa_usage "   (no arguments; VGI=path/to/vgi)"
 V=${VGI:-build/apps/vgi}
+sa_vgi VGI "$V"
 T=$(mktemp)
+L=$(mktemp)
 echo "| scene | grid | voxelizer | voxels | recall | precision | pass ms (min of 3) | triangle-parallel / all |"
 echo "|---|---|---|---|---|---|---|---|"
 for scene in builtin:cornell scenes/bunny.json scenes/dragon.json scenes/sibenik.json; do
@@ -17,7 +21,7 @@ for scene in builtin:cornell scenes/bunny.json scenes/dragon.json scenes/sibenik
       [ $# -gt 1 ] && extra=(--hybrid-cutoff "$2")
       best=""
       for i in 1 2 3; do
-        "$V" voxelize --scene "$scene" --voxels $n --voxelizer $1 "${extra[@]}" --stats "$T" >/dev/null 2>&1
+        sa_run "$L" "$V" voxelize --scene "$scene" --voxels $n --voxelizer $1 "${extra[@]}" --stats "$T"
         ms=$(python3 -c "import json; t=json.load(open('$T'))['timings_ms']; \
 print(sum(v for k, v in t.items() if k not in ('upload', 'readback', 'atlas_setup', 'atlas_cache')))")
         best=$(python3 -c "print(min(float(x) for x in '$best $ms'.split()))")
@@ -28,4 +32,4 @@ print('| %s | %d³ | %s | %d | %.5f | %.5f | %.1f | %s |' % ('$scene'.split('/')
     done
   done
 done
-rm -f "$T"
+rm -f "$T" "$L"

@@ -10,10 +10,14 @@
 # Usage: scripts/bench_load.sh [out-dir] [max-triangles]   (VGI=path/to/vgi)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/script_args.sh
+[ $# -le 2 ] || sa_usage "[out-dir] [max-triangles]   (VGI=path/to/vgi)"
 out=${1:-out/bench_load}
 max=${2:-1000000}
 vgi=${VGI:-build/apps/vgi}
-mkdir -p "$out"
+sa_vgi VGI "$vgi"
+sa_int max-triangles "$max"
+sa_out out-dir "$out"
 python3 - "$out" "$max" "$vgi" <<'EOF'
 import math, os, random, resource, subprocess, sys, time
 out, top, vgi = sys.argv[1], int(sys.argv[2]), sys.argv[3]
@@ -41,13 +45,15 @@ def run(path):
     t0 = time.monotonic()
     pid = os.fork()
     if pid == 0:
-        fd = os.open(os.devnull, os.O_WRONLY)
+        fd = os.open(path + ".log", os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
         os.dup2(fd, 1)
         os.dup2(fd, 2)
         os.execv(vgi, [vgi, "info", "--scene", path])
     _, status, usage = os.wait4(pid, 0)
-    if status != 0:
-        sys.exit("vgi info --scene %s failed (status %d)" % (path, status))
+    if status != 0:  # vgi's own reason, from its log
+        lines = [l for l in open(path + ".log", errors="replace").read().splitlines() if l.strip()]
+        reason = ([l for l in lines if "vgi: error:" in l] or lines or ["(no output)"])[-1]
+        sys.exit("bench_load.sh: FAILED: vgi info --scene %s (status %d): %s" % (path, status, reason))
     return time.monotonic() - t0, usage.ru_maxrss / 1024.0
 
 sizes = [n for n in (1000, 10000, 100000, 1000000) if n <= top]

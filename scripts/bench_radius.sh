@@ -11,10 +11,14 @@
 # Usage: scripts/bench_radius.sh [out-dir] [ref-spp]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/script_args.sh
+[ $# -le 2 ] || sa_usage "[out-dir] [ref-spp]   (VGI=path/to/vgi)"
 out=${1:-out/bench_radius}
 spp=${2:-256}
-mkdir -p "$out"
 vgi=${VGI:-build/apps/vgi}
+sa_vgi VGI "$vgi"
+sa_int ref-spp "$spp"
+sa_out out-dir "$out"
 fractions="0.05 0.1 0.2 0.3 0.5 1.0"
 for s in builtin:cornell scenes/sibenik.json; do
   name=$(basename "${s#builtin:}" .json)

@@ -6,8 +6,11 @@
 # GLSL on the GL device at 256³. Usage: scripts/bench_traverse.sh [out-dir]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/script_args.sh
+[ $# -le 1 ] || sa_usage "[out-dir]"
 out=${1:-out/bench_traverse}
-mkdir -p "$out"
+sa_vgi vgi build/apps/vgi
+sa_out out-dir "$out"
 for s in builtin:cornell scenes/sibenik.json; do
   name=$(basename "${s#builtin:}" .json)
   for n in 128 256 512; do

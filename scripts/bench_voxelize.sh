@@ -4,9 +4,12 @@
 # Usage: scripts/bench_voxelize.sh [out-dir]   (scenes from ../shared/scenes are skipped when absent)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. scripts/script_args.sh
+[ $# -le 1 ] || sa_usage "[out-dir]"
 out=${1:-out/bench_voxelize}
-mkdir -p "$out"
 vgi=build/apps/vgi
+sa_vgi vgi "$vgi"
+sa_out out-dir "$out"
 scenes=(builtin:cornell)
 [ -f ../shared/scenes/stanford-bunny/bun_zipper.ply ] && scenes+=(../shared/scenes/stanford-bunny/bun_zipper.ply)
 [ -f ../shared/scenes/sibenik/sibenik.obj ] && scenes+=(scenes/sibenik.json)

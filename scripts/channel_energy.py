@@ -8,17 +8,16 @@ device), per channel, as the energy ratio method / counterpart (the mean of the 
 Runs `vgi compare` per (scene, method) into OUT/<scene>_<method>/ and prints a markdown table with the
 counterpart's parameters and note (docs/BENCHMARKS.md "The same integral on both sides").
 """
-import argparse
 import json
 import os
-import subprocess
-import sys
+
+import script_args as sa
 
 METHODS = ["direct", "nearfield", "voxelpath", "vpl", "avg", "vct"]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = sa.ArgumentParser(description=__doc__, formatter_class=sa.argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--vgi", required=True)
     ap.add_argument("--scenes", default="scenes/dragon.json,scenes/bunny.json")
     ap.add_argument("--methods", default=",".join(METHODS))
@@ -27,6 +26,16 @@ def main():
     ap.add_argument("--size", default="96x96")
     ap.add_argument("out")
     a = ap.parse_args()
+    sa.vgi_binary("--vgi", a.vgi)
+    for scene in a.scenes.split(","):
+        if not scene.startswith("builtin:") and not os.path.isfile(scene):
+            sa.fail("--scenes", a.scenes, f"'{scene}' is not a file")
+    if not [m for m in a.methods.split(",") if m]:
+        sa.fail("--methods", a.methods, "is empty")
+    sa.positive_int("--spp", a.spp)
+    sa.positive_int("--ref-spp", a.ref_spp)
+    sa.size("--size", a.size)
+    sa.out_folder("OUT", a.out)
     rows = []
     for scene in a.scenes.split(","):
         for m in a.methods.split(","):
@@ -34,9 +43,7 @@ def main():
             os.makedirs(os.path.dirname(stem), exist_ok=True)
             cmd = [a.vgi, "compare", "--scene", scene, "--method", m, "--spp", a.spp, "--ref-spp", a.ref_spp,
                    "--size", a.size, "-o", stem + ".exr"]
-            if subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode != 0:
-                print(f"FAILED: {' '.join(cmd)}", file=sys.stderr)
-                return 1
+            sa.run_vgi(cmd, log=stem + ".log")  # a failure names vgi's reason (an unknown method, …)
             s = json.load(open(stem + ".json"))
             ratio = {ch: sum(e["energy_rgb"]) / 3.0 for ch, e in s["error"].items()}
             rows.append((os.path.basename(scene), m, " ".join(s["exact"]["set"]), ratio, s["exact"].get("note", "")))
@@ -48,4 +55,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sa.run_main(main)

@@ -32,6 +32,8 @@ import subprocess
 import sys
 import zlib
 
+import script_args as sa
+
 TOLERANCE = 1e-6
 SIZE = "32x32"
 SPP = "2"
@@ -134,15 +136,15 @@ def run(cmd, log):
 
 
 def render(args):
+    check_render_args(args)
     out = os.path.abspath(args.out)
-    os.makedirs(out, exist_ok=True)
     scenes = {"cornell": "builtin:cornell", "parity": write_scene(os.path.join(out, "scene"))}
     jobs = []
     only = set(args.only.split(",")) if args.only else None
     renders = [r for r in RENDERS if only is None or r[0] in only]
     if only is not None and len(renders) != len(only):
-        print(f"--only: unknown render(s) {sorted(only - {r[0] for r in RENDERS})}", file=sys.stderr)
-        return 2
+        sa.fail("--only", args.only, f"unknown render(s) {', '.join(sorted(only - {r[0] for r in RENDERS}))} "
+                f"(known: {', '.join(r[0] for r in RENDERS)})")
     voxelizers = VOXELIZERS if only is None else []
     for name, scene, extra in renders:
         cmd = [args.vgi, "render", "--gl", args.gl, "--scene", scenes[scene], "--size", args.size, "--spp", args.spp,
@@ -155,12 +157,13 @@ def render(args):
         jobs.append(("traverse", [args.vgi, "bench", "traverse", "--gl", args.gl, "--stats",
                                   os.path.join(out, "traverse.json")] + TRAVERSE))
     failed = []
-    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+    with concurrent.futures.ThreadPoolExecutor(max_workers=int(args.jobs)) as pool:
         codes = pool.map(lambda j: run(j[1], os.path.join(out, j[0] + ".log")), jobs)
         for (name, _), rc in zip(jobs, codes):
             if rc != 0:
                 failed.append(name)
-                print(f"FAILED {name} (exit {rc}): {open(os.path.join(out, name + '.log')).read()[-2000:]}")
+                with open(os.path.join(out, name + ".log"), errors="replace") as log:
+                    print(f"FAILED {name} (exit {rc}): {sa.vgi_reason(log.read())} (see {out}/{name}.log)")
     with open(os.path.join(out, "manifest.json"), "w") as f:
         json.dump({"gl": args.gl, "renders": [n for n, _, _ in renders], "voxelizers": voxelizers,
                    "failed": failed}, f, indent=1)
@@ -202,10 +205,35 @@ def per_sample_ms(folder, name):
     return sum(pass_ms(folder, name)[0].values())
 
 
+def check_render_args(args):
+    sa.vgi_binary("--vgi", args.vgi)
+    if args.gl not in ("auto", "egl", "osmesa", "zink"):
+        sa.fail("--gl", args.gl, "expected auto, egl, osmesa or zink")
+    sa.positive_int("--jobs", args.jobs)
+    sa.size("--size", args.size)
+    sa.positive_int("--spp", args.spp)
+    sa.out_folder("OUT", args.out)
+
+
+def read_manifest(arg, folder):
+    """A folder `render` wrote: its manifest.json, checked."""
+    sa.folder_with(arg, folder, "manifest.json")
+    try:
+        with open(os.path.join(folder, "manifest.json")) as f:
+            m = json.load(f)
+        if not isinstance(m.get("renders"), list) or not isinstance(m.get("voxelizers"), list) or not m["renders"]:
+            raise ValueError("no renders listed")
+    except ValueError as e:
+        sa.fail(arg, folder, f"its manifest.json is not one `driver_parity.py render` wrote ({e})")
+    return m
+
+
 def compare(args):
     a, b = args.a, args.b
+    sa.vgi_binary("--vgi", args.vgi)
     diffs, rows = [], []
-    manifest = json.load(open(os.path.join(a, "manifest.json")))
+    manifest = read_manifest("A", a)
+    read_manifest("B", b)
     for name in manifest["renders"]:
         ia, ib = images(a, name), images(b, name)
         if not ia or ia != ib:
@@ -288,12 +316,12 @@ def compare(args):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = sa.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("render")
     r.add_argument("--vgi", required=True)
     r.add_argument("--gl", default="auto")
-    r.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    r.add_argument("--jobs", default=os.cpu_count() or 1)
     r.add_argument("--only", default="")
     r.add_argument("--size", default=SIZE)
     r.add_argument("--spp", default=SPP)
@@ -306,13 +334,16 @@ def main():
     c.add_argument("b")
     b = sub.add_parser("run")
     b.add_argument("--vgi", required=True)
-    b.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    b.add_argument("--jobs", default=os.cpu_count() or 1)
     b.add_argument("out")
     args = ap.parse_args()
     if args.cmd == "render":
         return render(args)
     if args.cmd == "compare":
         return compare(args)
+    sa.vgi_binary("--vgi", args.vgi)
+    sa.positive_int("--jobs", args.jobs)
+    sa.out_folder("OUT", args.out)
     rc = 0
     for gl, folder in (("egl", "llvmpipe"), ("zink", "zink")):
         rc |= render(argparse.Namespace(vgi=args.vgi, gl=gl, jobs=args.jobs, only="", size=SIZE, spp=SPP,
@@ -324,4 +355,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sa.run_main(main)

@@ -28,6 +28,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(cd "$here/.." && pwd)
+. "$here/script_args.sh"
 quick=0
 vgi=""
 out=""
@@ -35,6 +36,7 @@ parity_ref=""
 while [ $# -gt 0 ]; do
   case $1 in
     --quick) quick=1 ;;
+    --vgi|--parity-ref) [ $# -ge 2 ] || sa_usage "[--quick] [--vgi PATH] [--parity-ref DIR] OUT   ($1 needs a value)" ;;&
     --vgi) vgi=$2; shift ;;
     --parity-ref) parity_ref=$2; shift ;;
     -*) echo "gpu_bench: unknown option '$1' (usage: gpu_bench.sh [--quick] [--vgi PATH] OUT)" >&2; exit 2 ;;
@@ -48,7 +50,11 @@ if [ -z "$vgi" ]; then
     [ -n "$c" ] && [ -x "$c" ] && { vgi=$c; break; }
   done
 fi
-[ -x "${vgi:-}" ] || { echo "gpu_bench: no vgi binary (give --vgi PATH)" >&2; exit 2; }
+[ -n "$vgi" ] || { echo "gpu_bench: no vgi binary found (give --vgi PATH)" >&2; exit 2; }
+sa_vgi --vgi "$vgi"
+[ -z "$parity_ref" ] || [ -d "$parity_ref" ] || [ ! -e "$parity_ref" ] ||
+  sa_fail --parity-ref "$parity_ref" "exists and is not a folder"
+sa_out OUT "$out"
 mkdir -p "$out/raw"
 log=$out/gpu_bench.log
 : > "$log"
@@ -88,7 +94,7 @@ run() {  # run NAME ARGS… : vgi ARGS, its output in raw/NAME.log; a failure is
   local name=$1
   shift
   if ! (cd "$repo" && "$vgi" "$@") > "$out/raw/$name.log" 2>&1; then
-    note "FAILED: vgi $* (raw/$name.log)"
+    note "FAILED: vgi $*: $(grep 'vgi: error:' "$out/raw/$name.log" | tail -1) (raw/$name.log)"
     return 1
   fi
 }

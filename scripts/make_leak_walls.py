@@ -17,6 +17,11 @@ no light path enters a closed mesh — beside the lit room, and the leak metric 
 puts through a closed mesh's walls. Usage: scripts/make_leak_walls.py  (rewrites the files)."""
 import json
 import os
+import sys
+
+if len(sys.argv) != 1:
+    sys.exit(print(f"usage: make_leak_walls.py   (no arguments: it rewrites scenes/leak-walls and "
+                   f"scenes/leak-closed; got {' '.join(sys.argv[1:])!r})", file=sys.stderr) or 2)
 
 scenes = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes")
 root = os.path.join(scenes, "leak-walls")

@@ -7,10 +7,14 @@
 # The scenes of ../shared/scenes are used where present (the rows that need
 # them are left out otherwise, and say so on stderr).
 set -euo pipefail
-out=${1:?usage: render_fingerprints.sh OUT_DIR [VGI]}
+. "$(dirname "$0")/script_args.sh"
+[ $# -ge 1 ] && [ $# -le 2 ] || sa_usage "OUT_DIR [VGI]"
+out=$1
 vgi=${2:-build/apps/vgi}
 root="$(cd "$(dirname "$0")/.." && pwd)"
-mkdir -p "$out"
+sa_vgi VGI "$vgi"
+command -v iinfo > /dev/null || { echo "$sa_prog: iinfo is missing: install openimageio-tools (scripts/setup.sh does)" >&2; exit 2; }
+sa_out OUT_DIR "$out"
 n=0
 row() {  # row SCENE METHOD [ARGS...]
   local scene=$1 method=$2
@@ -20,8 +24,8 @@ row() {  # row SCENE METHOD [ARGS...]
   esac
   n=$((n + 1))
   local o="$out/r$(printf %02d $n)_$method.exr"
-  "$vgi" render --scene "$scene" --method "$method" --size 64x48 --spp 2 --quiet -o "$o" "$@" \
-    > "$out/r$(printf %02d $n).log" 2>&1 || { echo "row $n failed: $method $*" >&2; cat "$out/r$(printf %02d $n).log" >&2; exit 1; }
+  sa_run "$out/r$(printf %02d $n).log" "$vgi" render --scene "$scene" --method "$method" --size 64x48 --spp 2 \
+    --quiet -o "$o" "$@"
   for f in "${o%.exr}"*.exr; do
     echo "$(iinfo --hash "$f" | sed -n 's/.*SHA-1: //p' | cut -c1-16)  $(basename "$f")  ${scene#"$root"/} $method $*"
   done

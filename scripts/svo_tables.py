@@ -15,6 +15,8 @@ import json
 import os
 import sys
 
+import script_args as sa
+
 PASSES = {
     "build": ["svo_build"],
     "inject": ["vct_inject_max", "vct_inject"],
@@ -28,8 +30,7 @@ def fmt(x, digits=4):
 
 
 def main(out):
-    with open(os.path.join(out, "results.json")) as f:
-        res = json.load(f)
+    res = sa.sweep_results("DIR", out, "svo")
     rows = [r for r in res["rows"] if r.get("role") == "point"]
     first = rows[0]
     print(f"Run: {res['experiment']}, {res['size'][0]}×{res['size'][1]}, {res['spp']} spp per point, "
@@ -71,4 +72,7 @@ def main(out):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1])
+    if len(sys.argv) != 2:
+        print("usage: svo_tables.py DIR   (DIR: the output folder of `vgi sweep scenes/experiments/svo.json -o DIR`)", file=sys.stderr)
+        sys.exit(2)
+    sa.run_main(lambda: main(sys.argv[1]))

@@ -24,10 +24,23 @@ import os
 import re
 import sys
 
-import matplotlib
+import script_args as sa
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt = None  # matplotlib.pyplot, imported by main() once its argument is checked
+
+
+def import_pyplot():
+    global plt
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as pyplot
+    except ImportError as e:
+        print(f"{sa.PROG}: error: {e} (install python3-matplotlib, scripts/setup.sh does, and run this with "
+              f"Debian's /usr/bin/python3)", file=sys.stderr)
+        sys.exit(2)
+    plt = pyplot
 
 
 def num(x):
@@ -80,8 +93,8 @@ def pareto(rows, channel):
 
 
 def main(out):
-    with open(os.path.join(out, "results.json")) as f:
-        res = json.load(f)
+    res = sa.sweep_results("DIR", out)
+    import_pyplot()
     rows = res["rows"]
     scenes = []
     for r in rows:
@@ -331,5 +344,6 @@ def write_html(out, res, sections):
 
 if __name__ == "__main__":
     if len(sys.argv) != 2:
-        sys.exit("usage: sweep_report.py DIR")
-    main(sys.argv[1])
+        print("usage: sweep_report.py DIR   (DIR: the output folder of `vgi sweep EXPERIMENT -o DIR`)", file=sys.stderr)
+        sys.exit(2)
+    sa.run_main(lambda: main(sys.argv[1]))

@@ -8,14 +8,18 @@
 # An interrupted or partly failed array is resumed by running the script again: finished renders
 # are kept (their JSON says so) and only the others are listed again.
 set -euo pipefail
-[ $# -ge 2 ] || { echo "usage: sweep_slurm.sh EXPERIMENT OUT [sbatch options...]" >&2; exit 2; }
+. "$(dirname "$0")/script_args.sh"
+[ $# -ge 2 ] || sa_usage "EXPERIMENT OUT [sbatch options...]   (VGI=path/to/vgi)"
 experiment=$1
 out=$2
 shift 2
 vgi=${VGI:-build/apps/vgi}
-mkdir -p "$out"
+sa_vgi VGI "$vgi"
+[ -f "$experiment" ] || sa_fail EXPERIMENT "$experiment" "is not a file"
+command -v sbatch > /dev/null || { echo "$sa_prog: sbatch is missing: this runs on a Slurm cluster" >&2; exit 2; }
+sa_out OUT "$out"
 jobs="$out/jobs.txt"
-"$vgi" sweep "$experiment" -o "$out" --print-commands > "$jobs.all"
+"$vgi" sweep "$experiment" -o "$out" --print-commands > "$jobs.all"  # its own error (exit 2) ends this
 # Only the renders not done yet (a finished one's stats JSON has every sample).
 : > "$jobs"
 while IFS= read -r cmd; do

@@ -18,6 +18,7 @@
 #include "core/progress.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
+#include "core/warnings.h"
 #include "illum/framework/sample_loop.h"
 
 namespace fs = std::filesystem;
@@ -125,6 +126,7 @@ Scene jobScene(const RenderOptions& opt) {
   checkRenderOptions(opt);
   findMethod(opt.method);  // a misspelt --method is named before the scene is loaded
   Scene scene = loadScene(opt.scene);
+  printWarnings(scene.report.warnings);
   if (opt.camera) {  // the pose at every time (no path); the scene's cut-away distance stays
     const float clipNear = scene.camera.clipNear;
     scene.camera = *opt.camera;
@@ -361,11 +363,13 @@ RenderOutput renderAnimationJob(RenderJob& job, const RenderOptions& opt, const 
   GlContext* gl = job.gl();
   RenderRequest req = job.request();
   nlohmann::json run = job.describe();
-  if (!job.scene().hasDynamicMeshes() && job.scene().cameraPath.empty())
-    run["warnings"].push_back(
-        "--frames " + std::to_string(opt.frames) +
-        ": the scene has no dynamic meshes and no camera path, so every frame shows the same "
-        "instant");
+  if (!job.scene().hasDynamicMeshes() && job.scene().cameraPath.empty()) {
+    const std::string still = "--frames " + std::to_string(opt.frames) +
+                              ": the scene has no dynamic meshes and no camera path, so every frame shows "
+                              "the same instant";
+    run["warnings"].push_back(still);
+    printWarning(still);
+  }
   nlohmann::json frames = nlohmann::json::array(), timings = nlohmann::json::object(),
                  cpuTimings = nlohmann::json::object(), calls = nlohmann::json::object();
   auto addInto = [](nlohmann::json& sum, const nlohmann::json& part) {

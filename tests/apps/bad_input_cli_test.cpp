@@ -135,13 +135,9 @@ TEST(BadInputCli, DevicesAndLinksToThemAreNotReadAsFiles) {
   expectRefused(vgi("diff /dev/urandom /dev/zero"), {"image '/dev/urandom'", "not a regular file"});
   expectRefused(vgi("render --scene /dev/zero -o " + tmp("d.exr")),
                 {"scene '/dev/zero'", "not a regular file"});
-  // A texture or environment map that is a device: a warning, and the constant colour.
-  for (const char* f : {"device_texture.json", "device_env.json"}) {
-    CliRun r = renderBad(f);
-    expectRendered(r, tmp(std::string("bad_") + f));
-    nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp(std::string("bad_") + f + ".json")));
-    EXPECT_NE(s["warnings"].dump().find("not a regular file"), std::string::npos) << s["warnings"];
-  }
+  // A texture or environment map the scene file names that is a device: refused, naming the key.
+  expectRefused(renderBad("device_texture.json"), {"materials.m.texture", "/dev/zero", "not a regular file"});
+  expectRefused(renderBad("device_env.json"), {"environment.map", "/dev/urandom", "not a regular file"});
   expectRefused(vgi("diff missing.exr missing2.exr"), {"image 'missing.exr' does not exist"});
 }
 
@@ -642,6 +638,129 @@ TEST(BadInputCli, VoxelGridsFarFromTheOriginAreComplete) {
       EXPECT_GE(s["recall"].get<double>(), 0.999) << scene << " " << voxelizer;
       EXPECT_GE(s["precision"].get<double>(), 0.999) << scene << " " << voxelizer;
     }
+}
+
+TEST(BadInputCli, WarningsArePrintedOnceEvenWhenQuiet) {
+  // Issue 53, class 1: a scene's warnings reached only the stats JSON. Now each is printed to stderr
+  // ("vgi: warning: …") as well as recorded, under --quiet too, and once per process (compare loads
+  // its scene twice).
+  auto count = [](const std::string& text, const std::string& needle) {
+    size_t n = 0;
+    for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+    return n;
+  };
+  const std::string missing = dataPath("bad/missing_texture.obj");  // a model file's texture: a warning
+  CliRun r = renderBad("missing_texture.obj");
+  expectRendered(r, tmp("bad_missing_texture.obj"));
+  EXPECT_EQ(count(r.output, "vgi: warning: texture '"), 1u) << r.output;
+  EXPECT_NE(r.output.find("no_such_texture.png"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("vgi: warning: " + missing + ": no lights, added a point light"), std::string::npos)
+      << r.output;
+  nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("bad_missing_texture.obj.json")));
+  EXPECT_NE(s["warnings"].dump().find("no_such_texture.png"), std::string::npos) << s["warnings"];
+  CliRun c = vgi("compare --scene '" + dataPath("bad/too_bright.obj") +
+                 "' --method direct --size 16x16 --spp 1 --ref-spp 1 -o " + tmp("warn_compare.exr"));
+  ASSERT_EQ(c.code, 0) << c.output;
+  EXPECT_EQ(count(c.output, "ks reduced"), 1u) << c.output;
+  // An option's warning too: --frames over a scene that does not move.
+  CliRun f = vgi("render --method direct --size 8x8 --spp 1 --frames 2 --quiet -o " + tmp("still/f.exr"));
+  ASSERT_EQ(f.code, 0) << f.output;
+  EXPECT_NE(f.output.find("vgi: warning: --frames 2: the scene has no dynamic meshes"), std::string::npos)
+      << f.output;
+  // The other commands that load a scene print them too.
+  CliRun v =
+      vgi("voxelize --scene '" + missing + "' --voxels 32x32x128 --no-cache --stats " + tmp("warn_vox.json"));
+  ASSERT_EQ(v.code, 0) << v.output;
+  EXPECT_EQ(count(v.output, "vgi: warning: texture '"), 1u) << v.output;
+}
+
+TEST(BadInputCli, MapsAndTexturesTheSceneFileNamesMustBeReadable) {
+  // Issue 53, class 1: an environment map that was an empty file or a folder rendered with exit 0 and
+  // the constant colour. What the scene file itself names is refused (exit 2, the key and the file).
+  const std::string empty = tmp("empty_map.hdr"), folder = tmp("map_folder");
+  std::ofstream(empty).close();
+  std::filesystem::create_directories(folder);
+  for (const std::string& map : {empty, folder, tmp("no_such_map.exr")}) {
+    const std::string scene = tmp("env_scene.json");
+    std::ofstream(scene) << R"({"meshes": [{"path": "builtin:cornell"}], "environment": {"map": ")" << map
+                         << R"("}})";
+    expectRefused(vgi("render --scene " + scene + " --size 8x8 --spp 1 --quiet -o " + tmp("env.exr")),
+                  {"environment.map", map});
+    std::ofstream(scene) << R"({"meshes": [{"path": "builtin:cornell", "material": "m"}],)"
+                         << R"( "materials": {"m": {"texture": ")" << map << R"("}}})";
+    expectRefused(vgi("render --scene " + scene + " --size 8x8 --spp 1 --quiet -o " + tmp("tex.exr")),
+                  {"materials.m.texture", map});
+  }
+}
+
+TEST(BadInputCli, MeasurementScriptsCheckTheirArgumentsAndPassOnVgisReason) {
+  // Issue 53, class 2: the scripts a README or BENCHMARKS tells a person to run ended in a Python
+  // traceback on a missing vgi or folder, and `channel_energy.py` swallowed vgi's reason. Each now
+  // checks its arguments up front (exit 2, naming the argument and the value; scripts/script_args.*)
+  // and a failed vgi command is reported with vgi's own "vgi: error: …".
+  const std::string scripts = dataPath("../../scripts"), vgiPath = VGI_BINARY;
+  const std::string empty = tmp("script_empty_dir"), out = tmp("script_out");
+  std::filesystem::create_directories(empty);
+  auto refused = [&](const std::string& command, std::initializer_list<std::string> needles) {
+    CliRun r = test::shell("cd " + scripts + "/.. && " + command);
+    EXPECT_EQ(r.code, 2) << command << "\n" << r.output;
+    for (auto& n : needles)
+      EXPECT_NE(r.output.find(n), std::string::npos) << "'" << n << "' not in: " << r.output;
+    EXPECT_EQ(r.output.find("Traceback"), std::string::npos) << command << "\n" << r.output;
+    EXPECT_EQ(r.output.find("unbound variable"), std::string::npos) << command << "\n" << r.output;
+  };
+  const std::string py = "python3 scripts/";
+  refused(py + "driver_parity.py run --vgi /no/such/vgi " + out, {"--vgi", "/no/such/vgi", "does not exist"});
+  refused(py + "driver_parity.py render --vgi " + vgiPath + " --size 0x3 " + out, {"--size", "0x3"});
+  refused(py + "driver_parity.py render --vgi " + vgiPath + " --spp many " + out, {"--spp", "many"});
+  refused(py + "driver_parity.py render --vgi " + vgiPath + " --only nosuch " + out, {"--only", "nosuch"});
+  refused(py + "driver_parity.py compare --vgi " + vgiPath + " " + empty + " " + empty,
+          {empty, "manifest.json"});
+  refused(py + "channel_energy.py --vgi /no/such/vgi " + out, {"--vgi", "/no/such/vgi"});
+  refused(py + "channel_energy.py --vgi " + vgiPath + " --scenes /no/scene.json " + out,
+          {"--scenes", "/no/scene.json"});
+  refused(py + "channel_energy.py --vgi " + vgiPath + " --size big " + out, {"--size", "big"});
+  refused(py + "artefacts_tables.py " + empty, {empty, "results.json"});
+  refused(py + "artefacts_tables.py", {"usage"});
+  refused(py + "svo_tables.py", {"usage"});
+  refused(py + "svo_tables.py /no/such/dir", {"/no/such/dir", "does not exist"});
+  refused(py + "sweep_report.py " + empty, {empty, "results.json"});
+  refused(py + "make_leak_walls.py extra", {"usage", "extra"});
+  {  // results of another experiment
+    std::ofstream(empty + "/results.json") << R"({"experiment": "other", "rows": [{"role": "point"}]})";
+    refused(py + "svo_tables.py " + empty, {"'other'", "svo.json"});
+    std::filesystem::remove(empty + "/results.json");
+  }
+  refused("bash scripts/bench_traverse.sh a b", {"usage"});
+  refused("VGI=/no/such/vgi bash scripts/bench_load.sh", {"VGI", "/no/such/vgi"});
+  refused("VGI=" + vgiPath + " bash scripts/bench_load.sh " + out + " 0", {"max-triangles", "'0'"});
+  refused("VGI=" + vgiPath + " bash scripts/bench_radius.sh " + out + " -3", {"ref-spp", "'-3'"});
+  refused("VGI=" + vgiPath + " bash scripts/bench_vct.sh " + out + " 9", {"SECTIONS", "'9'"});
+  refused("VGI=" + vgiPath + " bash scripts/bench_hybrid.sh extra", {"usage"});
+  refused("VGI=" + vgiPath + " bash scripts/bench_vct.sh /dev/null",
+          {"OUT_DIR", "/dev/null", "not a folder"});
+  refused("bash scripts/bench_atlas.sh a b", {"usage"});
+  refused("bash scripts/bench_voxelize.sh a b", {"usage"});
+  refused("bash scripts/render_fingerprints.sh", {"usage"});
+  refused("bash scripts/render_fingerprints.sh " + out + " /no/such/vgi", {"VGI", "/no/such/vgi"});
+  refused("VGI=" + vgiPath + " bash scripts/sweep_slurm.sh /no/such.json " + out,
+          {"EXPERIMENT", "/no/such.json"});
+  refused("bash scripts/sweep_slurm.sh one", {"usage"});
+  refused("bash scripts/gpu_bench.sh --vgi", {"usage", "--vgi needs a value"});
+  refused("bash scripts/gpu_bench.sh --vgi /no/such/vgi " + out, {"--vgi", "/no/such/vgi"});
+  // A vgi command that fails: its reason reaches the person, from Python and from the shell.
+  CliRun c = test::shell("cd " + scripts + "/.. && " + py + "channel_energy.py --vgi " + vgiPath +
+                         " --scenes builtin:cornell --methods nosuchmethod " + out);
+  EXPECT_EQ(c.code, 1) << c.output;
+  EXPECT_NE(c.output.find("vgi: error:"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("nosuchmethod"), std::string::npos) << c.output;
+  EXPECT_EQ(c.output.find("Traceback"), std::string::npos) << c.output;
+  CliRun sh = test::shell("bash -c '. " + scripts + "/script_args.sh; sa_run " + tmp("sa_run.log") + " " +
+                          vgiPath + " render --method nosuchmethod -o " + tmp("x.exr") + "'");
+  EXPECT_EQ(sh.code, 1) << sh.output;
+  EXPECT_NE(sh.output.find("FAILED"), std::string::npos) << sh.output;
+  EXPECT_NE(sh.output.find("vgi: error:"), std::string::npos) << sh.output;
+  EXPECT_NE(sh.output.find("nosuchmethod"), std::string::npos) << sh.output;
 }
 
 }  // namespace vgi
