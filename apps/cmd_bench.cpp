@@ -91,6 +91,34 @@ Agreement agreement(const std::vector<TraceResult>& r, const std::vector<TraceRe
   return a;
 }
 
+// The mean and the 99th percentile of one count over the rays.
+nlohmann::json meanAndP99(std::vector<uint32_t> v) {
+  if (v.empty()) return {{"mean", 0.0}, {"p99", 0}};
+  double sum = 0;
+  for (uint32_t x : v) sum += x;
+  const size_t k = std::min(v.size() - 1, size_t(0.99 * double(v.size())));
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+  return {{"mean", sum / double(v.size())}, {"p99", v[k]}};
+}
+
+// What each ray of a shared kernel costs a GPU, device-independent: loop steps, memory loads and their
+// bytes, levels climbed and refined (the C++ build of the kernel the GLSL runs, on the same rays).
+nlohmann::json traversalCounts(const RayTracer& tracer, const std::vector<TraceRay>& rays, int threads) {
+  std::vector<TraceResult> r;
+  std::vector<shared::TraceCounts> c;
+  tracer.countBatch(rays, r, c, threads);
+  auto column = [&](auto field) {
+    std::vector<uint32_t> v(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) v[i] = field(i);
+    return meanAndP99(std::move(v));
+  };
+  return {{"steps", column([&](size_t i) { return r[i].steps; })},
+          {"fetches", column([&](size_t i) { return c[i].fetches; })},
+          {"bytes", column([&](size_t i) { return c[i].bytes; })},
+          {"climbs", column([&](size_t i) { return c[i].climbs; })},
+          {"refines", column([&](size_t i) { return c[i].refines; })}};
+}
+
 struct TraverseOptions {
   std::string scene = "builtin:cornell", voxels = "256", voxelizer = "atlas",
               tracers = "hierarchical,dda,march,bvh,embree", maxDist = "0.1", gl = "auto", stats;
@@ -179,6 +207,7 @@ nlohmann::json benchRayLength(TraverseSetup& t, const TraverseOptions& o, std::v
   std::map<std::string, std::vector<TraceResult>> results;
   std::map<std::string, double> cpuMs, glMs;
   std::map<std::string, bool> glMatchesCpu;
+  std::map<std::string, nlohmann::json> counts;
   for (const std::string& name : {std::string("dda"), std::string("embree")})  // the references, always run
     if (std::find(tracers.begin(), tracers.end(), name) == tracers.end()) tracers.push_back(name);
   for (const std::string& name : tracers) {
@@ -190,6 +219,7 @@ nlohmann::json benchRayLength(TraverseSetup& t, const TraverseOptions& o, std::v
       best = std::min(best, msSince(t1));
     }
     cpuMs[name] = best;
+    if (name != "embree") counts[name] = traversalCounts(*tracer, rays, threads);
     if (o.noGl || !findTracer(name).glsl) continue;
     Profiler warm(true), prof(true);
     traceRaysGl(*t.gpuPyramid, *t.shaders, name, std::vector<TraceRay>(rays.begin(), rays.begin() + 1), warm,
@@ -232,6 +262,7 @@ nlohmann::json benchRayLength(TraverseSetup& t, const TraverseOptions& o, std::v
     j["dist_err_mean_voxels"] = emb.errMean;
     j["dist_err_p95_voxels"] = emb.errP95;
     j["dist_err_max_voxels"] = emb.errMax;
+    if (counts.count(name)) j["counts"] = counts[name];
     per[name] = j;
   }
   return {{"max_dist", std::isinf(maxDist) ? nlohmann::json("inf") : nlohmann::json(maxDist)},
@@ -265,14 +296,22 @@ nlohmann::json crossover(const nlohmann::json& lengths) {
   return nullptr;
 }
 
+// A ray length as the tables print it: 0.1, 2.53, inf (the JSON holds the float's double).
+std::string lengthText(const nlohmann::json& v) {
+  if (!v.is_number()) return v.is_string() ? v.get<std::string>() : v.dump();
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", double(float(v.get<double>())));
+  return buf;
+}
+
 void printTraverse(const nlohmann::json& s, const TraverseOptions& o) {
   const auto& r = s["resolution"];
   std::printf("%s, %dx%dx%d (%s), %zu rays per length, %d threads, %s\n", o.scene.c_str(), r[0].get<int>(),
               r[1].get<int>(), r[2].get<int>(), s["voxelizer"].get<std::string>().c_str(), o.rays,
               s["threads"].get<int>(), s["gl_renderer"].get<std::string>().c_str());
   for (auto& l : s["lengths"]) {
-    std::printf("max-dist %s x diagonal (%s world)\n", l["max_dist"].dump().c_str(),
-                l["max_dist_world"].dump().c_str());
+    std::printf("max-dist %s x diagonal (%s world)\n", lengthText(l["max_dist"]).c_str(),
+                lengthText(l["max_dist_world"]).c_str());
     std::printf("%-13s %10s %10s %8s %9s %10s %10s %10s\n", "tracer", "Mrays/s", "GL Mrays/s", "hits",
                 "agree_dda", "agree_emb", "err_mean", "err_p95");
     for (auto& [name, j] : l["tracers"].items()) {
@@ -283,6 +322,20 @@ void printTraverse(const nlohmann::json& s, const TraverseOptions& o) {
                   j["mrays_per_s"].get<double>(), glRate, j["hit_rate"].get<double>(),
                   j["agree_dda"].get<double>(), j["agree_embree_hit"].get<double>(),
                   j["dist_err_mean_voxels"].get<double>(), j["dist_err_p95_voxels"].get<double>());
+    }
+  }
+  for (auto& l : s["lengths"]) {
+    std::printf("per ray at max-dist %s x diagonal (the C++ build of each GLSL kernel): mean / p99\n",
+                lengthText(l["max_dist"]).c_str());
+    std::printf("%-13s %15s %15s %15s %15s %15s\n", "tracer", "steps", "fetches", "bytes", "climbs",
+                "refines");
+    for (auto& [name, j] : l["tracers"].items()) {
+      if (!j.contains("counts")) continue;
+      std::printf("%-13s", name.c_str());
+      for (const char* k : {"steps", "fetches", "bytes", "climbs", "refines"})
+        std::printf(" %8.2f / %4u", j["counts"][k]["mean"].get<double>(),
+                    j["counts"][k]["p99"].get<unsigned>());
+      std::printf("\n");
     }
   }
   if (s.contains("crossover_max_dist"))

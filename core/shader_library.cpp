@@ -167,7 +167,8 @@ ShaderLibrary::Source ShaderLibrary::preprocess(const std::string& file, const S
   e.root = fs::weakly_canonical(root_).string();
   e.out << "#version 450 core\n#define SHARED_BEGIN\n#define SHARED_END\n#define SHARED_FN\n"
            "#define SHARED_PRECISE precise\n#define SHARED_IN(T) T\n#define PYRAMID_PARAM\n#define "
-           "PYRAMID_ARG\n#define BVH_PARAM\n#define BVH_ARG\n";
+           "PYRAMID_ARG\n#define BVH_PARAM\n#define BVH_ARG\n#define TRACE_FETCHES(n, nbytes)\n"
+           "#define TRACE_CLIMB()\n#define TRACE_REFINE()\n";
   for (auto& [k, v] : defines) e.out << "#define " << k << " " << v << "\n";
   e.expand(fs::weakly_canonical(fs::path(root_) / file).string(), "");
   return {e.out.str(), e.files};

@@ -71,6 +71,19 @@ void RayTracer::traceBatch(const std::vector<TraceRay>& rays, std::vector<TraceR
   });
 }
 
+void RayTracer::countBatch(const std::vector<TraceRay>& rays, std::vector<TraceResult>& out,
+                           std::vector<shared::TraceCounts>& counts, int threads) const {
+  out.resize(rays.size());
+  counts.assign(rays.size(), shared::TraceCounts{});
+  parallelFor(rays.size(), 4096, threads, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      shared::traceCounts = &counts[i];
+      out[i] = trace(rays[i]);
+    }
+    shared::traceCounts = nullptr;
+  });
+}
+
 namespace {
 
 TraceResult fromShared(const shared::TraceHit& h) {

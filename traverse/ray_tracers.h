@@ -69,6 +69,10 @@ class RayTracer {
   virtual TraceResult trace(const TraceRay& ray) const = 0;
   // Many rays on `threads` CPU threads (0: all cores); results in ray order.
   void traceBatch(const std::vector<TraceRay>& rays, std::vector<TraceResult>& out, int threads = 0) const;
+  // The same, counting per ray what the shared kernel loads and how it moves through the levels
+  // (shared::TraceCounts; all zero for embree, which runs no shared kernel).
+  void countBatch(const std::vector<TraceRay>& rays, std::vector<TraceResult>& out,
+                  std::vector<shared::TraceCounts>& counts, int threads = 0) const;
 };
 
 std::unique_ptr<RayTracer> createTracer(const std::string& name, const TracerInputs& inputs);

@@ -30,3 +30,34 @@
 // Likewise the BVH's nodes and triangles (shared/trace_bvh.glsl): buffers bvhNodes and bvhTris in GLSL.
 #define BVH_PARAM , const vec4 *bvhNodes, const vec4 *bvhTris
 #define BVH_ARG , bvhNodes, bvhTris
+
+// What a traversal pays for, counted by the C++ build only (vgi bench traverse): the same kernels, so
+// the same rays give the counts the GLSL build has, without a counter in any GPU program (the GLSL
+// prelude defines TRACE_FETCHES, TRACE_CLIMB and TRACE_REFINE as nothing). Counting is on for a
+// thread while traceCounts points somewhere (RayTracer::countBatch); otherwise one predictable branch.
+namespace vgi {
+namespace shared {
+struct TraceCounts {
+  uint32_t fetches = 0;  // memory loads: a 32-bit pyramid word, a BVH vec4
+  uint32_t bytes = 0;    // what those loads read
+  uint32_t climbs = 0;   // hierarchical: levels gone up (an empty column's exit left its parent)
+  uint32_t refines = 0;  // hierarchical: levels gone down (a non-empty coarse column)
+};
+inline thread_local TraceCounts* traceCounts = nullptr;
+}  // namespace shared
+}  // namespace vgi
+#define TRACE_FETCHES(n, nbytes)                     \
+  do {                                               \
+    if (::vgi::shared::traceCounts) {                \
+      ::vgi::shared::traceCounts->fetches += (n);    \
+      ::vgi::shared::traceCounts->bytes += (nbytes); \
+    }                                                \
+  } while (false)
+#define TRACE_CLIMB()                                                     \
+  do {                                                                    \
+    if (::vgi::shared::traceCounts) ++::vgi::shared::traceCounts->climbs; \
+  } while (false)
+#define TRACE_REFINE()                                                     \
+  do {                                                                     \
+    if (::vgi::shared::traceCounts) ++::vgi::shared::traceCounts->refines; \
+  } while (false)

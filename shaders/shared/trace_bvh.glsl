@@ -211,6 +211,7 @@ SHARED_FN BvhHit intersectLeaf(SHARED_IN(WatertightRay) w, vec3 origin, uint ref
     vec4 q0 = bvhTris[3u * i];
     vec4 q1 = bvhTris[3u * i + 1u];
     vec4 q2 = bvhTris[3u * i + 2u];
+    TRACE_FETCHES(3u, 48u);
     BvhHit h = intersectWatertight(w, origin, vec3(q0.x, q0.y, q0.z), vec3(q1.x, q1.y, q1.z),
                                    vec3(q2.x, q2.y, q2.z), best.t);
     if (h.hit != 0u) {
@@ -245,6 +246,7 @@ SHARED_FN BvhHit traceBvh2(vec3 origin, vec3 dir, float tmax, bool anyHit BVH_PA
     vec4 hi0 = bvhNodes[base + 1u];
     vec4 lo1 = bvhNodes[base + 2u];
     vec4 hi1 = bvhNodes[base + 3u];
+    TRACE_FETCHES(4u, 64u);
     float e0 = boxEntry(origin, invDir, lo0, hi0);
     float e1 = boxEntry(origin, invDir, lo1, hi1);
     bool in0 = e0 <= best.t * kBoxSlack, in1 = e1 <= best.t * kBoxSlack;
@@ -309,6 +311,7 @@ SHARED_FN BvhHit traceBvhWidth(vec3 origin, vec3 dir, float tmax, bool anyHit, u
     uint node = stack[sp];
     steps = steps + 1u;
     uint base = node * 2u * width;
+    TRACE_FETCHES(2u * width, 32u * width);
     // Every child's box against the best hit so far, before any leaf of this node is tested.
     float entry[kBvhMaxWidth];
     bool entered[kBvhMaxWidth];

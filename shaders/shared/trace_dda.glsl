@@ -16,6 +16,7 @@ SHARED_BEGIN
 
 SHARED_FN bool voxelSet(SHARED_IN(PyramidParams) p, int x, int y, int z PYRAMID_PARAM) {
   uint i = p.levelOffsets[0] + columnWordIndex(uint(x), uint(y), depthWord(uint(z)), p.grid.resolution);
+  TRACE_FETCHES(1u, 4u);
   return (pyramidWords[i] & depthBit(uint(z))) != 0u;
 }
 

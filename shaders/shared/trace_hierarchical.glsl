@@ -50,6 +50,7 @@ SHARED_FN int firstSetDepth(uint index0, uint k0, uint k1, bool forward PYRAMID_
     // Word w of a column sits at slab w/4, component w%4 (voxel_grid.glsl); the
     // caller passes the index of word 0 and the slab stride in index0's level.
     uint m = pyramidWords[index0 + w] & bitRange(lo, hi);
+    TRACE_FETCHES(1u, 4u);
     if (m != 0u) return int(w * 32u) + (forward ? findLSB(m) : findMSB(m));
   }
   return -1;
@@ -118,6 +119,7 @@ SHARED_FN TraceHit traceHierarchical(SHARED_IN(PyramidParams) p, vec3 origin, ve
           kA = cellAt(r, 2, t, false);
         }
         level -= 1u;
+        TRACE_REFINE();
         continue;
       }
     }
@@ -131,7 +133,10 @@ SHARED_FN TraceHit traceHierarchical(SHARED_IN(PyramidParams) p, vec3 origin, ve
     int ny = ty == t ? advanceCell(r, 1, r.stepDir[1] > 0 ? y1 : y0 - 1, t) : (level == 0u ? cy : cellAt(r, 1, t, false));
     kA = advanceCell(r, 2, kB, t);
     uint up = level + 1u;
-    if (up < p.levels && ((nx >> up) != (cx >> up) || (ny >> up) != (cy >> up))) level = up;
+    if (up < p.levels && ((nx >> up) != (cx >> up) || (ny >> up) != (cy >> up))) {
+      level = up;
+      TRACE_CLIMB();
+    }
     cx = nx;
     cy = ny;
   }

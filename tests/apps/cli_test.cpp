@@ -379,6 +379,16 @@ TEST(Cli, BenchTraverseReportsEveryTracer) {
   EXPECT_EQ(s["tracers"]["bvh"]["agree_embree_hit"], 1.0);
   EXPECT_EQ(s["tracers"]["bvh"]["gl_equals_cpu"], true);
   EXPECT_EQ(s["bvh"]["triangles"], 30);
+  // Per ray, what each shared kernel pays (the C++ build counts the rays the GLSL traced): mean and p99.
+  for (const char* t : {"hierarchical", "dda", "march", "bvh"})
+    for (const char* k : {"steps", "fetches", "bytes", "climbs", "refines"}) {
+      ASSERT_TRUE(s["tracers"][t]["counts"][k].contains("mean")) << t << " " << k;
+      EXPECT_GE(s["tracers"][t]["counts"][k]["p99"].get<double>(), 0.0) << t << " " << k;
+    }
+  EXPECT_GT(s["tracers"]["hierarchical"]["counts"]["climbs"]["mean"].get<double>(), 0.0);
+  EXPECT_LT(s["tracers"]["hierarchical"]["counts"]["fetches"]["mean"].get<double>(),
+            s["tracers"]["dda"]["counts"]["fetches"]["mean"].get<double>());
+  EXPECT_FALSE(s["tracers"]["embree"].contains("counts"));
   // A sweep of ray lengths: one entry each, and where the GLSL hierarchical and bvh tracers cross.
   CliRun w =
       vgi("bench traverse --voxels 128 --rays 2000 --repeat 1 --tracers hierarchical,bvh --max-dist "

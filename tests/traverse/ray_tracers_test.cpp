@@ -233,6 +233,67 @@ TEST(RayTracers, HierarchicalEqualsDdaOnAMillionAdversarialRays) {
   EXPECT_GT(hits, total / 10);  // the population must exercise hits, not only misses
 }
 
+// vgi bench traverse's counts (shared::TraceCounts) follow the traversal they count: counting changes no
+// result; the DDA and the march load one word per voxel they test, the hierarchical tracer one per word
+// of a column range it searches; a hierarchical hit ends at level 0, so it refined as often as it
+// climbed (it starts there too), a miss at most as often. Empty and full grids pin the extremes.
+TEST(RayTracers, TraversalCountsFollowTheTraversal) {
+  for (const TestGrid& tg : testGrids()) {
+    BinaryGrid g = fillGrid(tg, 13);
+    OrMipPyramid pyramid(g);
+    TracerInputs in;
+    in.pyramid = &pyramid;
+    const std::vector<TraceRay> rays = adversarialRays(tg.box, 20000, 9);
+    for (const char* name : {"hierarchical", "dda", "march"}) {
+      auto tracer = createTracer(name, in);
+      std::vector<TraceResult> plain, counted;
+      std::vector<shared::TraceCounts> c;
+      tracer->traceBatch(rays, plain);
+      tracer->countBatch(rays, counted, c);
+      ASSERT_EQ(c.size(), rays.size());
+      size_t climbed = 0;
+      for (size_t i = 0; i < rays.size(); ++i) {
+        ASSERT_EQ(plain[i].hit, counted[i].hit) << tg.name << " " << name << " ray " << i;
+        ASSERT_EQ(plain[i].steps, counted[i].steps) << tg.name << " " << name << " ray " << i;
+        ASSERT_EQ(c[i].bytes, 4u * c[i].fetches) << tg.name << " " << name;
+        if (std::string(name) == "hierarchical") {
+          if (counted[i].hit) ASSERT_EQ(c[i].refines, c[i].climbs) << tg.name << " ray " << i;
+          ASSERT_LE(c[i].refines, c[i].climbs) << tg.name << " ray " << i;
+          ASSERT_LE(c[i].climbs, counted[i].steps) << tg.name << " ray " << i;
+          climbed += c[i].climbs;
+        } else {
+          // One voxel tested per step, but for the last when the ray leaves the grid or ends.
+          ASSERT_LE(c[i].fetches, counted[i].steps) << tg.name << " " << name << " ray " << i;
+          ASSERT_GE(c[i].fetches + 1u, counted[i].steps) << tg.name << " " << name << " ray " << i;
+          ASSERT_EQ(c[i].climbs + c[i].refines, 0u);
+        }
+      }
+      if (std::string(name) == "hierarchical" && pyramid.levels() > 1) EXPECT_GT(climbed, 0u) << tg.name;
+    }
+  }
+  // An empty grid: the hierarchical tracer climbs to the top and leaves; a ray across a 128³ grid
+  // along x reads one word per column it visits, far fewer than the DDA's 128 cells.
+  TestGrid tg = testGrids().front();
+  BinaryGrid empty(tg.box);
+  OrMipPyramid pyramid(empty);
+  TracerInputs in;
+  in.pyramid = &pyramid;
+  TraceRay ray;
+  const glm::vec3 lo = tg.box.origin, ext = tg.box.extent;
+  ray.origin = lo + glm::vec3(-0.01f * ext.x, 0.37f * ext.y, 0.41f * ext.z);
+  ray.dir = glm::vec3(1, 0, 0);
+  ray.tmax = INFINITY;
+  std::vector<TraceResult> h, d;
+  std::vector<shared::TraceCounts> ch, cd;
+  createTracer("hierarchical", in)->countBatch({ray}, h, ch);
+  createTracer("dda", in)->countBatch({ray}, d, cd);
+  ASSERT_FALSE(h[0].hit);
+  EXPECT_EQ(cd[0].fetches, tg.box.resolution.x) << tg.name;
+  EXPECT_LT(ch[0].fetches, cd[0].fetches / 4) << tg.name;
+  EXPECT_GE(ch[0].climbs, 1u);
+  EXPECT_EQ(ch[0].refines, 0u);
+}
+
 // The DDA against geometry computed in double: with one voxel set, a ray hits it
 // iff the segment overlaps the voxel's box, at the box entry distance. Rays that
 // only graze the box (overlap within 1e-4 of a voxel) are decided by the
