@@ -32,6 +32,7 @@
 #include "traverse/ray_population.h"
 #include "traverse/ray_tracers.h"
 #include "voxelize/atlas.h"
+#include "voxelize/setup_cache.h"
 #include "voxelize/voxelizer.h"
 
 namespace vgi::app {
@@ -159,7 +160,7 @@ TraverseSetup setupTraverse(const TraverseOptions& o, const VoxelizerInfo& vox, 
   req.scene = &t.scene;
   req.box = t.box = fitGridBox(t.scene, res);
   req.threads = o.threads;
-  req.atlasCacheDir = defaultAtlasCacheDir();
+  req.atlasCacheDir = defaultSetupCacheDir();
   req.gl = t.gl.get();
   req.shaders = t.shaders.get();
   Profiler buildProf(t.gl != nullptr);

@@ -114,6 +114,7 @@ BinaryGridNeed gridNeed(const VoxelizeOptions& o, const VoxelizerInfo& info) {
   g.atlasFootprint = o.footprint;
   g.hybridCutoff = o.hybridCutoff;
   g.atlasCache = !o.noCache;
+  g.gridCache = false;  // vgi voxelize measures the voxelizer: it always runs
   std::string kinds = o.kind;
   if (kinds == "binary")
     kinds.clear();

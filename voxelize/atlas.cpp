@@ -1,21 +1,16 @@
 #include "voxelize/atlas.h"
 
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "core/hash.h"
 #include "voxelize/atlas_packing.h"
 #include "voxelize/chart_parametrization.h"
-
-namespace fs = std::filesystem;
+#include "voxelize/setup_cache.h"
 
 namespace vgi {
 
@@ -35,16 +30,9 @@ float autoTexelWorld(glm::vec3 voxelSize, float texelsPerVoxel) {
   return std::min({voxelSize.x, voxelSize.y, voxelSize.z}) / texelsPerVoxel;
 }
 
-std::string defaultAtlasCacheDir() {
-  if (const char* d = std::getenv("VGI_CACHE_DIR")) return d;
-  if (const char* x = std::getenv("XDG_CACHE_HOME")) return std::string(x) + "/vgi";
-  if (const char* h = std::getenv("HOME")) return std::string(h) + "/.cache/vgi";
-  return "";
-}
-
 namespace {
 
-constexpr uint32_t kCacheVersion = 1;
+constexpr uint32_t kCacheVersion = 2;  // 2: the set-up cache's file format (voxelize/setup_cache.h)
 
 uint64_t contentHash(const std::vector<glm::vec3>& P, const std::vector<glm::uvec3>& T,
                      const AtlasOptions& o) {
@@ -58,48 +46,41 @@ uint64_t contentHash(const std::vector<glm::vec3>& P, const std::vector<glm::uve
   return fnv1a(&mf, sizeof mf, h);
 }
 
-struct CacheHeader {
-  uint32_t version;
-  int32_t resolution, charts, lscmCharts;
+// The atlas's entry in the set-up cache: these fields, then the UVs.
+struct CacheMeta {
+  int32_t resolution, charts, lscmCharts, pad;
   int64_t facesSplitOff, uvCount;
   float texelWorld, maxStretch;
   double utilization;
 };
 
-bool readCache(const fs::path& file, size_t triangles, MeshAtlas& a) {
-  std::ifstream in(file, std::ios::binary);
-  CacheHeader h;
-  if (!in.read(reinterpret_cast<char*>(&h), sizeof h) || h.version != kCacheVersion ||
-      h.uvCount != int64_t(3 * triangles))
+bool readCache(const std::string& dir, uint64_t key, size_t triangles, MeshAtlas& a) {
+  std::vector<uint8_t> payload;
+  if (!readSetupCache(dir, "atlas", key, payload) || payload.size() < sizeof(CacheMeta)) return false;
+  CacheMeta m;
+  std::memcpy(&m, payload.data(), sizeof m);
+  if (m.uvCount != int64_t(3 * triangles) ||
+      payload.size() != sizeof m + size_t(m.uvCount) * sizeof(glm::vec2))
     return false;
-  a.uv.resize(size_t(h.uvCount));
-  if (!in.read(reinterpret_cast<char*>(a.uv.data()), std::streamsize(a.uv.size() * sizeof(glm::vec2))))
-    return false;
-  a.resolution = h.resolution;
-  a.charts = h.charts;
-  a.lscmCharts = h.lscmCharts;
-  a.facesSplitOff = h.facesSplitOff;
-  a.texelWorld = h.texelWorld;
-  a.maxStretch = h.maxStretch;
-  a.utilization = h.utilization;
+  a.uv.resize(size_t(m.uvCount));
+  std::memcpy(static_cast<void*>(a.uv.data()), payload.data() + sizeof m, a.uv.size() * sizeof(glm::vec2));
+  a.resolution = m.resolution;
+  a.charts = m.charts;
+  a.lscmCharts = m.lscmCharts;
+  a.facesSplitOff = m.facesSplitOff;
+  a.texelWorld = m.texelWorld;
+  a.maxStretch = m.maxStretch;
+  a.utilization = m.utilization;
   return true;
 }
 
-void writeCache(const fs::path& file, const MeshAtlas& a) {
-  std::error_code ec;
-  fs::create_directories(file.parent_path(), ec);
-  // A temporary of this process' own: two processes (parallel tests, two renders) building the same
-  // atlas must not write into one file, or one could rename the other's half-written file into place.
-  fs::path tmp = file;
-  tmp += "." + std::to_string(getpid()) + ".tmp";
-  std::ofstream out(tmp, std::ios::binary);
-  if (!out) return;  // an unwritable cache only costs time
-  CacheHeader h{kCacheVersion,        a.resolution, a.charts,     a.lscmCharts, a.facesSplitOff,
-                int64_t(a.uv.size()), a.texelWorld, a.maxStretch, a.utilization};
-  out.write(reinterpret_cast<const char*>(&h), sizeof h);
-  out.write(reinterpret_cast<const char*>(a.uv.data()), std::streamsize(a.uv.size() * sizeof(glm::vec2)));
-  out.close();
-  if (out) fs::rename(tmp, file, ec);
+void writeCache(const std::string& dir, uint64_t key, const MeshAtlas& a) {
+  const CacheMeta m{a.resolution, a.charts,     a.lscmCharts, 0, a.facesSplitOff, int64_t(a.uv.size()),
+                    a.texelWorld, a.maxStretch, a.utilization};
+  std::vector<uint8_t> payload(sizeof m + a.uv.size() * sizeof(glm::vec2));
+  std::memcpy(payload.data(), &m, sizeof m);
+  std::memcpy(payload.data() + sizeof m, a.uv.data(), a.uv.size() * sizeof(glm::vec2));
+  writeSetupCache(dir, "atlas", key, payload.data(), payload.size());  // unwritable: only costs time
 }
 
 // Rotates a chart so its principal UV axis is horizontal (smaller bounding box).
@@ -129,12 +110,9 @@ MeshAtlas buildAtlas(const std::vector<glm::vec3>& P, const std::vector<glm::uve
   if (opt.resolution > maxResolution)
     fail("atlas resolution ", opt.resolution, " exceeds the largest texture (", maxResolution, ")");
   MeshAtlas atlas;
-  fs::path cacheFile;
+  const uint64_t key = opt.cacheDir.empty() ? 0 : contentHash(P, T, opt);
   if (!opt.cacheDir.empty()) {
-    char name[40];
-    std::snprintf(name, sizeof name, "atlas-%016llx.bin", (unsigned long long)contentHash(P, T, opt));
-    cacheFile = fs::path(opt.cacheDir) / name;
-    if (readCache(cacheFile, T.size(), atlas)) {
+    if (readCache(opt.cacheDir, key, T.size(), atlas)) {
       atlas.fromCache = true;
       atlas.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       return atlas;
@@ -205,7 +183,7 @@ MeshAtlas buildAtlas(const std::vector<glm::vec3>& P, const std::vector<glm::uve
       for (int k = 0; k < 3; ++k)
         atlas.uv[3 * c.faces[i] + size_t(k)] = (c.uv[3 * i + size_t(k)] / texel + shift) / float(side);
   }
-  if (!cacheFile.empty()) writeCache(cacheFile, atlas);
+  if (!opt.cacheDir.empty()) writeCache(opt.cacheDir, key, atlas);
   atlas.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return atlas;
 }

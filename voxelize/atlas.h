@@ -16,7 +16,7 @@ struct AtlasOptions {
   int resolution = 0;    // manual atlas resolution (square); 0 = follow texelWorld
   int gutter = 2;        // empty texels around every chart
   SegmentationOptions segmentation;
-  std::string cacheDir;  // "" = no cache
+  std::string cacheDir;  // the set-up cache's folder (voxelize/setup_cache.h); "" = no cache
 };
 
 struct MeshAtlas {
@@ -42,8 +42,5 @@ float autoTexelWorld(glm::vec3 voxelSize, float texelsPerVoxel);
 // atlas would exceed maxResolution texels on a side.
 MeshAtlas buildAtlas(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
                      const AtlasOptions& options, int maxResolution = 16384);
-
-// $VGI_CACHE_DIR, else $XDG_CACHE_HOME/vgi, else ~/.cache/vgi ("" if none).
-std::string defaultAtlasCacheDir();
 
 }  // namespace vgi

@@ -1,12 +1,19 @@
 #include "illum/resources/binary_grid.h"
 
+#include <cstring>
+#include <filesystem>
 #include <optional>
 
+#include "core/build_info.h"
+#include "core/gl_context.h"
+#include "core/hash.h"
 #include "core/params.h"
 #include "core/profiler.h"
 #include "core/scene.h"
+#include "core/shader_library.h"
 #include "voxelize/atlas.h"
 #include "voxelize/atlas_voxelizer.h"
+#include "voxelize/setup_cache.h"
 #include "voxelize/voxelizer.h"
 
 namespace vgi {
@@ -39,6 +46,11 @@ class BinaryGridResource : public Resource {
   bool update(SceneResources& res, const ResourceNeed&, Profiler& prof) override {
     if (builtFor_ && (!res.dynamic() || *builtFor_ == res.time())) return false;  // current
     if (!builtFor_) box_ = fitBox(res);
+    const std::optional<uint64_t> cacheKey = gridCacheKey(res);
+    if (cacheKey && readCachedGrid(*cacheKey, prof)) {
+      builtFor_ = res.time();
+      return true;
+    }
     VoxelizeRequest vreq;
     vreq.scene = &res.scene();
     vreq.box = box_;
@@ -46,7 +58,7 @@ class BinaryGridResource : public Resource {
     vreq.threads = res.threads();
     vreq.gl = res.gl();
     vreq.shaders = res.gl() ? &res.shaders() : nullptr;
-    vreq.atlasCacheDir = need_.atlasCache ? defaultAtlasCacheDir() : "";
+    vreq.atlasCacheDir = need_.atlasCache ? defaultSetupCacheDir() : "";
     vreq.valueGrids = need_.values;
     vreq.texelsPerVoxel = need_.texelsPerVoxel;
     vreq.atlasResolution = need_.atlasResolution;
@@ -61,6 +73,7 @@ class BinaryGridResource : public Resource {
       grid_ = std::make_unique<BinaryGrid>(findVoxelizer(need_.voxelizer).run(vreq, prof, voxelizerStats_));
     }
     builtFor_ = res.time();
+    if (cacheKey) writeCachedGrid(*cacheKey, prof);
     return true;
   }
 
@@ -74,9 +87,13 @@ class BinaryGridResource : public Resource {
     // Where it lives: the atlas voxelizer's grids, sums and targets on the GPU, another voxelizer's
     // grid on the host (the pyramid holds its GPU copy).
     const double bytes = atlas_ ? atlas_->gpuBytes() : double(grid_->words().size()) * 4.0;
-    return {{"resolution", {r.x, r.y, r.z}},     {"voxelizer", need_.voxelizer},
-            {"voxels_set", voxelsSet_},          {"bytes", bytes},
-            {"memory", atlas_ ? "gpu" : "host"}, {"stats", voxelizerStats_}};
+    return {{"resolution", {r.x, r.y, r.z}},
+            {"voxelizer", need_.voxelizer},
+            {"voxels_set", voxelsSet_},
+            {"bytes", bytes},
+            {"memory", atlas_ ? "gpu" : "host"},
+            {"stats", voxelizerStats_},
+            {"cache", cacheState_}};
   }
 
   void* offer(const std::type_info& t) override {
@@ -97,9 +114,64 @@ class BinaryGridResource : public Resource {
     return need_.cubicCells ? cubicCellBox(box) : box;
   }
 
+  // The set-up cache's key of this grid: a digest of everything the voxelization reads — the scene's
+  // triangles at this time (world space, with the mesh each belongs to), the box, the voxelizer and its
+  // settings, the GL renderer (rasterization may differ between devices), the voxelization shaders and
+  // this program's build (the executable's size and time, so a rebuilt vgi never reads an older one's
+  // grid). None for a dynamic scene, value channels, or with the cache off.
+  std::optional<uint64_t> gridCacheKey(const SceneResources& res) const {
+    if (!need_.gridCache || !need_.values.empty() || res.dynamic()) return std::nullopt;
+    if (defaultSetupCacheDir().empty()) return std::nullopt;
+    const FlatScene flat = flatten(res.scene(), res.time());
+    uint64_t h = fnv1a(std::string("binary_grid v1 ") + gitRevision());
+    h = fnv1a(flat.positions.data(), flat.positions.size() * sizeof(glm::vec3), h);
+    h = fnv1a(flat.meshOfTriangle.data(), flat.meshOfTriangle.size() * sizeof(int), h);
+    const shared::GridParams g = box_.params();
+    h = fnv1a(&g, sizeof g, h);
+    h = fnv1a(need_.key().dump(), h);
+    h = fnv1a(res.gl() ? res.gl()->renderer() : std::string("cpu"), h);
+    std::error_code ec;
+    const auto exe = std::filesystem::path("/proc/self/exe");
+    const uint64_t exeSize = std::filesystem::file_size(exe, ec);
+    const auto exeTime = std::filesystem::last_write_time(exe, ec).time_since_epoch().count();
+    h = fnv1a(&exeSize, sizeof exeSize, h);
+    h = fnv1a(&exeTime, sizeof exeTime, h);
+    const uint64_t shaders = filesDigest({defaultShaderDir() + "/voxelize", defaultShaderDir() + "/shared"});
+    return fnv1a(&shaders, sizeof shaders, h);
+  }
+
+  // The words of the cached grid, when the entry is whole; the grid then lives on the host (the pyramid
+  // uploads it) and the voxelizer never runs.
+  bool readCachedGrid(uint64_t key, Profiler& prof) {
+    auto s = prof.scope("grid_cache_read");
+    std::vector<uint8_t> payload;
+    BinaryGrid grid(box_);
+    if (!readSetupCache(defaultSetupCacheDir(), "grid", key, payload) ||
+        payload.size() != grid.words().size() * sizeof(uint32_t)) {
+      cacheState_ = "miss";
+      return false;
+    }
+    std::memcpy(grid.words().data(), payload.data(), payload.size());
+    grid_ = std::make_unique<BinaryGrid>(std::move(grid));
+    atlas_.reset();
+    voxelizerStats_ = nlohmann::json::object();
+    counted_ = false;
+    cacheState_ = "hit";
+    return true;
+  }
+
+  void writeCachedGrid(uint64_t key, Profiler& prof) {
+    auto s = prof.scope("grid_cache_write");
+    const BinaryGrid grid = atlas_ ? atlas_->readFrame() : *grid_;
+    const bool written = writeSetupCache(defaultSetupCacheDir(), "grid", key, grid.words().data(),
+                                         grid.words().size() * sizeof(uint32_t));
+    cacheState_ = written ? "written" : "unwritable";
+  }
+
   BinaryGridNeed need_;
   GridBox box_;
-  std::optional<float> builtFor_;  // the animation time it was built for
+  std::string cacheState_ = "off";  // off, hit, miss (then written or unwritable)
+  std::optional<float> builtFor_;   // the animation time it was built for
   std::unique_ptr<AtlasVoxelizer> atlas_;
   std::unique_ptr<BinaryGrid> grid_;
   nlohmann::json voxelizerStats_ = nlohmann::json::object();

@@ -36,6 +36,10 @@ struct BinaryGridNeed {
   float atlasFootprint = 1.0f;                 // atlas
   float hybridCutoff = 4.0f;                   // hybrid
   bool atlasCache = true;                      // atlas: read and write the atlas cache
+  // Read and write a static scene's grid in the set-up cache (voxelize/setup_cache.h): a second render
+  // of the scene skips the voxelization. Not with value channels (their sums stay on the GPU) nor in
+  // `vgi voxelize`, which measures the voxelizer itself.
+  bool gridCache = true;
   nlohmann::json key() const {
     return {{"resolution", {resolution.x, resolution.y, resolution.z}},
             {"voxelizer", voxelizer},
@@ -45,7 +49,8 @@ struct BinaryGridNeed {
             {"atlas_resolution", atlasResolution},
             {"atlas_footprint", atlasFootprint},
             {"hybrid_cutoff", hybridCutoff},
-            {"atlas_cache", atlasCache}};
+            {"atlas_cache", atlasCache},
+            {"grid_cache", gridCache}};
   }
 };
 

@@ -1,0 +1,126 @@
+// The set-up cache (voxelize/setup_cache.h): an entry reads back as written; a stale, truncated, grown or
+// corrupt one is a miss, never used; and a render's grid comes from it the second time, with the same
+// image bit for bit, rebuilt when the entry is damaged (issue "Speed on the GL device", step 3).
+#include "voxelize/setup_cache.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "apps/cli_util.h"
+#include "core/image.h"
+#include "test_util.h"
+
+namespace vgi {
+namespace fs = std::filesystem;
+
+namespace {
+void flipByte(const std::string& file, std::streamoff at) {
+  std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekg(at);
+  char c = 0;
+  f.read(&c, 1);
+  c = char(c ^ 0x5a);
+  f.seekp(at);
+  f.write(&c, 1);
+}
+}  // namespace
+
+TEST(SetupCache, EntriesReadBackAndDamagedOnesAreMisses) {
+  const std::string dir = testing::TempDir() + "/setup_cache_unit";
+  fs::remove_all(dir);
+  std::vector<uint8_t> payload(1000), back;
+  for (size_t i = 0; i < payload.size(); ++i) payload[i] = uint8_t(i * 7 + 3);
+  EXPECT_FALSE(readSetupCache(dir, "grid", 42, back));  // nothing there yet
+  ASSERT_TRUE(writeSetupCache(dir, "grid", 42, payload.data(), payload.size()));
+  ASSERT_TRUE(readSetupCache(dir, "grid", 42, back));
+  EXPECT_EQ(back, payload);
+  EXPECT_FALSE(readSetupCache(dir, "grid", 43, back));   // another key
+  EXPECT_FALSE(readSetupCache(dir, "atlas", 42, back));  // another kind
+  const std::string file = setupCacheFile(dir, "grid", 42);
+  // Renamed to another key's name: the header's key says otherwise.
+  fs::copy_file(file, setupCacheFile(dir, "grid", 44));
+  EXPECT_FALSE(readSetupCache(dir, "grid", 44, back));
+  // One payload byte changed: the digest says so.
+  flipByte(file, std::streamoff(fs::file_size(file) - 10));
+  EXPECT_FALSE(readSetupCache(dir, "grid", 42, back));
+  // Rewritten, then truncated, then grown.
+  ASSERT_TRUE(writeSetupCache(dir, "grid", 42, payload.data(), payload.size()));
+  fs::resize_file(file, fs::file_size(file) - 1);
+  EXPECT_FALSE(readSetupCache(dir, "grid", 42, back));
+  ASSERT_TRUE(writeSetupCache(dir, "grid", 42, payload.data(), payload.size()));
+  std::ofstream(file, std::ios::app | std::ios::binary) << 'x';
+  EXPECT_FALSE(readSetupCache(dir, "grid", 42, back));
+  // A header byte changed (the format version): a miss.
+  ASSERT_TRUE(writeSetupCache(dir, "grid", 42, payload.data(), payload.size()));
+  flipByte(file, 8);
+  EXPECT_FALSE(readSetupCache(dir, "grid", 42, back));
+  // No cache folder: nothing read or written; an unwritable one only costs time.
+  EXPECT_FALSE(writeSetupCache("", "grid", 42, payload.data(), payload.size()));
+  EXPECT_FALSE(readSetupCache("", "grid", 42, back));
+  EXPECT_FALSE(writeSetupCache("/proc/no_cache_here", "grid", 42, payload.data(), payload.size()));
+  // Nothing but entries is left behind (no temporaries).
+  for (auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().extension(), ".bin") << e.path();
+}
+
+TEST(SetupCache, FilesDigestFollowsNamesAndBytes) {
+  const std::string dir = testing::TempDir() + "/setup_cache_digest";
+  fs::remove_all(dir);
+  fs::create_directories(dir + "/sub");
+  std::ofstream(dir + "/a.glsl") << "void main() {}";
+  std::ofstream(dir + "/sub/b.glsl") << "x";
+  const uint64_t d0 = filesDigest({dir});
+  EXPECT_EQ(filesDigest({dir}), d0);
+  std::ofstream(dir + "/sub/b.glsl") << "y";
+  const uint64_t d1 = filesDigest({dir});
+  EXPECT_NE(d1, d0);
+  fs::rename(dir + "/sub/b.glsl", dir + "/sub/c.glsl");
+  EXPECT_NE(filesDigest({dir}), d1);
+}
+
+// A render pays the voxelization once: the second render of a static scene reads the grid (exit 0, the
+// stats say "hit", no voxelizer pass ran) and its image equals the first bit for bit; a damaged entry is
+// rebuilt and rewritten; value channels and moving scenes do not use it.
+TEST(SetupCache, ASecondRenderReadsTheGridAndAFaultyEntryIsRebuilt) {
+  const std::string dir = test::tmp("setup_cache_render");
+  fs::remove_all(dir);
+  auto render = [&](const std::string& stem, const std::string& extra) {
+    test::CliRun r =
+        test::vgi("render --method voxel_ao --set voxels=64x64x128 --size 32x32 --spp 1 --quiet " + extra +
+                  " -o " + test::tmp(stem + ".exr"));
+    EXPECT_EQ(r.code, 0) << r.output;
+    return nlohmann::json::parse(std::ifstream(test::tmp(stem + ".json")));
+  };
+  setenv("VGI_CACHE_DIR", dir.c_str(), 1);
+  const nlohmann::json cold = render("sc_cold", "");
+  const nlohmann::json warm = render("sc_warm", "");
+  EXPECT_EQ(cold["extra"]["grid"]["cache"], "written") << cold["extra"]["grid"];
+  EXPECT_EQ(warm["extra"]["grid"]["cache"], "hit") << warm["extra"]["grid"];
+  EXPECT_TRUE(cold["timings_ms"].contains("insertion"));
+  EXPECT_FALSE(warm["timings_ms"].contains("insertion"));
+  EXPECT_FALSE(warm["timings_ms"].contains("atlas_render"));
+  EXPECT_EQ(warm["extra"]["grid"]["voxels_set"], cold["extra"]["grid"]["voxels_set"]);
+  EXPECT_EQ(readImage(test::tmp("sc_warm.exr")).pixels, readImage(test::tmp("sc_cold.exr")).pixels);
+  // Every grid entry damaged: rebuilt (a miss, written again), the same image.
+  size_t damaged = 0;
+  for (auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind("grid-", 0) == 0) {
+      flipByte(e.path().string(), std::streamoff(fs::file_size(e.path()) / 2));
+      ++damaged;
+    }
+  EXPECT_EQ(damaged, 1u);
+  const nlohmann::json again = render("sc_again", "");
+  EXPECT_EQ(again["extra"]["grid"]["cache"], "written") << again["extra"]["grid"];
+  EXPECT_TRUE(again["timings_ms"].contains("insertion"));
+  EXPECT_EQ(readImage(test::tmp("sc_again.exr")).pixels, readImage(test::tmp("sc_cold.exr")).pixels);
+  EXPECT_EQ(render("sc_again2", "")["extra"]["grid"]["cache"], "hit");
+  // Another grid resolution is another entry.
+  EXPECT_EQ(render("sc_other", "--set voxels=32x32x128")["extra"]["grid"]["cache"], "written");
+  // Off: an empty VGI_CACHE_DIR.
+  setenv("VGI_CACHE_DIR", "", 1);
+  EXPECT_EQ(render("sc_off", "")["extra"]["grid"]["cache"], "off");
+  unsetenv("VGI_CACHE_DIR");
+}
+
+}  // namespace vgi

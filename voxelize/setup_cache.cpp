@@ -1,0 +1,120 @@
+#include "voxelize/setup_cache.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "core/hash.h"
+
+namespace fs = std::filesystem;
+
+namespace vgi {
+
+namespace {
+
+constexpr char kMagic[8] = {'v', 'g', 'i', 'c', 'a', 'c', 'h', 'e'};
+constexpr uint32_t kFormat = 1;
+
+struct Header {
+  char magic[8];
+  uint32_t format;
+  char kind[20];  // NUL-padded
+  uint64_t key;
+  uint64_t bytes;
+  uint64_t digest;  // FNV-1a of the payload
+};
+
+Header headerFor(const std::string& kind, uint64_t key, uint64_t bytes, uint64_t digest) {
+  Header h{};
+  std::memcpy(h.magic, kMagic, sizeof kMagic);
+  h.format = kFormat;
+  std::strncpy(h.kind, kind.c_str(), sizeof h.kind - 1);
+  h.key = key;
+  h.bytes = bytes;
+  h.digest = digest;
+  return h;
+}
+
+}  // namespace
+
+std::string defaultSetupCacheDir() {
+  if (const char* d = std::getenv("VGI_CACHE_DIR")) return d;
+  if (const char* x = std::getenv("XDG_CACHE_HOME")) return std::string(x) + "/vgi";
+  if (const char* h = std::getenv("HOME")) return std::string(h) + "/.cache/vgi";
+  return "";
+}
+
+std::string setupCacheFile(const std::string& dir, const std::string& kind, uint64_t key) {
+  return (fs::path(dir) / (kind + "-" + hexDigest(key) + ".bin")).string();
+}
+
+bool readSetupCache(const std::string& dir, const std::string& kind, uint64_t key,
+                    std::vector<uint8_t>& payload) {
+  if (dir.empty()) return false;
+  const std::string file = setupCacheFile(dir, kind, key);
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return false;
+  std::ifstream in(file, std::ios::binary);
+  Header h{};
+  if (!in.read(reinterpret_cast<char*>(&h), sizeof h)) return false;
+  const Header want = headerFor(kind, key, h.bytes, h.digest);
+  if (std::memcmp(h.magic, want.magic, sizeof h.magic) != 0 || h.format != want.format ||
+      std::memcmp(h.kind, want.kind, sizeof h.kind) != 0 || h.key != key)
+    return false;
+  const uint64_t size = fs::file_size(file, ec);
+  if (ec || size != sizeof h + h.bytes) return false;  // truncated or grown: never trust the rest
+  payload.resize(size_t(h.bytes));
+  if (!in.read(reinterpret_cast<char*>(payload.data()), std::streamsize(payload.size()))) return false;
+  return fnv1a(payload.data(), payload.size()) == h.digest;
+}
+
+bool writeSetupCache(const std::string& dir, const std::string& kind, uint64_t key, const void* payload,
+                     size_t bytes) {
+  if (dir.empty()) return false;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  const fs::path file = setupCacheFile(dir, kind, key);
+  // A temporary of this process' own: two processes (parallel tests, two renders) building the same
+  // entry must not write into one file, or one could rename the other's half-written file into place.
+  fs::path tmp = file;
+  tmp += "." + std::to_string(getpid()) + ".tmp";
+  std::ofstream out(tmp, std::ios::binary);
+  if (!out) return false;
+  const Header h = headerFor(kind, key, bytes, fnv1a(payload, bytes));
+  out.write(reinterpret_cast<const char*>(&h), sizeof h);
+  out.write(static_cast<const char*>(payload), std::streamsize(bytes));
+  out.close();
+  if (!out) {
+    fs::remove(tmp, ec);
+    return false;
+  }
+  std::error_code renamed;
+  fs::rename(tmp, file, renamed);
+  if (renamed) fs::remove(tmp, ec);
+  return !renamed;
+}
+
+uint64_t filesDigest(const std::vector<std::string>& folders) {
+  uint64_t h = kFnv1aOffset;
+  for (const std::string& folder : folders) {
+    std::vector<fs::path> files;
+    std::error_code ec;
+    for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+      if (it->is_regular_file(ec)) files.push_back(it->path());
+    std::sort(files.begin(), files.end());
+    for (const fs::path& f : files) {
+      h = fnv1a(fs::relative(f, folder, ec).string(), h);
+      std::ifstream in(f, std::ios::binary);
+      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      h = fnv1a(bytes, h);
+    }
+  }
+  return h;
+}
+
+}  // namespace vgi
