@@ -1,5 +1,6 @@
 #include "illum/resources/binary_grid.h"
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "voxelize/atlas.h"
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/setup_cache.h"
+#include "voxelize/value_sums_cache.h"
 #include "voxelize/voxelizer.h"
 
 namespace vgi {
@@ -86,7 +88,8 @@ class BinaryGridResource : public Resource {
     const glm::uvec3 r = need_.resolution;
     // Where it lives: the atlas voxelizer's grids, sums and targets on the GPU, another voxelizer's
     // grid on the host (the pyramid holds its GPU copy).
-    const double bytes = atlas_ ? atlas_->gpuBytes() : double(grid_->words().size()) * 4.0;
+    const double bytes =
+        atlas_ ? atlas_->gpuBytes() : double(grid_->words().size()) * 4.0 + (sums_ ? sums_->gpuBytes() : 0.0);
     return {{"resolution", {r.x, r.y, r.z}},
             {"voxelizer", need_.voxelizer},
             {"voxels_set", voxelsSet_},
@@ -97,7 +100,7 @@ class BinaryGridResource : public Resource {
   }
 
   void* offer(const std::type_info& t) override {
-    return offerOf(t, builtFor_ ? &box_ : nullptr, atlas_.get(), grid_.get());
+    return offerOf(t, builtFor_ ? &box_ : nullptr, atlas_.get(), grid_.get(), sums_.get());
   }
 
  private:
@@ -120,7 +123,10 @@ class BinaryGridResource : public Resource {
   // this program's build (the executable's size and time, so a rebuilt vgi never reads an older one's
   // grid). None for a dynamic scene, value channels, or with the cache off.
   std::optional<uint64_t> gridCacheKey(const SceneResources& res) const {
-    if (!need_.gridCache || !need_.values.empty() || res.dynamic()) return std::nullopt;
+    // (The radiance channel follows the lights: a grid that carries it is built each time.)
+    const auto& v = need_.values;
+    if (!need_.gridCache || res.dynamic() || std::find(v.begin(), v.end(), "radiance") != v.end())
+      return std::nullopt;
     if (defaultSetupCacheDir().empty()) return std::nullopt;
     const FlatScene flat = flatten(res.scene(), res.time());
     uint64_t h = fnv1a(std::string("binary_grid v1 ") + gitRevision());
@@ -146,13 +152,22 @@ class BinaryGridResource : public Resource {
     auto s = prof.scope("grid_cache_read");
     std::vector<uint8_t> payload;
     BinaryGrid grid(box_);
-    if (!readSetupCache(defaultSetupCacheDir(), "grid", key, payload) ||
+    std::unique_ptr<CachedValueSums> sums;
+    const glm::uvec3 r = box_.resolution;
+    if (!need_.values.empty()) {  // the value channels' sums first: without them the grid is no use
+      std::vector<uint8_t> packed;
+      if (readSetupCache(defaultSetupCacheDir(), "values", key, packed))
+        sums = CachedValueSums::unpack(packed.data(), packed.size(), size_t(r.x) * r.y * r.z,
+                                       valueChannelMask(need_.values));
+    }
+    if ((!need_.values.empty() && !sums) || !readSetupCache(defaultSetupCacheDir(), "grid", key, payload) ||
         payload.size() != grid.words().size() * sizeof(uint32_t)) {
       cacheState_ = "miss";
       return false;
     }
     std::memcpy(grid.words().data(), payload.data(), payload.size());
     grid_ = std::make_unique<BinaryGrid>(std::move(grid));
+    sums_ = std::move(sums);
     atlas_.reset();
     voxelizerStats_ = nlohmann::json::object();
     counted_ = false;
@@ -162,8 +177,14 @@ class BinaryGridResource : public Resource {
 
   void writeCachedGrid(uint64_t key, Profiler& prof) {
     auto s = prof.scope("grid_cache_write");
+    bool written = true;
+    if (!need_.values.empty()) {
+      const glm::uvec3 r = box_.resolution;
+      const std::vector<uint8_t> packed = packValueSums(atlas_->valueBuffers(), size_t(r.x) * r.y * r.z);
+      written = writeSetupCache(defaultSetupCacheDir(), "values", key, packed.data(), packed.size());
+    }
     const BinaryGrid grid = atlas_ ? atlas_->readFrame() : *grid_;
-    const bool written = writeSetupCache(defaultSetupCacheDir(), "grid", key, grid.words().data(),
+    written = written && writeSetupCache(defaultSetupCacheDir(), "grid", key, grid.words().data(),
                                          grid.words().size() * sizeof(uint32_t));
     cacheState_ = written ? "written" : "unwritable";
   }
@@ -174,6 +195,7 @@ class BinaryGridResource : public Resource {
   std::optional<float> builtFor_;   // the animation time it was built for
   std::unique_ptr<AtlasVoxelizer> atlas_;
   std::unique_ptr<BinaryGrid> grid_;
+  std::unique_ptr<CachedValueSums> sums_;  // the value channels' sums, read from the set-up cache
   nlohmann::json voxelizerStats_ = nlohmann::json::object();
   uint64_t voxelsSet_ = 0;
   bool counted_ = false;

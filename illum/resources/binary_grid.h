@@ -36,9 +36,10 @@ struct BinaryGridNeed {
   float atlasFootprint = 1.0f;                 // atlas
   float hybridCutoff = 4.0f;                   // hybrid
   bool atlasCache = true;                      // atlas: read and write the atlas cache
-  // Read and write a static scene's grid in the set-up cache (voxelize/setup_cache.h): a second render
-  // of the scene skips the voxelization. Not with value channels (their sums stay on the GPU) nor in
-  // `vgi voxelize`, which measures the voxelizer itself.
+  // Read and write a static scene's grid, with its value channels' sums, in the set-up cache
+  // (voxelize/setup_cache.h, value_sums_cache.h): a second render of the scene skips the voxelization.
+  // Not with the radiance channel (it follows the lights) nor in `vgi voxelize`, which measures the
+  // voxelizer itself.
   bool gridCache = true;
   nlohmann::json key() const {
     return {{"resolution", {resolution.x, resolution.y, resolution.z}},

@@ -7,6 +7,7 @@
 #include "shaders/shared/value_grid.glsl"
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/value_grids.h"
+#include "voxelize/value_sums_cache.h"
 
 namespace vgi {
 
@@ -18,23 +19,26 @@ class ValueGridsResource : public Resource {
 
   bool update(SceneResources& res, const ResourceNeed& need, Profiler& prof) override {
     need_ = need.spec<ValueGridNeed>();  // adopted: the light maps may be others
-    AtlasVoxelizer& atlas = res.get<AtlasVoxelizer>(need_.grid);
+    // The sums come from the atlas voxelizer, or (a static scene's grid read from the set-up cache,
+    // never with radiance) from the cache.
+    AtlasVoxelizer* atlas = res.tryGet<AtlasVoxelizer>(need_.grid);
     // With area lights the radiance follows the sample's lights: beginSample relights it.
-    const bool radiance = atlas.hasRadiance() && !res.sampleLights();
+    const bool radiance = atlas && atlas->hasRadiance() && !res.sampleLights();
     const bool relit = radiance && need_.lightMaps && res.changed(*need_.lightMaps);
     if (tex_ && !res.changed(need_.grid) && !relit) return false;
     if (!tex_)
       tex_ = std::make_unique<ValueTextures>(res.get<GridBox>(need_.grid), need_.grid.values, need_.mips);
-    if (radiance) insertRadiance(res, atlas, prof);
-    tex_->resolve(atlas.valueBuffers(), res.shaders(), prof);
+    if (radiance) insertRadiance(res, *atlas, prof);
+    tex_->resolve(atlas ? atlas->valueBuffers() : res.get<CachedValueSums>(need_.grid).buffers(),
+                  res.shaders(), prof);
     return true;
   }
 
   bool relight(SceneResources& res, const ResourceNeed&, Profiler& prof) override {
-    AtlasVoxelizer& atlas = res.get<AtlasVoxelizer>(need_.grid);
-    if (!atlas.hasRadiance()) return false;
-    insertRadiance(res, atlas, prof);
-    tex_->resolve(atlas.valueBuffers(), res.shaders(), prof);
+    AtlasVoxelizer* atlas = res.tryGet<AtlasVoxelizer>(need_.grid);
+    if (!atlas || !atlas->hasRadiance()) return false;
+    insertRadiance(res, *atlas, prof);
+    tex_->resolve(atlas->valueBuffers(), res.shaders(), prof);
     return true;
   }
 

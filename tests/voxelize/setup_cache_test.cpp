@@ -81,14 +81,18 @@ TEST(SetupCache, FilesDigestFollowsNamesAndBytes) {
 
 // A render pays the voxelization once: the second render of a static scene reads the grid (exit 0, the
 // stats say "hit", no voxelizer pass ran) and its image equals the first bit for bit; a damaged entry is
-// rebuilt and rewritten; value channels and moving scenes do not use it.
+// rebuilt and rewritten; value channels' sums are kept beside the grid; the radiance channel and an
+// empty VGI_CACHE_DIR turn it off.
 TEST(SetupCache, ASecondRenderReadsTheGridAndAFaultyEntryIsRebuilt) {
   const std::string dir = test::tmp("setup_cache_render");
   fs::remove_all(dir);
   auto render = [&](const std::string& stem, const std::string& extra) {
+    // voxel_ao on a 64² × 128 grid unless `extra` names the method.
+    const std::string what = extra.find("--method") == std::string::npos
+                                 ? "--method voxel_ao --set voxels=64x64x128 " + extra
+                                 : extra;
     test::CliRun r =
-        test::vgi("render --method voxel_ao --set voxels=64x64x128 --size 32x32 --spp 1 --quiet " + extra +
-                  " -o " + test::tmp(stem + ".exr"));
+        test::vgi("render " + what + " --size 32x32 --spp 1 --quiet -o " + test::tmp(stem + ".exr"));
     EXPECT_EQ(r.code, 0) << r.output;
     return nlohmann::json::parse(std::ifstream(test::tmp(stem + ".json")));
   };
@@ -116,7 +120,26 @@ TEST(SetupCache, ASecondRenderReadsTheGridAndAFaultyEntryIsRebuilt) {
   EXPECT_EQ(readImage(test::tmp("sc_again.exr")).pixels, readImage(test::tmp("sc_cold.exr")).pixels);
   EXPECT_EQ(render("sc_again2", "")["extra"]["grid"]["cache"], "hit");
   // Another grid resolution is another entry.
-  EXPECT_EQ(render("sc_other", "--set voxels=32x32x128")["extra"]["grid"]["cache"], "written");
+  EXPECT_EQ(render("sc_other", "--method voxel_ao --set voxels=32x32x128")["extra"]["grid"]["cache"],
+            "written");
+  // A grid with value channels (voxelpath: normal, albedo, glossy) keeps their sums too: the second
+  // render runs neither insertion, and its image is the first's; a damaged sums entry is rebuilt.
+  const std::string vp = "--method voxelpath --set voxels=64x64x128";
+  const nlohmann::json vpCold = render("sc_vp_cold", vp), vpWarm = render("sc_vp_warm", vp);
+  EXPECT_EQ(vpCold["extra"]["grid"]["cache"], "written") << vpCold["extra"]["grid"];
+  EXPECT_EQ(vpWarm["extra"]["grid"]["cache"], "hit") << vpWarm["extra"]["grid"];
+  EXPECT_TRUE(vpCold["timings_ms"].contains("insertion_values"));
+  EXPECT_FALSE(vpWarm["timings_ms"].contains("insertion_values"));
+  EXPECT_EQ(readImage(test::tmp("sc_vp_warm.exr")).pixels, readImage(test::tmp("sc_vp_cold.exr")).pixels);
+  for (auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind("values-", 0) == 0)
+      flipByte(e.path().string(), std::streamoff(fs::file_size(e.path()) - 3));
+  EXPECT_EQ(render("sc_vp_again", vp)["extra"]["grid"]["cache"], "written");
+  EXPECT_EQ(readImage(test::tmp("sc_vp_again.exr")).pixels, readImage(test::tmp("sc_vp_cold.exr")).pixels);
+  // The radiance channel follows the lights: never cached.
+  EXPECT_EQ(render("sc_radiance",
+                   "--method vct --set voxels=64x64x128 --set radiance=atlas")["extra"]["grid"]["cache"],
+            "off");
   // Off: an empty VGI_CACHE_DIR.
   setenv("VGI_CACHE_DIR", "", 1);
   EXPECT_EQ(render("sc_off", "")["extra"]["grid"]["cache"], "off");
