@@ -6,10 +6,12 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "shaders/shared/trace_bricks.glsl"
 #include "shaders/shared/trace_dda.glsl"
 #include "shaders/shared/trace_hierarchical.glsl"
 #include "shaders/shared/trace_march.glsl"
 #include "shaders/shared/tracer_ids.glsl"
+#include "traverse/brick_tree.h"
 #include "traverse/embree_tracer.h"
 #include "traverse/gpu_bvh.h"
 #include "traverse/or_mip_pyramid.h"
@@ -29,6 +31,7 @@ const std::vector<TracerInfo>& tracerRegistry() {
        "GLSL and C++",
        true, VGI_TRACER_BVH},
       {"embree", "exact first hit on the triangles (Embree, CPU only)", false, -1},
+      {"bricks", "first hit through 4³ bricks, a 64-tree over dense levels (C++ only so far)", false, -1},
   };
   return registry;
 }
@@ -122,6 +125,19 @@ class VoxelTracer : public RayTracer {
   float marchStep_;
 };
 
+// The 4³ bricks' tracer over a tree it builds from the pyramid's grid (shared/trace_bricks.glsl).
+class BrickRayTracer : public RayTracer {
+ public:
+  explicit BrickRayTracer(const OrMipPyramid& pyramid) : tree_(pyramid) {}
+  TraceResult trace(const TraceRay& ray) const override {
+    return fromShared(shared::traceBricks(tree_.params(), ray.origin, ray.dir, ray.tmax, tree_.gridWords(),
+                                          tree_.words().data()));
+  }
+
+ private:
+  BrickTree tree_;
+};
+
 // A tracer of the triangles: the hit's distance to the surface, and the grid
 // cell that holds the hit point (when a grid is given).
 class TriangleRayTracer : public RayTracer {
@@ -195,6 +211,10 @@ std::unique_ptr<RayTracer> createTracer(const std::string& name, const TracerInp
   if (in.level >= uint32_t(in.pyramid->levels()))
     fail("tracer '", name, "': level ", in.level, " is not a level of the pyramid (0 … ",
          in.pyramid->levels() - 1, ")");
+  if (info.name == "bricks") {
+    if (in.level != 0) fail("tracer 'bricks' traces the grid itself (level 0), not level ", in.level);
+    return std::make_unique<BrickRayTracer>(*in.pyramid);
+  }
   float step = in.marchStep > 0.0f ? in.marchStep : defaultMarchStep(*in.pyramid);
   return std::make_unique<VoxelTracer>(info.define, *in.pyramid, step, in.level);
 }

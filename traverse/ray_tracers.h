@@ -5,6 +5,7 @@
 //   bvh           exact first hit on the triangles through our BVH (shaders/shared/trace_bvh.glsl:
 //                 GLSL and C++ from one source; traverse/gpu_bvh.h)
 //   embree        exact first hit on the triangles (C++ only)
+//   bricks        first hit through 4³ bricks (shaders/shared/trace_bricks.glsl; C++ only so far)
 // The voxel tracers run the same shared kernels the GLSL passes compile (the
 // tracer is chosen there by a define, see gl_ray_tracer.h), so what the tests
 // check is what the GPU runs. Directions should be unit length: t and tmax are

@@ -15,9 +15,11 @@
 #include "core/profiler.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
+#include "shaders/shared/trace_bricks.glsl"
 #include "shaders/shared/trace_hierarchical.glsl"
 #include "shaders/shared/tracer_ids.glsl"
 #include "test_util.h"
+#include "traverse/brick_tree.h"
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/or_mip_pyramid.h"
 #include "traverse/ray_population.h"
@@ -233,6 +235,67 @@ TEST(RayTracers, HierarchicalEqualsDdaOnAMillionAdversarialRays) {
   EXPECT_GT(hits, total / 10);  // the population must exercise hits, not only misses
 }
 
+// The 4³ bricks (step 4 of issue "Speed on the GL device"): every node's bit is the OR of its child
+// cube's cells, and the tracer's first hit equals the DDA's — voxel and distance, bit for bit — on the
+// adversarial rays of every test grid (faces, edges, corners, axis-parallel and tiny directions).
+TEST(RayTracers, BricksEqualDdaOnAdversarialRays) {
+  size_t total = 0, hits = 0;
+  for (const TestGrid& tg : testGrids()) {
+    BinaryGrid g = fillGrid(tg, 11);
+    OrMipPyramid pyramid(g);
+    BrickTree tree(pyramid);
+    const shared::BrickTreeParams& p = tree.params();
+    const glm::uvec3 r = tg.box.resolution;
+    for (uint32_t s = 1; s <= p.levels; ++s) {  // every bit against its cube, by brute force on level 1
+      const uint32_t nx = shared::bricksPerAxis(r.x, s), ny = shared::bricksPerAxis(r.y, s),
+                     nz = shared::bricksPerAxis(r.z, s);
+      for (uint32_t z = 0; z < nz; ++z)
+        for (uint32_t y = 0; y < ny; ++y)
+          for (uint32_t x = 0; x < nx; ++x)
+            for (uint32_t bit = 0; bit < 64; ++bit) {
+              const uint32_t w = shared::brickWordIndex(p, s, x, y, z, bit);
+              const bool set = (tree.words()[w] >> (bit & 31u)) & 1u;
+              const uint32_t side = 1u << (2u * (s - 1u));
+              const glm::uvec3 lo =
+                  glm::uvec3(4u * x + (bit & 3u), 4u * y + ((bit >> 2u) & 3u), 4u * z + (bit >> 4u)) * side;
+              bool any = false;
+              if (s == 1)
+                any = lo.x < r.x && lo.y < r.y && lo.z < r.z && g.test(lo.x, lo.y, lo.z);
+              else if (s == 2)  // level 2 against the cells directly (higher levels follow by induction)
+                for (uint32_t k = lo.z; k < std::min(lo.z + side, r.z) && !any; ++k)
+                  for (uint32_t j = lo.y; j < std::min(lo.y + side, r.y) && !any; ++j)
+                    for (uint32_t i = lo.x; i < std::min(lo.x + side, r.x) && !any; ++i)
+                      any = g.test(i, j, k);
+              else
+                continue;
+              ASSERT_EQ(set, any) << tg.name << " level " << s << " node " << x << "," << y << "," << z
+                                  << " bit " << bit;
+            }
+    }
+    TracerInputs in;
+    in.pyramid = &pyramid;
+    auto bricks = createTracer("bricks", in), dda = createTracer("dda", in);
+    std::vector<TraceRay> rays = adversarialRays(tg.box, 200000, 5);
+    std::vector<TraceResult> b, d;
+    bricks->traceBatch(rays, b);
+    dda->traceBatch(rays, d);
+    Mismatch m;
+    compare(b, d, rays, tg.box, false, m);
+    EXPECT_EQ(m.count, 0u) << tg.name << ": first mismatch " << m.first;
+    const uint32_t bound = shared::bricksMaxSteps(r.x, r.y, r.z, p.levels);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      ASSERT_LE(b[i].steps, bound) << tg.name << " ray " << i;
+      if (b[i].hit) {
+        ++hits;
+        ASSERT_EQ(b[i].t, d[i].t) << tg.name << " ray " << i;  // the same planes through the same planeT
+      }
+    }
+    total += rays.size();
+  }
+  EXPECT_GE(total, 1000000u);
+  EXPECT_GT(hits, total / 10);
+}
+
 // vgi bench traverse's counts (shared::TraceCounts) follow the traversal they count: counting changes no
 // result; the DDA and the march load one word per voxel they test, the hierarchical tracer one per word
 // of a column range it searches; a hierarchical hit ends at level 0, so it refined as often as it
@@ -257,7 +320,9 @@ TEST(RayTracers, TraversalCountsFollowTheTraversal) {
         ASSERT_EQ(plain[i].steps, counted[i].steps) << tg.name << " " << name << " ray " << i;
         ASSERT_EQ(c[i].bytes, 4u * c[i].fetches) << tg.name << " " << name;
         if (std::string(name) == "hierarchical") {
-          if (counted[i].hit) ASSERT_EQ(c[i].refines, c[i].climbs) << tg.name << " ray " << i;
+          if (counted[i].hit) {
+            ASSERT_EQ(c[i].refines, c[i].climbs) << tg.name << " ray " << i;
+          }
           ASSERT_LE(c[i].refines, c[i].climbs) << tg.name << " ray " << i;
           ASSERT_LE(c[i].climbs, counted[i].steps) << tg.name << " ray " << i;
           climbed += c[i].climbs;
@@ -268,7 +333,9 @@ TEST(RayTracers, TraversalCountsFollowTheTraversal) {
           ASSERT_EQ(c[i].climbs + c[i].refines, 0u);
         }
       }
-      if (std::string(name) == "hierarchical" && pyramid.levels() > 1) EXPECT_GT(climbed, 0u) << tg.name;
+      if (std::string(name) == "hierarchical" && pyramid.levels() > 1) {
+        EXPECT_GT(climbed, 0u) << tg.name;
+      }
     }
   }
   // An empty grid: the hierarchical tracer climbs to the top and leaves; a ray across a 128³ grid
