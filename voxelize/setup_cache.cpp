@@ -96,7 +96,46 @@ bool writeSetupCache(const std::string& dir, const std::string& kind, uint64_t k
   std::error_code renamed;
   fs::rename(tmp, file, renamed);
   if (renamed) fs::remove(tmp, ec);
+  if (!renamed) trimSetupCache(dir, setupCacheLimit());
   return !renamed;
+}
+
+uint64_t setupCacheLimit() {
+  if (const char* v = std::getenv("VGI_CACHE_LIMIT_MB")) {
+    char* end = nullptr;
+    const unsigned long long mb = std::strtoull(v, &end, 10);
+    if (end != v && *end == 0 && mb >= 1 && mb < (1ull << 40)) return mb << 20;
+  }
+  return 2ull << 30;
+}
+
+size_t trimSetupCache(const std::string& dir, uint64_t limit) {
+  struct Entry {
+    fs::file_time_type time;
+    uint64_t bytes;
+    fs::path path;
+  };
+  std::vector<Entry> entries;
+  uint64_t total = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code e;
+    if (it->path().extension() != ".bin" || !it->is_regular_file(e)) continue;
+    const uint64_t bytes = it->file_size(e);
+    const fs::file_time_type time = it->last_write_time(e);
+    if (e) continue;  // gone meanwhile
+    entries.push_back({time, bytes, it->path()});
+    total += bytes;
+  }
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) { return a.time < b.time; });
+  size_t deleted = 0;
+  for (const Entry& e : entries) {
+    if (total <= limit) break;
+    std::error_code r;
+    if (fs::remove(e.path, r)) ++deleted;
+    total -= e.bytes;
+  }
+  return deleted;
 }
 
 uint64_t filesDigest(const std::vector<std::string>& folders) {

@@ -26,10 +26,19 @@ std::string setupCacheFile(const std::string& dir, const std::string& kind, uint
 bool readSetupCache(const std::string& dir, const std::string& kind, uint64_t key,
                     std::vector<uint8_t>& payload);
 
-// Writes entry (kind, key) with `bytes` bytes of payload (atomically: a temporary renamed into place).
-// Returns whether it was written; `dir` "" or an unwritable folder: false, nothing else happens.
+// Writes entry (kind, key) with `bytes` bytes of payload (atomically: a temporary renamed into place),
+// then trims the folder to setupCacheLimit() bytes, the least recently written entries first (every new
+// vgi build keys its grids anew, so old builds' entries would otherwise pile up). Returns whether it was
+// written; `dir` "" or an unwritable folder: false, nothing else happens.
 bool writeSetupCache(const std::string& dir, const std::string& kind, uint64_t key, const void* payload,
                      size_t bytes);
+
+// $VGI_CACHE_LIMIT_MB (a whole number ≥ 1) in bytes, else 2 GiB.
+uint64_t setupCacheLimit();
+
+// Deletes the oldest entries (*.bin, by modification time) of `dir` until they hold at most `limit`
+// bytes; what another process deletes meanwhile is skipped. Returns how many it deleted.
+size_t trimSetupCache(const std::string& dir, uint64_t limit);
 
 // A digest of the regular files under `folders` (their paths relative to each folder and their bytes,
 // in sorted order): what a cached entry read at run time, e.g. the voxelization shaders.

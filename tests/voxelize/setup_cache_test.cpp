@@ -3,6 +3,7 @@
 // image bit for bit, rebuilt when the entry is damaged (issue "Speed on the GL device", step 3).
 #include "voxelize/setup_cache.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +63,31 @@ TEST(SetupCache, EntriesReadBackAndDamagedOnesAreMisses) {
   EXPECT_FALSE(writeSetupCache("/proc/no_cache_here", "grid", 42, payload.data(), payload.size()));
   // Nothing but entries is left behind (no temporaries).
   for (auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().extension(), ".bin") << e.path();
+}
+
+TEST(SetupCache, TheFolderIsTrimmedOldestFirst) {
+  const std::string dir = testing::TempDir() + "/setup_cache_trim";
+  fs::remove_all(dir);
+  std::vector<uint8_t> payload(100000, 7);
+  for (uint64_t key = 1; key <= 5; ++key) {
+    ASSERT_TRUE(writeSetupCache(dir, "grid", key, payload.data(), payload.size()));
+    fs::last_write_time(setupCacheFile(dir, "grid", key),
+                        fs::file_time_type::clock::now() - std::chrono::hours(10 - key));  // 1 oldest
+  }
+  std::ofstream(dir + "/notes.txt") << "not an entry";
+  const uint64_t entry = fs::file_size(setupCacheFile(dir, "grid", 1));
+  EXPECT_EQ(trimSetupCache(dir, 3 * entry), 2u);  // 1 and 2 go
+  std::vector<uint8_t> back;
+  EXPECT_FALSE(readSetupCache(dir, "grid", 1, back));
+  EXPECT_FALSE(readSetupCache(dir, "grid", 2, back));
+  for (uint64_t key = 3; key <= 5; ++key) EXPECT_TRUE(readSetupCache(dir, "grid", key, back)) << key;
+  EXPECT_TRUE(fs::exists(dir + "/notes.txt"));
+  EXPECT_EQ(trimSetupCache(dir, 3 * entry), 0u);
+  setenv("VGI_CACHE_LIMIT_MB", "5", 1);
+  EXPECT_EQ(setupCacheLimit(), 5ull << 20);
+  setenv("VGI_CACHE_LIMIT_MB", "lots", 1);
+  EXPECT_EQ(setupCacheLimit(), 2ull << 30);
+  unsetenv("VGI_CACHE_LIMIT_MB");
 }
 
 TEST(SetupCache, FilesDigestFollowsNamesAndBytes) {
