@@ -87,14 +87,14 @@ class BinaryGridResource : public Resource {
     }
     const glm::uvec3 r = need_.resolution;
     // Where it lives: the atlas voxelizer's grids, sums and targets on the GPU, another voxelizer's
-    // grid on the host (the pyramid holds its GPU copy).
+    // (or the set-up cache's) grid on the host (the pyramid holds its GPU copy), cached sums on the GPU.
     const double bytes =
         atlas_ ? atlas_->gpuBytes() : double(grid_->words().size()) * 4.0 + (sums_ ? sums_->gpuBytes() : 0.0);
     return {{"resolution", {r.x, r.y, r.z}},
             {"voxelizer", need_.voxelizer},
             {"voxels_set", voxelsSet_},
             {"bytes", bytes},
-            {"memory", atlas_ ? "gpu" : "host"},
+            {"memory", atlas_ ? "gpu" : (sums_ ? "host (grid), gpu (value sums)" : "host")},
             {"stats", voxelizerStats_},
             {"cache", cacheState_}};
   }
@@ -121,9 +121,10 @@ class BinaryGridResource : public Resource {
   // triangles at this time (world space, with the mesh each belongs to), the box, the voxelizer and its
   // settings, the GL renderer (rasterization may differ between devices), the voxelization shaders and
   // this program's build (the executable's size and time, so a rebuilt vgi never reads an older one's
-  // grid). None for a dynamic scene, value channels, or with the cache off.
+  // grid). None for a dynamic scene, a grid with the radiance channel, or with the cache off.
   std::optional<uint64_t> gridCacheKey(const SceneResources& res) const {
-    // (The radiance channel follows the lights: a grid that carries it is built each time.)
+    // (The radiance channel follows the lights: a grid that carries it is built each time; the other
+    // value channels' sums are kept beside the grid, value_sums_cache.h.)
     const auto& v = need_.values;
     if (!need_.gridCache || res.dynamic() || std::find(v.begin(), v.end(), "radiance") != v.end())
       return std::nullopt;
