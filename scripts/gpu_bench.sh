@@ -4,7 +4,9 @@
 # OUT/gpu_bench.md:
 #   voxelizers   each GL voxelizer on Sibenik and the dragon at 128³, 256³ and 512³ (pass times,
 #                recall / precision against the exact voxelizer)
-#   traverse     `vgi bench traverse` GLSL rows (Mrays/s per tracer, agreement) at 10⁷ rays, 256³
+#   traverse     `vgi bench traverse` rows (GLSL Mrays/s per tracer, GLSL = C++, and the loads per ray
+#                the C++ build counts) at 0.01 … ∞ × the diagonal: Sibenik 256³ (10⁷ rays), Sibenik
+#                512³ and the Cornell box 256³ (2·10⁶ rays)
 #   methods      every GL method's per-pass time per sample at 1920×1080 and 1024×768 on the Cornell
 #                box and Sibenik at its defaults, and the papers' settings (VGI: nearfield at ¼
 #                resolution, 1024×768; voxelpath 64 spp with two bounces), set-up passes apart, and the
@@ -13,8 +15,10 @@
 #                driver's used dedicated memory, GL_NVX_gpu_memory_info)
 #   svo          vct's dense cone volume against the sparse voxel octree (volume=svo) at 1024×768 on
 #                Sibenik, 256³–1024³ (dense to 512³): build / inject / filter / cone passes, bytes
-#   equal error  the same-device experiment (scenes/experiments/same-device-gi.json): each method
-#                against reference_gl on the same GPU, the equal-error time ratio
+#   equal error  the same-device experiments (scenes/experiments/same-device-ao.json and
+#                same-device-gi.json): each method against reference_gl on the same GPU, the
+#                equal-error time ratio, twice into one fresh set-up cache (cold: every voxelization
+#                paid; warm: the cached grids read)
 #   parity       the driver parity set (scripts/driver_parity.py: every GL method and GPU-code choice,
 #                every voxelizer's grid, every tracer's hits) on this GPU against the llvmpipe images
 #                the bundle carries (share/vgi/parity-llvmpipe, or --parity-ref DIR): "same image" or
@@ -82,12 +86,14 @@ scene() {  # scene NAME → its path, or nothing (and a note) when absent
 }
 
 if [ $quick -eq 1 ]; then
-  vox_scenes=(cornell); vox_res=(128); rays=20000; trav_res=128
-  sizes=(64x48); method_scenes=(cornell); spp=2; paper_spp=2; equal_error=smoke
+  vox_scenes=(cornell); vox_res=(128); trav_runs=("cornell 128 20000"); trav_dist=0.1,inf
+  sizes=(64x48); method_scenes=(cornell); spp=2; paper_spp=2; equal_error=(smoke)
   svo_scenes=(cornell); svo_res=(128); svo_dense_max=128; svo_size=64x48
 else
-  vox_scenes=(sibenik dragon); vox_res=(128 256 512); rays=10000000; trav_res=256
-  sizes=(1920x1080 1024x768); method_scenes=(cornell sibenik); spp=16; paper_spp=64; equal_error=same-device-gi
+  vox_scenes=(sibenik dragon); vox_res=(128 256 512)
+  trav_runs=("sibenik 256 10000000" "sibenik 512 2000000" "cornell 256 2000000"); trav_dist=0.01,0.03,0.1,0.3,1,inf
+  sizes=(1920x1080 1024x768); method_scenes=(cornell sibenik); spp=16; paper_spp=64
+  equal_error=(same-device-ao same-device-gi)
   svo_scenes=(sibenik); svo_res=(256 512 1024); svo_dense_max=512; svo_size=1024x768
 fi
 run() {  # run NAME ARGS… : vgi ARGS, its output in raw/NAME.log; a failure is noted, not fatal
@@ -112,7 +118,13 @@ for s in "${vox_scenes[@]}"; do
 done
 
 note "traverse"
-run "traverse" bench traverse --voxels "$trav_res" --rays "$rays" --repeat 1 --json --stats "$out/raw/traverse.json" || true
+for t in "${trav_runs[@]}"; do
+  read -r s r n <<< "$t"
+  path=$(scene "$s")
+  [ -n "$path" ] || continue
+  run "traverse_${s}_$r" bench traverse --scene "$path" --voxels "$r" --rays "$n" --repeat 1 --max-dist "$trav_dist" \
+    --tracers hierarchical,dda,bvh,bricks --json --stats "$out/raw/traverse_${s}_$r.json" || true
+done
 
 note "methods"
 # The registry's methods (its error message lists them), but the CPU one (reference: Embree, not a GPU figure).
@@ -150,8 +162,15 @@ for s in "${svo_scenes[@]}"; do
   done
 done
 
-note "equal error on one device ($equal_error)"
-run "equal_error" sweep "scenes/experiments/$equal_error.json" -o "$out/raw/sweep_$equal_error" || true
+note "equal error on one device (${equal_error[*]}), cold then warm"
+# One fresh set-up cache for both passes: the first pays every voxelization, the second reads the grids.
+rm -rf "$out/raw/setup_cache"
+for pass in cold warm; do
+  for e in "${equal_error[@]}"; do
+    VGI_CACHE_DIR=$out/raw/setup_cache run "equal_error_${e}_$pass" sweep "scenes/experiments/$e.json" \
+      -o "$out/raw/sweep_${e}_$pass" || true
+  done
+done
 
 note "parity"
 # Against the llvmpipe images the bundle carries; --quick (the suite, on llvmpipe itself) renders two of
@@ -197,14 +216,18 @@ for p in sorted(glob.glob(os.path.join(raw, "vox_*.json"))):
     renderer = renderer or s.get("gl_renderer")
     report["voxelizers"].append({k: s.get(k) for k in ("scene", "voxelizer", "resolution", "total_ms", "timings_ms",
                                                          "recall", "precision", "voxels_set", "gl_renderer")})
-t = load(os.path.join(raw, "traverse.json"))
-if t:
+for p in sorted(glob.glob(os.path.join(raw, "traverse_*.json"))):
+    t = load(p) or {}
+    grid = os.path.basename(p)[len("traverse_"):-len(".json")]
     for length in t.get("lengths", []):
         for name, r in sorted(length["tracers"].items()):
-            if "gl_mrays_per_s" in r:
-                report["traverse"].append({"tracer": name, "max_dist": length["max_dist"], "rays": length["rays"],
-                                           "gl_mrays_per_s": r["gl_mrays_per_s"], "gl_equals_cpu": r.get("gl_equals_cpu"),
-                                           "agree_embree_hit": r.get("agree_embree_hit")})
+            if "gl_mrays_per_s" in r or "counts" in r:
+                loads = r.get("counts", {}).get("fetches", {})
+                report["traverse"].append({"grid": grid, "tracer": name, "max_dist": length["max_dist"],
+                                           "rays": length["rays"], "gl_mrays_per_s": r.get("gl_mrays_per_s"),
+                                           "gl_equals_cpu": r.get("gl_equals_cpu"),
+                                           "agree_embree_hit": r.get("agree_embree_hit"),
+                                           "loads_mean": loads.get("mean"), "loads_p99": loads.get("p99")})
 def bytes_of(extra, prefix=""):
     found = {}
     if isinstance(extra, dict):
@@ -227,13 +250,15 @@ for p in sorted(glob.glob(os.path.join(raw, "method_*.json")) + glob.glob(os.pat
                               "setup_ms": setup, "resource_bytes": bytes_of(s.get("extra", {})),
                               "measured_memory": s.get("memory", {}),
                               "gl_renderer": s.get("gl_renderer")})
-for p in glob.glob(os.path.join(raw, "sweep_*", "results.json")):
+for p in sorted(glob.glob(os.path.join(raw, "sweep_*", "results.json"))):
+    run = os.path.basename(os.path.dirname(p))[len("sweep_"):]
     for r in (load(p) or {}).get("rows", []):
         for ch, m in r.items():
             if isinstance(m, dict) and "equal_error_time_ratio" in m:
-                report["equal_error"].append({"scene": r["scene"], "method": r["method"], "label": r["label"],
-                                              "spp": r["spp"], "channel": ch, "relmse": m["relmse"],
-                                              "time_ms": r["time_ms"], "ratio": m["equal_error_time_ratio"],
+                report["equal_error"].append({"run": run, "scene": r["scene"], "method": r["method"],
+                                              "label": r["label"], "spp": r["spp"], "channel": ch,
+                                              "relmse": m["relmse"], "time_ms": r["time_ms"],
+                                              "setup_ms": r.get("setup_ms"), "ratio": m["equal_error_time_ratio"],
                                               "extrapolated": m.get("equal_error_extrapolated")})
 report["gl_renderer"] = renderer
 json.dump(report, open(os.path.join(out, "gpu_bench.json"), "w"), indent=1)
@@ -242,9 +267,14 @@ md.append("| voxelizer | scene | resolution | ms | recall | precision |\n|---|--
 for v in report["voxelizers"]:
     md.append(f'| {v["voxelizer"]} | {v["scene"]} | {"x".join(map(str, v["resolution"] or []))} | '
               f'{v["total_ms"]:.1f} | {v["recall"]:.4f} | {v["precision"]:.4f} |')
-md.append("\n| tracer (GLSL) | max dist | rays | Mrays/s | GLSL = C++ |\n|---|---|---|---|---|")
+md.append("\n| grid | tracer | max dist | rays | GLSL Mrays/s | GLSL = C++ | loads per ray (mean / p99) |"
+          "\n|---|---|---|---|---|---|---|")
+def num(v, f):
+    return "-" if v is None else format(v, f)
 for r in report["traverse"]:
-    md.append(f'| {r["tracer"]} | {r["max_dist"]:.3g} | {r["rays"]} | {r["gl_mrays_per_s"]:.1f} | {r["gl_equals_cpu"]} |')
+    md.append(f'| {r["grid"]} | {r["tracer"]} | {r["max_dist"] if isinstance(r["max_dist"], str) else format(r["max_dist"], ".3g")} '
+              f'| {r["rays"]} | {num(r["gl_mrays_per_s"], ".1f")} | {"-" if r["gl_equals_cpu"] is None else r["gl_equals_cpu"]} '
+              f'| {num(r["loads_mean"], ".1f")} / {num(r["loads_p99"], "")} |')
 md.append("\n| run | method | size | ms / sample | per-sample passes (ms) | set-up ms | resource MiB | measured MiB |"
           "\n|---|---|---|---|---|---|---|---|")
 for m in report["methods"]:
@@ -255,10 +285,11 @@ for m in report["methods"]:
     if "gpu_used_bytes" in mem: measured += f', GPU used {mem["gpu_used_bytes"] / 2**20:.0f}'
     md.append(f'| {m["run"]} | {m["method"]} | {m["size"]} | {m["ms_per_sample"]:.2f} | {passes} | '
               f'{sum(m["setup_ms"].values()):.1f} | {mib} | {measured} |')
-md.append("\n| scene | method | spp | channel | relMSE | ms | equal-error time ratio (exact / method) |"
-          "\n|---|---|---|---|---|---|---|")
+md.append("\n| run | scene | method | spp | channel | relMSE | ms | set-up ms | equal-error time ratio (exact / method) |"
+          "\n|---|---|---|---|---|---|---|---|---|")
 for r in report["equal_error"]:
-    md.append(f'| {r["scene"]} | {r["label"]} | {r["spp"]} | {r["channel"]} | {r["relmse"]:.4f} | {r["time_ms"]:.0f} | '
+    md.append(f'| {r["run"]} | {r["scene"]} | {r["label"]} | {r["spp"]} | {r["channel"]} | {r["relmse"]:.4f} | '
+              f'{r["time_ms"]:.0f} | {num(r["setup_ms"], ".0f")} | '
               f'{r["ratio"]:.2f}{" (extrapolated)" if r["extrapolated"] else ""} |')
 par = report["parity"]
 if par:
