@@ -7,7 +7,9 @@
 #include "apps/commands.h"
 #include "core/error.h"
 #include "core/json_text.h"
+#include "core/params.h"
 #include "core/progress.h"
+#include "illum/framework/method_help.h"
 #include "illum/framework/render_job.h"
 
 namespace vgi::app {
@@ -68,7 +70,7 @@ struct RenderCommand {
   RenderArgs args;
   std::string out = "out.exr", stats, helpModule, aovs, checkpoints, job;
   float exposure = 1.0f;
-  bool printJob = false;
+  bool printJob = false, markdown = false;
 };
 
 void addRenderOnlyOptions(CLI::App* cmd, RenderCommand& c) {
@@ -83,7 +85,10 @@ void addRenderOnlyOptions(CLI::App* cmd, RenderCommand& c) {
   cmd->add_option("--exposure", c.exposure, "PNG exposure multiplier")->capture_default_str();
   cmd->add_option("--aov", c.aovs,
                   "extra outputs, comma-separated (e.g. indirect,direct): <stem>.<aov>.exr/.png");
-  cmd->add_option("--help-module", c.helpModule, "print a method's parameters and exit");
+  cmd->add_option("--help-module", c.helpModule,
+                  "print a method's parameters (or 'all': every method's) and exit; defaults that depend on "
+                  "the scene are --scene's");
+  cmd->add_flag("--markdown", c.markdown, "--help-module as Markdown (docs/PARAMETERS.md is 'all')");
   cmd->add_option("--job", c.job,
                   "the render's options from a job JSON (or a render's stats JSON: its \"job\"); no other "
                   "render option may be given with it");
@@ -178,9 +183,12 @@ RenderOutput renderAnimation(const RenderOptions& opt, const RenderCommand& c,
 
 void runRenderCommand(const CLI::App* cmd, const RenderCommand& c) {
   if (!c.helpModule.empty()) {
-    std::printf("%s", describeMethod(c.helpModule, c.opt.scene).c_str());
+    const std::string help = c.markdown ? describeMethodsMarkdown(c.helpModule, c.opt.scene)
+                                        : describeMethod(c.helpModule, c.opt.scene);
+    std::fputs(help.c_str(), stdout);
     return;
   }
+  if (c.markdown) fail("--markdown goes with --help-module NAME|all");
   if (!(c.exposure > 0.0f) || c.exposure > 1e6f) fail("--exposure ", c.exposure, ": must be in (0, 1e6]");
   const RenderOptions opt = resolveOptions(cmd, c);
   if (c.printJob) {

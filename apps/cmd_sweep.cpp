@@ -19,30 +19,37 @@ void addSweepCommand(CLI::App& app) {
   auto dir = std::make_shared<std::string>();
   auto print = std::make_shared<bool>(false);
   auto collect = std::make_shared<bool>(false);
+  auto pending = std::make_shared<bool>(false);
   cmd->add_option("experiment", *file, "the experiment file (JSON; see experiments/sweep.h)")->required();
   cmd->add_option("-o,--output", *dir, "the output folder (renders, results.csv, results.json)")->required();
   cmd->add_flag("--print-commands", *print,
                 "print one vgi command per reference and point (for GNU parallel or a job array) and render "
                 "nothing");
+  cmd->add_flag("--pending", *pending,
+                "like --print-commands, but only the renders not done yet in DIR (what a batch system "
+                "still has to run; a killed or failed render is listed again)");
   cmd->add_flag("--collect", *collect, "render nothing: collect the results of whatever finished in DIR");
   cmd->callback([=] {
-    if (*print && *collect) fail("--print-commands and --collect: give one of them");
+    if (int(*print) + int(*collect) + int(*pending) > 1)
+      fail("--print-commands, --pending and --collect: give one of them");
     const Experiment e = loadExperiment(*file, *dir);
     std::error_code ec;
     std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
     if (ec || self.empty()) self = "vgi";
+    // The renders' folders are made here, so each printed command runs as it is (nothing renders).
+    auto printCommand = [&](const SweepRender& r) {
+      std::filesystem::create_directories(r.dir);
+      std::printf("%s\n", sweepCommand(r, self).c_str());
+    };
     if (*print) {
-      // The renders' folders are made here, so each command runs as it is (nothing renders).
       for (const auto* list : {&e.references, &e.curves})
         for (auto& r : *list)
-          if (!r.args.empty()) {
-            std::filesystem::create_directories(r.dir);
-            std::printf("%s\n", sweepCommand(r, self).c_str());
-          }
-      for (auto& p : e.points) {
-        std::filesystem::create_directories(p.render.dir);
-        std::printf("%s\n", sweepCommand(p.render, self).c_str());
-      }
+          if (!r.args.empty()) printCommand(r);
+      for (auto& p : e.points) printCommand(p.render);
+      return;
+    }
+    if (*pending) {
+      for (auto& [r, spp] : pendingRenders(e)) printCommand(*r);
       return;
     }
     if (!*collect) {

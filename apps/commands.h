@@ -20,15 +20,6 @@ struct ExitCode {
   int code;
 };
 
-// "a,b,,c" → {a, b, c}.
-inline std::vector<std::string> splitList(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
-}
-
 // The options `render` and `compare` share (scene, method, set, preset, size,
 // spp, seed, threads, time, gl, quiet), read into `opt` and the raw texts of
 // `args`; applyRenderArgs() parses the texts (size, GL backend) into `opt`.

@@ -19,6 +19,16 @@ struct ParamDoc {
 
 // Whether x (parsed as a double: JSON, strtod) is a finite 32-bit float, as every number the
 // renderer computes with is: 1e300 is finite as a double and +inf as a float.
+// A comma-separated option value as its items: "a,b,,c" → {a, b, c}.
+inline std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  for (size_t end; (end = s.find(',', start)) != std::string::npos; start = end + 1)
+    if (end > start) out.push_back(s.substr(start, end - start));
+  if (start < s.size()) out.push_back(s.substr(start));
+  return out;
+}
+
 inline bool finiteAsFloat(double x) { return std::abs(x) <= double(std::numeric_limits<float>::max()); }
 
 // A JSON scalar as `--set` text (64 → "64", 0.5 → "0.5", true → "true",

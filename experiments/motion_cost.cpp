@@ -1,6 +1,7 @@
 #include "experiments/motion_cost.h"
 
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -66,6 +67,25 @@ MotionCost motionCost(const nlohmann::json& moving, const nlohmann::json& still,
   for (auto& [pass, ms] : m) c.passes[pass].movingMs = ms, c.movingMs += ms;
   for (auto& [pass, ms] : s) c.passes[pass].stillMs = ms, c.stillMs += ms;
   return c;
+}
+
+std::string MotionCost::table() const {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "%-24s %12s %12s %8s   (ms per frame, mean of %d frames after the first)\n", "pass", "still",
+                "moving", "ratio", frames);
+  out += line;
+  for (auto& [name, t] : passes) {
+    char r[32] = "-";
+    if (t.stillMs > 0) std::snprintf(r, sizeof r, "%.3f", t.movingMs / t.stillMs);
+    std::snprintf(line, sizeof line, "%-24s %12.3f %12.3f %8s\n", name.c_str(), t.stillMs, t.movingMs, r);
+    out += line;
+  }
+  char all[32] = "undefined";  // still 0, moving not (as in the JSON)
+  if (std::isfinite(ratio())) std::snprintf(all, sizeof all, "%.3f", ratio());
+  std::snprintf(line, sizeof line, "%-24s %12.3f %12.3f %8s\n", "all passes", stillMs, movingMs, all);
+  return out + line;
 }
 
 }  // namespace vgi

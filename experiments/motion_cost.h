@@ -19,6 +19,7 @@ struct MotionCost {
   double stillMs = 0, movingMs = 0;    // per frame, all passes
   double ratio() const;                // movingMs / stillMs (∞ if still is 0 and moving is not)
   nlohmann::json toJson() const;
+  std::string table() const;  // per pass: still, moving, ratio; then all passes (`vgi bench motion`)
 };
 
 // Throws naming the file when a stats JSON is not an animation of at least 2 frames, or the two are of

@@ -127,6 +127,9 @@ std::string sweepCommand(const SweepRender& r, const std::string& vgi);
 bool sweepRenderDone(const SweepRender& r, int spp);
 // The --spp of a render's arguments.
 int sweepRenderSpp(const SweepRender& r);
+// The renders not done yet (references and curves first, then the points), each with the sample
+// count that makes it done: what runSweep runs and `vgi sweep --pending` lists.
+std::vector<std::pair<const SweepRender*, int>> pendingRenders(const Experiment& e);
 // Thrown by runSweep when a render was interrupted (Ctrl-C): the renders that
 // finished are kept, and a second run resumes (`vgi sweep` exits 130).
 struct SweepInterrupted : std::runtime_error {

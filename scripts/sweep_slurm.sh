@@ -20,16 +20,8 @@ command -v sbatch > /dev/null || { echo "$sa_prog: sbatch is missing: this runs 
 sa_out OUT "$out"
 jobs="$out/jobs.txt"
 "$vgi" sweep "$experiment" -o "$out" --print-commands > "$jobs.all"  # its own error (exit 2) ends this
-# Only the renders not done yet (a finished one's stats JSON has every sample).
-: > "$jobs"
-while IFS= read -r cmd; do
-  stem=$(printf '%s\n' "$cmd" | sed -n "s/.*'-o' '\\([^']*\\)\\.exr'.*/\\1/p")
-  if [ -n "$stem" ] && [ -f "$stem.json" ] &&
-     python3 -c "import json,sys; s=json.load(open(sys.argv[1])); sys.exit(0 if s.get('spp_completed',0)>=s.get('spp',1) or s.get('time_limited') else 1)" "$stem.json" 2> /dev/null; then
-    continue
-  fi
-  printf '%s\n' "$cmd" >> "$jobs"
-done < "$jobs.all"
+# Only the renders not done yet, as the sweep itself decides (a finished one's stats say so).
+"$vgi" sweep "$experiment" -o "$out" --pending > "$jobs"
 n=$(wc -l < "$jobs")
 echo "sweep_slurm: $n of $(wc -l < "$jobs.all") renders to run"
 if [ "$n" -gt 0 ]; then

@@ -529,31 +529,4 @@ std::string writeAnimationStats(const RenderOutput& out, const std::string& path
   return json;
 }
 
-std::string describeMethod(const std::string& name, const std::string& sceneSpec) {
-  const MethodInfo& info = findMethod(name, "--help-module");
-  Scene scene = loadScene(sceneSpec);  // defaults that depend on the scene (the radius) are this scene's
-  ParamSet params;
-  std::unique_ptr<Method> method = info.create(params, scene);
-  std::ostringstream os;
-  os << name << ": " << info.description << (info.needsGl ? " [GL]" : " [CPU]") << "\n";
-  auto list = [](const std::vector<std::string>& v) {
-    std::string s;
-    for (auto& x : v) s += (s.empty() ? "" : ", ") + x;
-    return s.empty() ? std::string("-") : s;
-  };
-  os << "needs: " << list(method->needs().names()) << " (with these defaults)\n";
-  os << "outputs: image" << (method->outputs().empty() ? "" : ", " + list(method->outputs()))
-     << " (--aov NAME,...)\n";
-  os << "parameters (--set key=value; scene-dependent defaults shown for " << sceneSpec << "):\n";
-  for (auto& d : params.docs())
-    os << "  " << d.key << " (" << d.type << ", default " << d.defaultValue << "): " << d.doc << "\n";
-  if (info.counterpart) {
-    const Counterpart c = info.counterpart(params.resolved());
-    os << "exact counterpart (vgi compare): " << c.method;
-    for (auto& kv : c.set) os << " " << kv;
-    os << (c.note.empty() ? "" : " — " + c.note) << "\n";
-  }
-  return os.str();
-}
-
 }  // namespace vgi

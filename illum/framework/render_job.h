@@ -138,8 +138,5 @@ std::string writeAnimationStats(const RenderOutput& out, const std::string& path
 // Throws if `path` cannot be written (bad extension, see core/output_files.h) —
 // checked before a long render, so nothing is lost at the end.
 void checkOutputPath(const std::string& path);
-// The parameter table of a method, for --help-module, with the defaults
-// that depend on the scene (e.g. the radius) resolved for `scene`.
-std::string describeMethod(const std::string& name, const std::string& scene);
 
 }  // namespace vgi

@@ -37,25 +37,8 @@
 // visibility, the paper's "without visibility" timings), the clamp (clamp=0)
 // and the many-light estimate itself.
 //
-// Parameters
-// | key             | type   | default    | meaning                                                |
-// |-----------------|--------|------------|--------------------------------------------------------|
-// | grid            | int    | 64         | AVG cells per axis (any size: the paper's 64³ default) |
-// | vpls            | int    | 1024       | N: VPL chains per sample (the paper: 1024)             |
-// | bounces         | int    | 3          | VPLs per chain at most (Russian roulette in between)    |
-// | interleave      | int    | 4          | k: k×k subsets of the chains (the paper: 4×4 = 16)       |
-// | resolution, blur | …     | 0.5, true  | the gather kit's buffer and blur                        |
-// | clamp           | float  | 0.005      | 1/d² → 1/max(d², (clamp · scene diagonal)²); 0 = off     |
-// | shadow_map      | string | cube       | per-VPL maps: cube (exact for large triangles) or paraboloid (the paper's, small triangles) |
-// | vpl_shadow_res  | int    | 32         | a VPL map's side (per cube face), texels                 |
-// | vpl_shadow_triangles | int | 8192     | the VPL maps draw the scene simplified to about this many triangles (SceneNeeds::occluders; 0: as it is) |
-// | vpl_shadow_tolerance | float | 0.002  | the simplified scene within this distance of the scene (× diagonal); the VPL shadow bias grows by it |
-// | vpl_shadow_bias | float  | 0.5        | the VPL maps' depth bias, texels, slope-scaled (gather.comp). Cornell box against exact visibility (from the lifted VPLs), indirect energy at 0.3 / 0.5 / 0.75: cube 0.980 / 0.997 / 0.999, paraboloid 0.94 / 0.96 / 0.98 (its large triangles warp); the closed sphere's paraboloids: 0.948 at 0.2, 0.9995 at 0.5 |
-// | shadow_lift     | float  | 1          | a VPL map's centre: the VPL moved this many AVG cell diagonals along its normal |
-// | march_step      | float  | 0.5        | ray-marching step, AVG cells                             |
-// | visibility      | string | shadowmaps | shadowmaps, exact (Embree, CPU) or none                  |
-// | tracing         | string | avg        | avg (ray marching the AVG) or exact (Embree, CPU)        |
-// | shadow_res, shadow_bias, normal_offset | … | the lights' shadow maps (direct light), as in `direct` |
+// Parameters: `vgi render --help-module avg` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 // (`shadow_res` stays the direct lights' shadow maps, as in every GL method; the paper's per-VPL
 // maps are `vpl_shadow_res`.)
 #include "illum/methods/avg.h"

@@ -12,13 +12,8 @@
 // sub-pixel jitter (Halton 2,3) so edges converge to the same box-filtered
 // pixel as the reference.
 //
-// Parameters
-// | key           | type  | default | meaning                                            |
-// |---------------|-------|---------|----------------------------------------------------|
-// | shadow_res    | int   | 1024    | shadow map size (per face)                         |
-// | shadow_bias   | float | 1.0     | depth bias in shadow-map texels, at the texel      |
-// |               |       |         | centre on the receiver's plane (shared/light_maps) |
-// | normal_offset | float | 0       | lookup offset along the normal, in texels          |
+// Parameters: `vgi render --help-module direct` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 #include "illum/methods/direct.h"
 
 #include "core/error.h"

@@ -31,22 +31,8 @@
 // no emission at the hit point), shadow-mapped direct light, and the reduced
 // resolution with its blur and upsampling.
 //
-// Parameters
-// | key          | type   | default            | meaning                                              |
-// |--------------|--------|--------------------|------------------------------------------------------|
-// | rays         | int    | 16                 | rays per indirect pixel per frame                    |
-// | radius       | float  | 0.5 · scene diag.  | ray length r, world units (docs/BENCHMARKS.md: radius) |
-// | resolution   | float  | 0.5                | indirect resolution: 1, 0.5 or 0.25 of the image     |
-// | interleave   | int    | 4                  | k: k×k pixel blocks with k² direction sets           |
-// | blur         | bool   | true               | geometry-aware blur over the interleave window       |
-// | tracer       | string | hierarchical       | hierarchical, dda or march (GLSL define)             |
-// | env          | bool   | true               | rays leaving r read the environment (black if none) |
-// | backprojection | string | plane            | hit → RSM: `plane` (see indirect.comp) or `entry` (VGI) |
-// | passthrough  | bool   | true               | go on past hit voxels whose entry a light sees through |
-// | offset       | float  | 0.5 (entry: 1)     | ray start offset along the normal, voxel diag. (VGI: 1) |
-// | voxels       | string | 128                | grid resolution N or WxHxD                           |
-// | voxelizer    | string | atlas              | binary voxelizer (see `vgi voxelize --help`)         |
-// | shadow_res, shadow_bias, normal_offset | … | light maps, as in `direct`                       |
+// Parameters: `vgi render --help-module nearfield` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 #include "illum/methods/nearfield.h"
 
 #include <glad/gl.h>

@@ -29,19 +29,8 @@
 // count. A sample is one pass over the image (tiles in parallel); Ctrl-C
 // drops the sample in flight, so every pixel has the same sample count.
 //
-// Parameters
-// | key        | type   | default            | meaning                                              |
-// |------------|--------|--------------------|------------------------------------------------------|
-// | integrator | string | path               | path, nearfield, ao, direct                          |
-// | maxdepth   | int    | 8                  | path: maximum number of bounces                      |
-// | rr_depth   | int    | 3                  | path: bounces before Russian roulette starts         |
-// | radius     | float  | 0.5 / 0.1 · diag.  | nearfield (as the module) / ao: ray length, world units |
-// | env        | bool   | true               | the environment lights (false: background only)      |
-// | env_channel | string | direct            | path: environment seen from x0 as direct or indirect |
-// | visibility | string | exact              | nearfield/path: exact, or voxels (see below)         |
-// | voxels     | string | 128                | nearfield, visibility=voxels: grid N or WxHxD        |
-// | offset     | float  | 1.0                | nearfield, visibility=voxels: start offset, voxel diag. |
-// | emitter_sampling | string | mis          | path/direct/nearfield: area lights by mis, light or brdf |
+// Parameters: `vgi render --help-module reference` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 //
 // path with visibility=voxels does the same for `voxelpath`: every bounce ray
 // (not the camera ray) finds its first hit through the voxel grid, from

@@ -30,35 +30,8 @@
 // direct + indirect (AO is an output only: the counterpart's integral has none).
 // Counterpart: reference integrator=path maxdepth=2 (one indirect bounce).
 //
-// Parameters
-// | key           | type   | default          | meaning                                         |
-// |---------------|--------|------------------|-------------------------------------------------|
-// | voxels        | string | 128              | grid resolution N or WxHxD                      |
-// | voxelizer     | string | conservative     | the opacity's binary voxelizer (registry)       |
-// | radiance      | string | inject           | inject, texels (the 2013 article's, from reflective shadow maps) or atlas (see above) |
-// | anisotropic   | bool   | true             | six-direction chain; false: isotropic           |
-// | volume        | string | dense            | storage: dense (3D textures) or svo (sparse voxel octree, illum/resources/sparse_octree.h) |
-// | dilate        | bool   | true             | svo: allocate the nodes a neighbour's brick stencil needs (false: the articles' tree, with brick-border artefacts) |
-// | update_every  | int    | 1                | svo, dynamic scenes: rebuild the tree at every k-th changed grid |
-// | face_weights  | string | abs              | abs (|d|, the thesis) or squared (d²)           |
-// | step          | float  | 1                | march step in cone diameters                    |
-// | diffuse_cones | int    | 6                | 1, or n: normal + n−1 on a ring at 63.4° (6: icosahedron) |
-// | aperture      | float  | 60               | diffuse cones' full opening angle, degrees      |
-// | max_distance  | float  | 1 · scene diag.  | cone length (diffuse, specular), world units    |
-// | offset        | float  | 1                | apex offset along the normal, voxel diagonals   |
-// | plane_guard   | bool   | true             | mip level capped above the receiver's plane (cones.glsl) |
-// | diffuse       | bool   | true             | the diffuse cones' light (false: their AO only) |
-// | specular      | bool   | true             | the specular cone (materials with ks > 0)       |
-// | skip_empty    | bool   | true             | empty-space skipping of the specular cone       |
-// | ao            | bool   | true             | the ao output                                   |
-// | ao_radius     | float  | 0.1 · scene diag.| AO: occlusion within this distance              |
-// | falloff       | float  | 0                | AO: λ of 1/(1 + λ t / ao_radius)                |
-// | shadows       | bool   | false            | cone-traced soft shadows instead of shadow maps |
-// | shadow_aperture | float | 3               | the shadow cones' opening angle, degrees        |
-// | shadow_stop   | float  | 4                | shadow cones end this many widths before the light |
-// | env           | bool   | true             | cones leaving the grid see the environment      |
-// | resolution, interleave, blur |  | 0.5, 2, true | the gather kit's (diffuse cones and AO)      |
-// | shadow_res, shadow_bias, normal_offset |  |  | the light maps'                              |
+// Parameters: `vgi render --help-module vct` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 #include "illum/methods/vct.h"
 
 #include <glad/gl.h>

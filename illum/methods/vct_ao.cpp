@@ -30,20 +30,8 @@
 // Counterpart: reference integrator=ao with the same radius (falloff 0: the
 // same integral, cosine-weighted unoccluded fraction within r).
 //
-// Parameters
-// | key        | type   | default            | meaning                                          |
-// |------------|--------|--------------------|--------------------------------------------------|
-// | cones      | int    | 8                  | constellation: 3, 5 or 8                         |
-// | aperture   | float  | 120 / 90 / 60      | full opening angle, degrees (by constellation)   |
-// | overlap    | float  | 1                  | aperture multiplier (> 1: overlapping cones)     |
-// | jitter     | bool   | true               | per-pixel random azimuth of the constellation   |
-// | radius     | float  | 0.3 · scene diag.  | cone length r, world units                       |
-// | falloff    | float  | 0                  | λ of 1/(1 + λ t / r)                              |
-// | offset     | float  | 1.5                | origin offset along the normal, voxel diagonals  |
-// | plane_guard | bool  | true               | mip level capped above the receiver's plane (cones.glsl) |
-// | voxels, voxelizer, anisotropic (true), face_weights (squared), step (0.5) | | | the volume's (illum/kits/cone_kit.h) |
-// | volume, dilate, update_every | | dense, true, 1 | the volume's storage: dense, or svo (a sparse voxel octree, illum/resources/sparse_octree.h) |
-// | resolution, interleave, blur |   | 0.5, 2, true | the gather kit's                             |
+// Parameters: `vgi render --help-module vct_ao` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 #include "illum/methods/vct_ao.h"
 
 #include <glad/gl.h>

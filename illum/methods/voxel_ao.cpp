@@ -18,19 +18,8 @@
 // triangles), the start offset and passed band, and the reduced resolution
 // with its blur and upsampling.
 //
-// Parameters
-// | key         | type   | default           | meaning                                           |
-// |-------------|--------|-------------------|---------------------------------------------------|
-// | radius      | float  | 0.1 · scene diag. | ray length r, world units (as reference ao)       |
-// | rays        | int    | 16                | rays per gather pixel per frame                   |
-// | resolution  | float  | 0.5               | gather resolution: 1, 0.5 or 0.25 of the image    |
-// | interleave  | int    | 4                 | k: k×k pixel blocks with k² direction sets        |
-// | blur        | bool   | true              | geometry-aware blur over the interleave window    |
-// | tracer      | string | hierarchical      | hierarchical, dda or march (GLSL define)          |
-// | offset      | float  | 0.5               | ray start offset along the normal, voxel diagonals |
-// | passthrough | bool   | true              | pass hits within a voxel diagonal of the receiver's plane |
-// | voxels      | string | 128               | grid resolution N or WxHxD                        |
-// | voxelizer   | string | atlas             | binary voxelizer (see `vgi voxelize --help`)      |
+// Parameters: `vgi render --help-module voxel_ao` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 #include "illum/methods/voxel_ao.h"
 
 #include <glad/gl.h>

@@ -15,13 +15,8 @@
 //
 // Needs: binary grid, OR-mip pyramid (no G-buffer).
 //
-// Parameters
-// | key       | type   | default      | meaning                                     |
-// |-----------|--------|--------------|---------------------------------------------|
-// | tracer    | string | hierarchical | hierarchical, dda or march (GLSL define)    |
-// | voxels    | string | 128          | grid resolution N or WxHxD                  |
-// | voxelizer | string | atlas        | binary voxelizer (see `vgi voxelize --help`) |
-// | level     | int    | 0            | pyramid level shown, 0 … levels − 1 (0: the grid) |
+// Parameters: `vgi render --help-module voxels` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 #include "illum/methods/voxel_view.h"
 
 #include <glad/gl.h>

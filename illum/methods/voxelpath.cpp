@@ -21,22 +21,8 @@
 // With glossy=false, env=false or clamp > 0 it computes another integral
 // than its counterpart (compare reports the difference as error).
 //
-// Parameters
-// | key         | type   | default        | meaning                                                  |
-// |-------------|--------|----------------|----------------------------------------------------------|
-// | maxdepth    | int    | 3              | path vertices with direct light (1: direct only; 3: two interreflections) |
-// | rr_depth    | int    | 3              | bounces before Russian roulette (as reference)           |
-// | tracer      | string | hierarchical   | hierarchical, dda or march (GLSL define)                 |
-// | offset      | float  | 0.5            | ray start offset along the normal, voxel diagonals       |
-// | passthrough | bool   | true           | pass own-band hits (the start's normal, or unlit)       |
-// | hitpoint    | string | entry          | hit vertex: entry (voxel entry), centre, or plane (mean-normal plane) |
-// | backprojection | string | plane       | hit → RSM: plane or entry (as nearfield)                 |
-// | glossy      | bool   | true           | Phong lobes sampled and lit (false: diffuse only)        |
-// | clamp       | float  | 0 (off)        | clamp each vertex's contribution (max component)         |
-// | env         | bool   | true           | rays leaving the grid read the environment               |
-// | voxels      | string | 128            | grid resolution N or WxHxD                               |
-// | voxelizer   | string | atlas          | binary voxelizer (the value grids need atlas)            |
-// | shadow_res, shadow_bias, normal_offset | … | light maps, as in `direct`                        |
+// Parameters: `vgi render --help-module voxelpath` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 #include "illum/methods/voxelpath.h"
 
 #include <glad/gl.h>

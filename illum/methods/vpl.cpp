@@ -34,22 +34,8 @@
 //                cell's mean normal and albedo);
 //   the RSM      texel resolution (a VPL stands for a texel's area).
 //
-// Parameters
-// | key         | type   | default      | meaning                                                   |
-// |-------------|--------|--------------|-----------------------------------------------------------|
-// | vpls        | int    | 1024         | N: VPL chains per sample (0: no indirect light)           |
-// | bounces     | int    | 2            | VPLs per chain: 1 = RSM VPLs only (one indirect bounce)   |
-// | interleave  | int    | 4            | k: k×k pixel blocks gather from k² subsets of the chains  |
-// | resolution  | float  | 0.5          | gather resolution: 1, 0.5 or 0.25 of the image            |
-// | blur        | bool   | true         | geometry-aware blur over the k×k window                   |
-// | clamp       | float  | 0.005        | 1/d² → 1/max(d², (clamp · scene diagonal)²); 0 = off (0.02 lost 8 % on Sibenik) |
-// | visibility  | string | voxels       | voxels (two-point test), exact (Embree, CPU), none        |
-// | offset      | float  | 1.0          | two-point test: both ends moved along their normals, voxel diagonals |
-// | bounce_offset | float | 0.5         | bounce rays' start offset, voxel diagonals (with the own-band pass) |
-// | tracer      | string | hierarchical | hierarchical, dda or march (GLSL define)                  |
-// | voxels      | string | 128          | grid resolution N or WxHxD                                |
-// | voxelizer   | string | atlas        | binary voxelizer (bounces > 1 need atlas: the value grids) |
-// | shadow_res, shadow_bias, normal_offset | … | light maps (the RSMs), as in `direct`        |
+// Parameters: `vgi render --help-module vpl` (and docs/PARAMETERS.md), generated from the
+// ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
 #include "illum/methods/vpl.h"
 
 #include <glad/gl.h>

@@ -55,9 +55,17 @@ TEST(Sweep, SmokeExperimentRunsCollectsAndResumes) {
   for (auto& f : std::filesystem::recursive_directory_iterator(dir))
     EXPECT_TRUE(f.is_directory()) << "--print-commands wrote " << f.path();
 
+  // Nothing has rendered: every render is pending, in the same order.
+  CliRun pending = vgi("sweep " + kSmoke + " -o " + dir + " --pending");
+  ASSERT_EQ(pending.code, 0) << pending.output;
+  EXPECT_EQ(lines(pending.output), lines(list.output));
+
   CliRun run = vgi("sweep " + kSmoke + " -o " + dir);
   ASSERT_EQ(run.code, 0) << run.output;
   EXPECT_NE(run.output.find("[8/8]"), std::string::npos) << run.output;
+  CliRun none = vgi("sweep " + kSmoke + " -o " + dir + " --pending");
+  ASSERT_EQ(none.code, 0) << none.output;
+  EXPECT_TRUE(lines(none.output).empty()) << none.output;
   const std::vector<std::string> csv = lines(std::string(
       std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(dir + "/results.csv")), {}));
   ASSERT_EQ(csv.size(), 1u + 2u * 3u + 4u * 4u)
@@ -151,6 +159,10 @@ TEST(Sweep, SmokeExperimentRunsCollectsAndResumes) {
   CliRun partial = vgi("sweep " + kSmoke + " -o " + dir + " --collect");
   ASSERT_EQ(partial.code, 0) << partial.output;
   EXPECT_NE(partial.output.find("21 rows"), std::string::npos) << "its checkpoints stay: " << partial.output;
+  CliRun killed = vgi("sweep " + kSmoke + " -o " + dir + " --pending");
+  ASSERT_EQ(killed.code, 0) << killed.output;
+  ASSERT_EQ(lines(killed.output).size(), 1u) << killed.output;
+  EXPECT_NE(killed.output.find(point + "/render.exr"), std::string::npos) << killed.output;
   CliRun resume = vgi("sweep " + kSmoke + " -o " + dir);
   ASSERT_EQ(resume.code, 0) << resume.output;
   EXPECT_NE(resume.output.find("[1/1]"), std::string::npos) << resume.output;

@@ -1,0 +1,313 @@
+// `vgi sweep`, the results: every finished render's rows against its reference (each checkpoint,
+// each channel), the equal-error time read off the counterpart's curve, results.json and
+// results.csv, the error maps (experiments/sweep.h).
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "core/image.h"
+#include "core/image_metrics.h"
+#include "core/json_text.h"
+#include "core/output_files.h"
+#include "experiments/sweep_detail.h"
+#include "illum/framework/render_job.h"
+
+namespace vgi {
+
+namespace fs = std::filesystem;
+
+namespace {
+using sweep_detail::readJson;
+using sweep_detail::stemOfRender;
+
+// The method a render runs.
+std::string renderMethod(const SweepRender& r) { return r.args.empty() ? r.id : r.options.method; }
+
+std::string machineName() {
+  char host[256] = {0};
+  gethostname(host, sizeof host - 1);
+  return std::string(host) + " (" + std::to_string(std::thread::hardware_concurrency()) + " threads)";
+}
+
+// A render's time per image (an animation's: the mean per frame): total, in the per-sample passes,
+// and the set-up (the rest).
+void addTimes(const nlohmann::json& stats, nlohmann::json& row) {
+  auto times = [](const nlohmann::json& s, double& total, double& sample) {
+    total = s.value("total_ms", 0.0);
+    sample = 0;
+    const nlohmann::json timings = s.value("timings_ms", nlohmann::json::object());
+    for (auto& pass : s.value("sample_passes", nlohmann::json::array()))
+      sample += timings.value(pass.get<std::string>(), 0.0);
+    if (!s.contains("sample_passes")) sample = total;  // CPU methods: all per sample
+  };
+  double total = 0, sample = 0;
+  const nlohmann::json frames = stats.value("frames", nlohmann::json());
+  if (frames.is_array() && !frames.empty()) {
+    for (auto& f : frames) {
+      double t, s;
+      times(f, t, s);
+      total += t;
+      sample += s;
+    }
+    total /= double(frames.size());
+    sample /= double(frames.size());
+  } else {
+    times(stats, total, sample);
+  }
+  row["time_ms"] = total;
+  row["sample_ms"] = sample;
+  row["setup_ms"] = std::max(0.0, total - sample);
+}
+
+// One channel's metrics, frame t of `a` against frame t of `b` (one file each for a still): the
+// frames' mean static metrics and, over two or more frames, the temporal ones. Empty when a file
+// is missing.
+nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string>& a,
+                              const std::vector<std::string>& b) {
+  for (size_t t = 0; t < a.size(); ++t)
+    if (!fs::exists(a[t]) || !fs::exists(b[t])) return nlohmann::json();
+  DiffOptions relative;
+  relative.relativeEpsilon = e.relativeEpsilon;
+  relative.darkTolerance = e.diff.darkTolerance;
+  std::vector<Image> ia, ib;
+  double sum[7] = {0, 0, 0, 0, 0, 0, 0};
+  for (size_t t = 0; t < a.size(); ++t) {
+    ia.push_back(readImage(a[t]));
+    ib.push_back(readImage(b[t]));
+    const ImageDiff d = compareImages(ia.back(), ib.back(), a[t], b[t], e.diff),
+                    dr = compareImages(ia.back(), ib.back(), a[t], b[t], relative);
+    const double v[7] = {
+        d.relMse, dr.relMse,     d.relMae, d.ssim, (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0,
+        d.leak,   d.darkFraction};
+    for (int k = 0; k < 7; ++k) sum[k] += v[k] / double(a.size());
+  }
+  // A metric without a value (against a black reference) is "undefined" in the row, the JSON and the CSV.
+  nlohmann::json m;
+  const char* names[7] = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy", "leak", "dark_fraction"};
+  for (int k = 0; k < 7; ++k) m[names[k]] = finiteOrUndefined(sum[k]);
+  if (a.size() > 1) {
+    const SequenceDiff s = compareSequences(ia, ib, a.front(), b.front());
+    m["temporal_error"] = finiteOrUndefined(s.temporalError);
+    m["change"] = finiteOrUndefined(s.changeA);
+    m["change_reference"] = finiteOrUndefined(s.changeB);
+  }
+  return m;
+}
+
+// The rows of one render (a point or a counterpart curve): one per checkpoint
+// it reached and one for its last image, each against the reference (an
+// animation: one row, its frames against the reference's).
+void addRows(const Experiment& e, const SweepRender& render, const std::vector<int>& checkpoints,
+             const SweepRender& ref, const nlohmann::json& base, const std::string& machine,
+             nlohmann::json& rows) {
+  const nlohmann::json last = readJson(stemOfRender(render) + ".json");
+  const int frames = render.options.frames;
+  int completed = last.is_object() ? last.value("spp_completed", 0) : 0;
+  if (frames > 1) completed = sweepRenderDone(render, render.options.spp) ? render.options.spp : 0;
+  std::vector<std::pair<int, std::string>> images;
+  for (int k : checkpoints)
+    if (completed == 0 || k < completed) images.emplace_back(k, checkpointStem(stemOfRender(render), k));
+  if (completed > 0) images.emplace_back(completed, stemOfRender(render));
+  std::vector<std::string> channels = {"image"};
+  channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+  for (auto& [spp, stem] : images) {
+    const nlohmann::json stats = readJson(stem + ".json");
+    if (!stats.is_object() || (frames == 1 && !fs::exists(stem + ".exr"))) continue;
+    nlohmann::json row = base;
+    row["resolved_params"] = stats.value("params", nlohmann::json::object());
+    row["reference"] = ref.id;
+    row["spp"] = spp;
+    if (frames > 1) row["frames"] = frames;
+    addTimes(stats, row);
+    row["time_limited"] = stats.value("time_limited", false);
+    row["gl_renderer"] = stats.value("gl_renderer", "");
+    row["git_revision"] = stats.value("git_revision", "");
+    row["machine"] = machine;
+    for (auto& ch : channels) {
+      const std::string suffix = ch == "image" ? ".exr" : "." + ch + ".exr";
+      std::vector<std::string> a, b;
+      for (int t = 0; t < frames; ++t) {
+        a.push_back((frames > 1 ? sweepFrameStem(render, t) : stem) + suffix);
+        b.push_back(sweepFrameStem(ref, t) + suffix);
+      }
+      const nlohmann::json m = channelMetrics(e, a, b);
+      if (!m.is_null()) row[ch] = m;
+    }
+    rows.push_back(row);
+  }
+}
+
+}  // namespace
+
+EqualError equalErrorTime(const std::vector<CurvePoint>& curve, double error) {
+  EqualError r;
+  std::vector<CurvePoint> c;
+  for (auto& p : curve)
+    if (p.error > 0 && std::isfinite(p.error) && p.timeMs > 0) c.push_back(p);
+  if (c.empty() || !(error > 0) || !std::isfinite(error)) return r;
+  std::sort(c.begin(), c.end(), [](const CurvePoint& a, const CurvePoint& b) { return a.timeMs < b.timeMs; });
+  // Inside the curve: log-log interpolation between the two measurements around `error`.
+  for (size_t i = 0; i + 1 < c.size(); ++i) {
+    const CurvePoint &a = c[i], &b = c[i + 1];
+    if ((a.error - error) * (b.error - error) <= 0 && a.error != b.error) {
+      const double t = std::log(error / a.error) / std::log(b.error / a.error);
+      r.timeMs = a.timeMs * std::pow(b.timeMs / a.timeMs, t);
+      r.valid = true;
+      return r;
+    }
+  }
+  // Outside: Monte Carlo's rate (relMSE ∝ 1 / samples) on the per-sample time from the nearest end.
+  const CurvePoint& end = error < c.back().error ? c.back() : c.front();
+  const double setup = std::max(0.0, end.timeMs - end.sampleMs);
+  r.timeMs = setup + std::max(end.sampleMs, 1e-9) * end.error / error;
+  r.valid = true;
+  r.extrapolated = true;
+  return r;
+}
+
+nlohmann::json collectSweep(const Experiment& e) {
+  nlohmann::json rows = nlohmann::json::array();
+  const std::string machine = machineName();
+  std::vector<std::string> channels = {"image"};
+  channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+  // The counterparts' own curves first: each point's equal-error time is read off them.
+  std::vector<nlohmann::json> curveRows(e.curves.size(), nlohmann::json::array());
+  for (size_t i = 0; i < e.curves.size(); ++i) {
+    const SweepRender& ref = e.references[e.curveReference[i]];
+    if (!readJson(stemOfRender(ref) + ".json").is_object()) continue;
+    std::string scene;
+    for (auto& p : e.points)
+      if (p.curve == int(i)) scene = p.scene;
+    const SweepRender& curve = e.curves[i];
+    const std::string method = renderMethod(curve);
+    std::string label = method;  // with its parameters: two counterparts of one scene differ in them
+    for (const std::string& kv : curve.options.set) label += " " + kv;
+    const nlohmann::json base = {{"scene", scene},
+                                 {"method", method},
+                                 {"label", label + " (exact, seed " + std::to_string(e.seed + 1) + ")"},
+                                 {"role", "counterpart"},
+                                 {"params", nlohmann::json::object()},
+                                 {"point", e.curves[i].id},
+                                 {"device", e.curveChoice[i].device},
+                                 {"same_device", e.curveChoice[i].sameDevice},
+                                 {"note", e.curveChoice[i].note}};
+    const std::vector<int> below(e.curveCounts.begin(), e.curveCounts.end() - 1);
+    addRows(e, e.curves[i], below, ref, base, machine, curveRows[i]);
+    for (auto& r : curveRows[i]) rows.push_back(r);
+  }
+  for (const SweepPoint& p : e.points) {
+    const SweepRender& ref = e.references[p.reference];
+    if (ref.file.empty() && !readJson(stemOfRender(ref) + ".json").is_object()) continue;  // not rendered yet
+    const nlohmann::json base = {{"scene", p.scene}, {"method", p.method}, {"label", p.label},
+                                 {"role", "point"},  {"params", p.params}, {"point", p.render.id}};
+    nlohmann::json mine = nlohmann::json::array();
+    std::vector<int> checkpoints;
+    for (int k : e.checkpoints)
+      if (k < p.spp) checkpoints.push_back(k);
+    addRows(e, p.render, checkpoints, ref, base, machine, mine);
+    for (auto& row : mine) {
+      // The time the exact counterpart takes to reach this row's error (relMSE, relative ε).
+      for (auto& ch : channels) {
+        if (!row.contains(ch) || p.curve < 0 || curveRows[size_t(p.curve)].empty()) continue;
+        std::vector<CurvePoint> curve;
+        // (An error with no value, "undefined" against a black reference, has no equal-error time.)
+        for (auto& c : curveRows[size_t(p.curve)])
+          if (c.contains(ch) && c[ch]["relmse_relative"].is_number())
+            curve.push_back({c["time_ms"].get<double>(), c["sample_ms"].get<double>(),
+                             c[ch]["relmse_relative"].get<double>()});
+        if (!row[ch]["relmse_relative"].is_number()) continue;
+        const EqualError eq = equalErrorTime(curve, row[ch]["relmse_relative"].get<double>());
+        if (!eq.valid) continue;
+        row[ch]["equal_error_time_ms"] = eq.timeMs;
+        row[ch]["equal_error_time_ratio"] = eq.timeMs / std::max(row["time_ms"].get<double>(), 1e-9);
+        row[ch]["equal_error_extrapolated"] = eq.extrapolated;
+      }
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
+nlohmann::json writeSweepResults(const Experiment& e) {
+  const nlohmann::json rows = collectSweep(e);
+  // Each finished point's signed error map against its reference (the report's third image).
+  // (An animation's: of each frame, error_NNNN.png, and error.png of its first.)
+  for (const SweepPoint& p : e.points) {
+    const int frames = e.animation.at(p.scene).frames;
+    for (int t = 0; t < frames; ++t) {
+      const std::string a = sweepFrameStem(p.render, t) + ".exr",
+                        b = sweepFrameStem(e.references[p.reference], t) + ".exr";
+      if (!sweepRenderDone(p.render, p.spp) || !fs::exists(b)) break;
+      const Image d = signedDifference(readImage(a), readImage(b));
+      if (t == 0) writeSignedError(d, p.render.dir + "/error.png");
+      if (frames > 1) writeSignedError(d, frameStem(p.render.dir + "/error", t) + ".png");
+    }
+  }
+  nlohmann::json animations = nlohmann::json::object();  // the animated scenes: frames, time step, start
+  for (auto& [scene, a] : e.animation)
+    if (a.frames > 1) animations[scene] = {{"frames", a.frames}, {"time_step", a.timeStep}, {"time", a.time}};
+  nlohmann::json out = {{"experiment", e.name},
+                        {"file", e.path},
+                        {"size", {e.width, e.height}},
+                        {"spp", e.spp},
+                        {"checkpoints", e.checkpoints},
+                        {"epsilon", e.diff.epsilon},
+                        {"relative_epsilon", e.relativeEpsilon},
+                        {"dark_tolerance", e.diff.darkTolerance},
+                        {"time_budget_s", e.timeBudgetS},
+                        {"animations", animations},
+                        {"convergence", e.curveCounts},
+                        {"exact_device", e.exactDevice == ExactDevice::Same ? "same" : "cpu"},
+                        {"exact_device_given", e.exactDeviceGiven},
+                        {"points", e.points.size()},
+                        {"rows", rows}};
+  writeJsonFile(out, e.dir + "/results.json");
+  // CSV: the fixed columns, the grid's parameter keys, then per channel the metrics.
+  std::set<std::string> keys;
+  for (auto& p : e.points)
+    for (auto& [k, v] : p.params.items()) keys.insert(k);
+  std::vector<std::string> channels = {"image"};
+  channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+  std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy",
+                                      "leak",   "dark_fraction"};
+  if (!e.curveCounts.empty()) metrics.push_back("equal_error_time_ratio");
+  if (e.animated()) metrics.insert(metrics.end(), {"temporal_error", "change", "change_reference"});
+  std::ostringstream csv;
+  csv << "scene,method,label,role,point";
+  for (auto& k : keys) csv << "," << k;
+  csv << ",spp,time_ms,sample_ms,setup_ms,time_limited";
+  for (auto& ch : channels)
+    for (auto& m : metrics) csv << "," << ch << "_" << m;
+  csv << ",gl_renderer,machine,git_revision\n";
+  auto field = [](const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+  };
+  for (auto& r : rows) {
+    csv << field(r["scene"]) << "," << field(r["method"]) << "," << field(r["label"]) << ","
+        << field(r["role"]) << "," << field(r["point"]);
+    for (auto& k : keys) csv << "," << field(r["params"].value(k, ""));
+    csv << "," << r["spp"].get<int>() << "," << r["time_ms"].get<double>() << ","
+        << r["sample_ms"].get<double>() << "," << r["setup_ms"].get<double>() << ","
+        << (r["time_limited"].get<bool>() ? "true" : "false");
+    for (auto& ch : channels)
+      for (auto& m : metrics) {
+        csv << ",";
+        if (r.contains(ch) && r[ch].contains(m))
+          csv << (r[ch][m].is_number() ? jsonText(r[ch][m]) : std::string(kUndefined));
+      }
+    csv << "," << field(r["gl_renderer"]) << "," << field(r["machine"]) << "," << field(r["git_revision"])
+        << "\n";
+  }
+  writeTextFile(csv.str(), e.dir + "/results.csv");
+  return rows;
+}
+
+}  // namespace vgi
