@@ -121,7 +121,18 @@ void loadGlFunctions(GlProcLoader loader, const std::string& backend) {
   }
 }
 
+namespace {
+std::mutex processMutex;
+long processErrors = 0;
+long processContexts = 0;
+std::vector<std::string> processMessages;
+}  // namespace
+
 void GlContext::finishInit(const std::string& backend) {
+  {
+    std::lock_guard<std::mutex> lock(processMutex);
+    ++processContexts;
+  }
   backend_ = backend;
   renderer_ = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   version_ = reinterpret_cast<const char*>(glGetString(GL_VERSION));
@@ -135,15 +146,14 @@ void GlContext::finishInit(const std::string& backend) {
     glDebugMessageControl(GL_DEBUG_SOURCE_APPLICATION, t, GL_DONT_CARE, 0, nullptr, GL_TRUE);
 }
 
-namespace {
-std::mutex processMutex;
-long processErrors = 0;
-std::vector<std::string> processMessages;
-}  // namespace
-
 long GlContext::processErrorCount() {
   std::lock_guard<std::mutex> lock(processMutex);
   return processErrors;
+}
+
+long GlContext::processContextCount() {
+  std::lock_guard<std::mutex> lock(processMutex);
+  return processContexts;
 }
 
 std::vector<std::string> GlContext::takeProcessErrors() {

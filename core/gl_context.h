@@ -42,6 +42,9 @@ class GlContext {
   // messages since the last take ("pass 'vpls': GL error (id 1282): …").
   static long processErrorCount();
   static std::vector<std::string> takeProcessErrors();
+  // How many contexts the process has made so far (the test harness checks that a test labelled
+  // `unit` makes none: tests/gl_error_listener.cpp).
+  static long processContextCount();
 
  protected:
   void finishInit(const std::string& backend);  // loads GL, checks 4.5, installs the callback

@@ -78,12 +78,11 @@ struct Expander {
   std::set<std::string> included;
   std::ostringstream out;
 
+  // A bare name or a "../" path: beside the including file; any other path: from the root.
   std::string resolve(const std::string& name, const std::string& from) {
-    fs::path rel = fs::path(from).parent_path() / name;
-    if (fs::exists(rel)) return fs::weakly_canonical(rel).string();
-    fs::path abs = fs::path(root) / name;
-    if (fs::exists(abs)) return fs::weakly_canonical(abs).string();
-    return "";
+    const bool relative = name.find('/') == std::string::npos || name.rfind("../", 0) == 0;
+    const fs::path p = relative ? fs::path(from).parent_path() / name : fs::path(root) / name;
+    return fs::exists(p) ? fs::weakly_canonical(p).string() : "";
   }
 
   void expand(const std::string& path, const std::string& includedFrom) {

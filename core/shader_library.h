@@ -1,5 +1,8 @@
-// GLSL programs from files under the shader root, with `#include "file"`
-// (relative to the including file, then to the root; each file once),
+// GLSL programs from files under the shader root, with `#include "file"` (each file once): a path
+// with a folder is rooted at the shader root ("shared/brdf.glsl", "illum/gather/gather.glsl"), a bare
+// name is the including file's neighbour, and only a file that also compiles as C++ (it is then
+// included from C++ too, where a rooted path would not resolve) reaches its neighbours' folders with
+// "../";
 // injected `#define`s, and `#line` directives so compile errors name the real
 // file and line. `#ifdef __cplusplus … #endif` blocks (the C++ side of
 // shaders/shared/) are dropped. Programs are cached per (files, defines).

@@ -4,7 +4,7 @@
 // mean of 10^5 samples stays within a few ulp of the exact mean where one
 // float add per sample drifts (tests/illum/modules_test.cpp, SampleLoop.*). `precise`
 // keeps the compiler from simplifying (t − sum) − y to zero.
-#include "../shared/bindings.glsl"
+#include "shared/bindings.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_ACCUMULATE_SAMPLE) uniform readonly image2D uSample;
 layout(rgba32f, binding = IMAGE_ACCUMULATE_SUM) uniform image2D uSum;

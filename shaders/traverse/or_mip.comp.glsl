@@ -1,8 +1,8 @@
 // One level of the OR-mip pyramid (VGI §4): each invocation ORs word w of the
 // (up to) 2×2 child columns into its parent column. Index math shared with the
 // CPU build (shaders/shared/or_mip.glsl).
-#include "../shared/voxel_grid.glsl"
-#include "../shared/or_mip.glsl"
+#include "shared/voxel_grid.glsl"
+#include "shared/or_mip.glsl"
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(std430, binding = BINDING_GRID_WORDS) buffer Pyramid { uint words[]; };
 uniform uvec2 uSize;

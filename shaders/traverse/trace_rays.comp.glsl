@@ -8,7 +8,7 @@ struct Ray {
   vec3 dir;
   float pad;
 };
-#include "../shared/bindings.glsl"
+#include "shared/bindings.glsl"
 layout(std430, binding = BINDING_TRACE_RAYS) readonly buffer Rays { Ray rays[]; };
 layout(std430, binding = BINDING_TRACE_HITS) writeonly buffer Hits { uvec4 hits[]; };  // 2 per ray
 uniform uint uRayCount;

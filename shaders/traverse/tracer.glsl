@@ -9,21 +9,21 @@
 // with VGI_TRACER_BVH the rays meet the scene's triangles (exact visibility,
 // shared/trace_bvh.glsl; GpuBvh::bind) and the pyramid gives the grid their
 // hits are reported in.
-#include "../shared/tracer_ids.glsl"
+#include "shared/tracer_ids.glsl"
 #ifndef VGI_TRACER
 #define VGI_TRACER VGI_TRACER_HIERARCHICAL
 #endif
-#include "../shared/voxel_grid.glsl"
-#include "../shared/or_mip.glsl"
-#include "../shared/ray_grid.glsl"
+#include "shared/voxel_grid.glsl"
+#include "shared/or_mip.glsl"
+#include "shared/ray_grid.glsl"
 layout(std430, binding = BINDING_PYRAMID) readonly buffer PyramidWords { uint pyramidWords[]; };
-#include "../shared/trace_hierarchical.glsl"
-#include "../shared/trace_dda.glsl"
-#include "../shared/trace_march.glsl"
+#include "shared/trace_hierarchical.glsl"
+#include "shared/trace_dda.glsl"
+#include "shared/trace_march.glsl"
 #if VGI_TRACER == VGI_TRACER_BVH
 layout(std430, binding = BINDING_BVH_NODES) readonly buffer BvhNodes { vec4 bvhNodes[]; };
 layout(std430, binding = BINDING_BVH_TRIS) readonly buffer BvhTris { vec4 bvhTris[]; };
-#include "../shared/trace_bvh.glsl"
+#include "shared/trace_bvh.glsl"
 // The exact first hit on the triangles, reported as the voxel tracers report
 // theirs: t is the distance to the surface, `voxel` the grid cell that holds
 // the hit point (so value-grid lookups and passHit work unchanged).
@@ -39,7 +39,7 @@ TraceHit traceBvhAsVoxels(GridParams g, vec3 origin, vec3 dir, float tmax) {
   return h;
 }
 #endif
-#include "../voxelize/grid_uniforms.glsl"
+#include "voxelize/grid_uniforms.glsl"
 uniform uint uPyramidLevels;
 uniform uint uPyramidOffsets[16];
 uniform float uMarchStep;

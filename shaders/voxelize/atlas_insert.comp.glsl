@@ -4,7 +4,7 @@
 // (insertAtlasPoints) runs the same shared kernels.
 #include "grid_uniforms.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-#include "../shared/bindings.glsl"
+#include "shared/bindings.glsl"
 layout(std430, binding = BINDING_GRID_WORDS) buffer Columns { uint words[]; };
 layout(std430, binding = BINDING_VOXEL_COUNTER) buffer Counters { uint points; };
 void visitCell(ivec2 texel, uvec3 c) {

@@ -6,9 +6,9 @@
 // VALUE_RADIANCE alone in the radiance pass, which leaves the counts to the
 // pass that inserted the same points).
 #include "grid_uniforms.glsl"
-#include "../shared/value_grid.glsl"
+#include "shared/value_grid.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-#include "../shared/bindings.glsl"
+#include "shared/bindings.glsl"
 layout(binding = TEXUNIT_ATLAS_NORMAL) uniform sampler2D atlasNormal;
 layout(binding = TEXUNIT_ATLAS_ALBEDO) uniform sampler2D atlasAlbedo;
 layout(binding = TEXUNIT_ATLAS_GLOSSY) uniform sampler2D atlasGlossy;

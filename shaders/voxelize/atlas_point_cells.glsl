@@ -3,9 +3,9 @@
 // triangle overlaps (shaders/shared/atlas_footprint.glsl). The including shader
 // defines `void visitCell(ivec2 texel, uvec3 cell)` first.
 #include "grid_uniforms.glsl"
-#include "../shared/triangle_box.glsl"
-#include "../shared/atlas_footprint.glsl"
-#include "../shared/bindings.glsl"
+#include "shared/triangle_box.glsl"
+#include "shared/atlas_footprint.glsl"
+#include "shared/bindings.glsl"
 layout(binding = TEXUNIT_ATLAS_POSITION) uniform sampler2D atlasPosition;
 layout(binding = TEXUNIT_ATLAS_TRIANGLE) uniform isampler2D atlasTriangle;
 layout(std430, binding = BINDING_ATLAS_CORNERS) readonly buffer Corners { float corners[]; };  // the mesh's VBO

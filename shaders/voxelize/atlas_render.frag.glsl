@@ -11,22 +11,22 @@
 // interpolated at their centre's projection on the line, which overshoots the
 // edge's ends by up to half a texel: they are pulled back onto their triangle,
 // so every point lies on the surface.
-#include "../shared/closest_point.glsl"
+#include "shared/closest_point.glsl"
 // Outside #ifdef MULTI_VALUED: the library includes a file once, at its first #include line.
-#include "../shared/bindings.glsl"
+#include "shared/bindings.glsl"
 #ifdef MULTI_VALUED
-#include "../shared/constants.glsl"
-#include "../shared/sampling.glsl"
-#include "../shared/brdf.glsl"
-#include "../shared/environment.glsl"
-#include "../shared/gpu_scene.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
 uniform int uMaterial;
 layout(location = 2) out vec4 outNormal;
 layout(location = 3) out vec4 outAlbedo;
 layout(location = 4) out vec4 outGlossy;
 #endif
 #ifdef VALUE_RADIANCE
-#include "../shared/light_maps.glsl"
+#include "shared/light_maps.glsl"
 layout(location = 5) out vec4 outRadiance;
 layout(std430, binding = BINDING_VALUE_RADIANCE_MAX) buffer RadianceMax { uint radianceMaxBits; };
 uniform float uShadowBias;  // light-map texels

@@ -32,9 +32,9 @@ flat out vec2 gUv2;
 #endif
 
 #ifdef HYBRID
-#include "../shared/voxel_grid.glsl"
-#include "../shared/triangle_box.glsl"
-#include "../shared/bindings.glsl"
+#include "shared/voxel_grid.glsl"
+#include "shared/triangle_box.glsl"
+#include "shared/bindings.glsl"
 layout(std430, binding = BINDING_GRID_WORDS) buffer Columns { uint words[]; };
 layout(std430, binding = BINDING_VOXEL_COUNTER) buffer HybridCounts { uint hybridCounts[2]; };  // small, large
 uniform float uCutoff;

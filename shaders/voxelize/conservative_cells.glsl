@@ -4,7 +4,7 @@
 // pixel, each confirmed by the shared triangle–box test, so over-conservative
 // fragments of the expanded triangle visit nothing. The triangle and axis come
 // from conservative.geom.glsl.
-#include "../shared/triangle_box.glsl"
+#include "shared/triangle_box.glsl"
 flat in int gAxis;
 flat in vec3 gA;
 flat in vec3 gB;

@@ -1,6 +1,6 @@
 // The grid as the GL voxelizers receive it (set by setGridUniforms in
 // voxelize/gpu_grid.cpp).
-#include "../shared/voxel_grid.glsl"
+#include "shared/voxel_grid.glsl"
 uniform vec4 uOrigin;
 uniform vec4 uAxisX;
 uniform vec4 uAxisY;

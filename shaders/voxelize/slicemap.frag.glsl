@@ -1,7 +1,7 @@
-#include "../shared/voxel_grid.glsl"
+#include "shared/voxel_grid.glsl"
 in float vDepth;
 uniform uvec4 uResolution;
-#include "../shared/bindings.glsl"
+#include "shared/bindings.glsl"
 layout(std430, binding = BINDING_GRID_WORDS) buffer Columns { uint words[]; };
 void main() {
   if (vDepth < 0.0f || vDepth > float(uResolution.z)) return;

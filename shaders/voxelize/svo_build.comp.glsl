@@ -12,9 +12,9 @@
 //   ALLOCATE         per node of level uLevel (uFirst …): a flagged one gets a
 //                    tile of 8 children (atomic counter; the new tiles were
 //                    cleared to SVO_NONE: the initialisation).
-#include "../shared/svo.glsl"
-#include "../shared/voxel_grid.glsl"
-#include "../shared/bindings.glsl"
+#include "shared/svo.glsl"
+#include "shared/voxel_grid.glsl"
+#include "shared/bindings.glsl"
 layout(std430, binding = BINDING_VOXEL_COUNTER) buffer Counter { uint counter; };
 #if defined(COUNT_FRAGMENTS) || defined(WRITE_FRAGMENTS)
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;

@@ -6,8 +6,8 @@
 //                 children. Its level 0 (the grid's level 1) reads the
 //                 channel's level-0 texture (rgb) with the occupancy as alpha
 //                 (uFromValues = 1); later levels read the face's own level L−1.
-#include "../shared/value_grid.glsl"
-#include "../shared/bindings.glsl"
+#include "shared/value_grid.glsl"
+#include "shared/bindings.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler3D uInput;
 layout(binding = TEXUNIT_PASS_INPUT2) uniform sampler3D uOccupancy;

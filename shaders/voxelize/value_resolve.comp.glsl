@@ -8,8 +8,8 @@
 // binary grid (the OR-mip pyramid's level 0 at BINDING_PYRAMID, any voxelizer
 // of the registry) instead of count > 0; a cell without points or without
 // the bit then holds 0 in every channel.
-#include "../shared/value_grid.glsl"
-#include "../shared/bindings.glsl"
+#include "shared/value_grid.glsl"
+#include "shared/bindings.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 uniform uvec4 uResolution;
 layout(std430, binding = BINDING_VALUE_COUNTS) readonly buffer Counts { uint counts[]; };

@@ -141,6 +141,30 @@ TEST(ShaderLibrary, CompileErrorsNameTheIncludedFileAndLine) {
   EXPECT_EQ(ctx->errorCount(), 0);
 }
 
+// Includes: a path with a folder is rooted at the shader root, a bare name is the including file's
+// neighbour (never a root file of the same name), "../" reaches the neighbours' folders.
+TEST(ShaderLibrary, IncludePathsAreRootedAndBareNamesAreNeighbours) {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::path(testing::TempDir()) / "shaders_rooted_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "a/b");
+  fs::create_directories(dir / "c");
+  std::ofstream(dir / "a/b/main.comp.glsl")
+      << "#include \"c/x.glsl\"\n#include \"y.glsl\"\n#include \"../z.glsl\"\n";
+  std::ofstream(dir / "c/x.glsl") << "int rootedX;\n";
+  std::ofstream(dir / "a/b/y.glsl") << "int neighbourY;\n";
+  std::ofstream(dir / "y.glsl") << "int rootY;\n";
+  std::ofstream(dir / "a/z.glsl") << "int parentZ;\n";
+  ShaderLibrary lib(dir.string());
+  const std::string text = lib.preprocess("a/b/main.comp.glsl", {}).text;
+  for (const char* kept : {"int rootedX;", "int neighbourY;", "int parentZ;"})
+    EXPECT_NE(text.find(kept), std::string::npos) << kept << " missing from:\n" << text;
+  EXPECT_EQ(text.find("rootY"), std::string::npos) << text;
+  // A folder path is not looked up beside the including file.
+  std::ofstream(dir / "a/b/bad.comp.glsl") << "#include \"b/y.glsl\"\n";
+  test::expectError([&] { lib.preprocess("a/b/bad.comp.glsl", {}); }, {"bad.comp.glsl:1", "b/y.glsl"});
+}
+
 // `#ifdef __cplusplus` … `#else` … `#endif`: the C++ side is blanked, the
 // GLSL side kept (it once vanished with the C++ side), nested #ifs included,
 // and the line numbers stay those of the file.
@@ -278,6 +302,22 @@ TEST(Shaders, NoRuntimeArrayLengthInAnyShader) {
       const std::string code = line.substr(0, line.find("//"));
       EXPECT_EQ(code.find(".length()"), std::string::npos) << e.path().string() << ":" << n << ": " << line;
     }
+  }
+  EXPECT_GT(files, 50);
+}
+
+// Shaders include by rooted paths ("shared/brdf.glsl"): only a file that also compiles as C++ (it has an
+// `#ifdef __cplusplus` side, and C++ includes it by its own relative paths) uses "../".
+TEST(Shaders, IncludesAreRootedOutsideFilesThatCompileAsCplusplus) {
+  int files = 0;
+  for (auto& e : std::filesystem::recursive_directory_iterator(defaultShaderDir())) {
+    if (!e.is_regular_file() || e.path().extension() != ".glsl") continue;
+    ++files;
+    std::ifstream in(e.path());
+    const std::string text{std::istreambuf_iterator<char>(in), {}};
+    if (text.find("#ifdef __cplusplus") != std::string::npos) continue;
+    EXPECT_EQ(text.find("#include \"../"), std::string::npos)
+        << e.path().string() << ": include by a path from the shader root (e.g. \"shared/brdf.glsl\")";
   }
   EXPECT_GT(files, 50);
 }

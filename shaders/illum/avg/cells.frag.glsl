@@ -4,13 +4,13 @@
 // (the material's, times its texture at the triangle's centroid uv — the
 // paper's lowest mip level stands for the same: one colour per triangle and
 // cell) and 1 to the cell's sums (shared/avg.glsl).
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/avg.glsl"
-#include "../../voxelize/conservative_cells.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/avg.glsl"
+#include "voxelize/conservative_cells.glsl"
 layout(std430, binding = BINDING_AVG) buffer AvgCells { uint avgCells[]; };
 flat in vec3 gWorldNormal;
 flat in vec2 gUvCentroid;

@@ -12,14 +12,14 @@
 // times the cell's mean albedo (what it reflects). The next ray leaves it
 // cosine-distributed from a voxel diagonal along the normal; Russian roulette
 // on the mean reflectance after every VPL, up to uBounces VPLs per chain.
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/vpl.glsl"
-#include "../../shared/avg.glsl"
-#include "../../voxelize/grid_uniforms.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/vpl.glsl"
+#include "shared/avg.glsl"
+#include "voxelize/grid_uniforms.glsl"
 
 layout(local_size_x = 64) in;
 layout(std430, binding = BINDING_AVG) readonly buffer AvgCells { uint avgCells[]; };

@@ -2,13 +2,13 @@
 // light and BRDF kernels, visibility from the shadow maps, plus emission; the
 // environment where no surface was seen. Writes one jittered sample into uSample
 // (the sample loop accumulates it).
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/light_maps.glsl"
-#include "../../shared/gbuffer.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/light_maps.glsl"
+#include "shared/gbuffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform writeonly image2D uSample;

@@ -14,8 +14,8 @@
 // so the pattern does not repeat with the block period); the blur afterwards
 // averages them. Every set alone spans the hemisphere (shared/sampling.glsl),
 // so a blur window that loses some sets at an edge loses samples, not azimuths.
-#include "../../shared/gbuffer.glsl"
-#include "../../shared/sampling.glsl"
+#include "shared/gbuffer.glsl"
+#include "shared/sampling.glsl"
 uniform int uScale;  // 1, 2 or 4
 
 // The image texel an indirect pixel stands for.

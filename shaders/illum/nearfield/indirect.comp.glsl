@@ -14,15 +14,15 @@
 // Output: rgb = mean radiance arriving along the rays (so the reflected
 // indirect light of a diffuse surface is albedo × rgb), w = 1 where there is a
 // surface, 0 elsewhere.
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/light_maps.glsl"
-#include "../../traverse/tracer.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/light_maps.glsl"
+#include "traverse/tracer.glsl"
 #define GATHER_DIRECTIONS
-#include "../gather/gather.glsl"
+#include "illum/gather/gather.glsl"
 #include "params.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -4,11 +4,11 @@
 // normal (the receiver plane of the shadow test, shaders/shared/light_maps.glsl)
 // with w = 1 where the viewer sees the triangle's front (counter-clockwise)
 // side, the side a one-sided emitter emits on (core/emitters.h).
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;

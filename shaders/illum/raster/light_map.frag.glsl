@@ -2,11 +2,11 @@
 // with REFLECTIVE defined (a reflective shadow map, VGI §5.1), the surface's
 // position, normal (turned towards the light) and the direct radiance it
 // reflects diffusely: albedo/π · E, evaluated with the shared light kernels.
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
 in vec3 vPosition;
 in vec3 vNormal;
 in vec2 vUv;

@@ -2,15 +2,15 @@
 // scene's triangles in the BVH (shared/trace_bvh.glsl), the camera ray of a
 // pixel and sample as the CPU reference draws it, and the two-sided normals
 // at a hit (shared/exact_surface.glsl).
-#include "../../shared/bindings.glsl"
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/ray_grid.glsl"
-#include "../../shared/exact_surface.glsl"
+#include "shared/bindings.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/ray_grid.glsl"
+#include "shared/exact_surface.glsl"
 layout(std430, binding = BINDING_BVH_NODES) readonly buffer BvhNodes { vec4 bvhNodes[]; };
 layout(std430, binding = BINDING_BVH_TRIS) readonly buffer BvhTris { vec4 bvhTris[]; };
 layout(std430, binding = BINDING_BVH_NORMALS) readonly buffer BvhNormals { vec4 bvhNormals[]; };
-#include "../../shared/trace_bvh.glsl"
+#include "shared/trace_bvh.glsl"
 
 uniform vec3 uEye, uFwd;
 uniform float uClipNear;  // > 0: the camera's cut-away distance (PinholeView::origin)

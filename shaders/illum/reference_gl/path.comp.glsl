@@ -19,10 +19,10 @@
 // scene's own, the rest the framework's per-sample emitter spots, not read
 // here), area lights from gpu_emitters (shared/emitters.glsl).
 #include "exact.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/emitters.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/emitters.glsl"
 layout(std430, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { PackedEmitter emitters[]; };
 layout(std430, binding = BINDING_EMITTER_OF) readonly buffer EmitterOfBuffer { int emitterOf[]; };
 layout(std430, binding = BINDING_SCENE_VERTICES) readonly buffer SceneVertices { float sceneVertices[]; };

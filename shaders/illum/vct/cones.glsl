@@ -39,12 +39,12 @@
 // questions — coneSample (the volume at a grid point, level and direction) and
 // emptySkip — so the cones are the same code whatever the storage. A pass that
 // defines CONE_SAMPLE supplies its own coneSample() (the tests' uniform medium).
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/value_textures.glsl"
-#include "../../voxelize/grid_uniforms.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/value_textures.glsl"
+#include "voxelize/grid_uniforms.glsl"
 #ifdef CONE_SVO
-#include "../../shared/svo_lookup.glsl"
+#include "shared/svo_lookup.glsl"
 #endif
 uniform float uVoxelSize;  // world size of a level-0 cell
 uniform float uMaxLod;     // the chains' last level

@@ -6,14 +6,14 @@
 // E = Σ w_k L_k (L_r = ρ E: the kit's composite multiplies the albedo in),
 // the second output the AO Σ w_k (1 − occlusion_k) within aoRadius.
 // Cones uBatchFirst … uBatchEnd − 1 of the dispatch (the kit's batching).
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
 #include "cones.glsl"
 #include "params.glsl"
-#include "../gather/gather.glsl"
+#include "illum/gather/gather.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uIndirect;
 layout(rgba32f, binding = IMAGE_OUTPUT2) uniform image2D uAoLow;

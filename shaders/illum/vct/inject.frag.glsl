@@ -14,14 +14,14 @@
 // octree's leaves' (voxelize/sparse_octree.h; a cell's slot found by
 // descending the tree; a cell not in the tree is left out, as the dense
 // resolve leaves out a cell the binary grid does not hold).
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/light_maps.glsl"
-#include "../../shared/closest_point.glsl"
-#include "../../voxelize/conservative_cells.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/light_maps.glsl"
+#include "shared/closest_point.glsl"
+#include "voxelize/conservative_cells.glsl"
 #include "inject_sums.glsl"
 flat in vec3 gWorldNormal;
 flat in vec3 gWorld0;

@@ -4,9 +4,9 @@
 // dense volume (x fastest) or, INJECT_SVO, a leaf of the sparse octree.
 // INJECT_MAX: the first pass, which only takes the largest radiance (the
 // fixed-point range of the second). Needs voxelize/grid_uniforms.glsl's uResolution.
-#include "../../shared/value_grid.glsl"
+#include "shared/value_grid.glsl"
 #ifdef INJECT_SVO
-#include "../../shared/svo_lookup.glsl"
+#include "shared/svo_lookup.glsl"
 #endif
 #ifdef INJECT_MAX
 layout(std430, binding = BINDING_VALUE_RADIANCE_MAX) buffer RadianceMax { uint radianceMaxBits; };

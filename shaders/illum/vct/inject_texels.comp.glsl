@@ -7,13 +7,13 @@
 // (shared/value_grid.glsl). Cells no texel lands in keep no light: the holes
 // where the maps are coarser than the voxels. INJECT_MAX: the first pass, the
 // largest radiance (the fixed-point range).
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/light_maps.glsl"
-#include "../../voxelize/grid_uniforms.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/light_maps.glsl"
+#include "voxelize/grid_uniforms.glsl"
 #include "inject_sums.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 uniform int uMapResolution;

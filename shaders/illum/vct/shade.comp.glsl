@@ -9,13 +9,13 @@
 //     the shadow-mapped direct light of the sample (D_cone − D_shadowmap, the
 //     latter through the direct pass' own lightMapsDirect);
 //   the AO output from the upsampled AO of the diffuse pass.
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/light_maps.glsl"
-#include "../../shared/gbuffer.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/light_maps.glsl"
+#include "shared/gbuffer.glsl"
 #include "cones.glsl"
 #include "params.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -6,8 +6,8 @@
 // launch the same cones); each cone from p + offset·n up to radius through
 // the opacity volume (cones.glsl), its occlusion weakened by 1/(1 + λ t/r).
 // AO = Σ w_k (1 − occlusion_k). Output: rgb = AO, w = 1 on a surface.
-#include "../vct/cones.glsl"
-#include "../gather/gather.glsl"
+#include "illum/vct/cones.glsl"
+#include "illum/gather/gather.glsl"
 #include "params.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uAo;

@@ -7,10 +7,10 @@
 // three times), as nearfield's rays do.
 // Output: rgb = AO, w = 1 where there is a surface, 0 elsewhere.
 #define GATHER_DIRECTIONS
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../traverse/tracer.glsl"
-#include "../gather/gather.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "traverse/tracer.glsl"
+#include "illum/gather/gather.glsl"
 #include "params.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

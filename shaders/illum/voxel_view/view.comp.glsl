@@ -6,8 +6,8 @@
 // coloured by its axis (x red, y green, z blue), shaded by |cos| to the ray,
 // darkened with distance (from the scene's nearest to its farthest point) and
 // outlined where the cell's edges are at least 4 pixels apart; a miss is black.
-#include "../../shared/bindings.glsl"
-#include "../../traverse/tracer.glsl"
+#include "shared/bindings.glsl"
+#include "traverse/tracer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform writeonly image2D uImage;

@@ -26,16 +26,16 @@
 // writeIndirect the AOVs get the direct part (the deferred pass's, plus the
 // environment seen by x0's own bounce ray — direct light of x0, as in the
 // reference's split) and the rest.
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/gbuffer.glsl"
-#include "../../shared/light_maps.glsl"
-#include "../../shared/value_textures.glsl"
-#include "../../traverse/tracer.glsl"
-#include "../voxel_hits.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/gbuffer.glsl"
+#include "shared/light_maps.glsl"
+#include "shared/value_textures.glsl"
+#include "traverse/tracer.glsl"
+#include "illum/voxel_hits.glsl"
 #include "params.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

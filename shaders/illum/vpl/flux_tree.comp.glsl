@@ -2,13 +2,13 @@
 // dispatch: level 0 from the reflective shadow maps (each texel as a VPL,
 // shared/light_maps.glsl: rsmTexelVpl — Φ = π · L · A, the mean of its
 // channels), level l > 0 the 2×2 sums of level l − 1. z is the face.
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/light_maps.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/environment.glsl"
+#include "shared/light_maps.glsl"
 layout(std430, binding = BINDING_VPL_FLUX) buffer VplFluxTree { float vplFluxTree[]; };
 #define VPL_FLUX_TREE
-#include "../../shared/vpl.glsl"
+#include "shared/vpl.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 uniform uint uRes;    // the light maps' side

@@ -13,9 +13,9 @@
 // composites albedo × the gathered value into the sample.
 // One dispatch visits the subset's chains uBatchFirst … uBatchEnd − 1 (in
 // subset order; the kit's batches: gather.glsl).
-#include "../gather/gather.glsl"
-#include "../../shared/vpl.glsl"
-#include "../../traverse/tracer.glsl"
+#include "illum/gather/gather.glsl"
+#include "shared/vpl.glsl"
+#include "traverse/tracer.glsl"
 #include "vpl_shadow.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -13,18 +13,18 @@
 //     mean normal and Φ · albedo (f·cos/pdf = albedo for cosine sampling).
 // A chain that ends (nothing lit, the ray leaves the grid, a cell without
 // values) leaves empty slots (position.w = 0) for its remaining bounces.
-#include "../../shared/constants.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/brdf.glsl"
-#include "../../shared/environment.glsl"
-#include "../../shared/gpu_scene.glsl"
-#include "../../shared/light_maps.glsl"
-#include "../../shared/value_textures.glsl"
+#include "shared/constants.glsl"
+#include "shared/sampling.glsl"
+#include "shared/brdf.glsl"
+#include "shared/environment.glsl"
+#include "shared/gpu_scene.glsl"
+#include "shared/light_maps.glsl"
+#include "shared/value_textures.glsl"
 layout(std430, binding = BINDING_VPL_FLUX) readonly buffer VplFluxTree { float vplFluxTree[]; };
 #define VPL_FLUX_TREE
-#include "../../shared/vpl.glsl"
-#include "../../traverse/tracer.glsl"
-#include "../voxel_hits.glsl"
+#include "shared/vpl.glsl"
+#include "traverse/tracer.glsl"
+#include "illum/voxel_hits.glsl"
 
 layout(local_size_x = 64) in;
 layout(std430, binding = BINDING_VPLS) writeonly buffer Vpls { Vpl vpls[]; };

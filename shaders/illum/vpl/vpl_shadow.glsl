@@ -9,9 +9,9 @@
 // triangles warp). A map is seen from the VPL lifted uShadowLift along its
 // normal (an AVG VPL sits up to a cell inside its surface) and stores the
 // distance / uShadowFar to the nearest surface.
-#include "../../shared/bindings.glsl"
-#include "../../shared/sampling.glsl"
-#include "../../shared/vpl.glsl"
+#include "shared/bindings.glsl"
+#include "shared/sampling.glsl"
+#include "shared/vpl.glsl"
 
 uniform int uShadowCube;         // 1 cube, 0 paraboloid
 uniform int uShadowRes;          // r: a face's side in texels
