@@ -1,9 +1,10 @@
 // The screen-space gather kit that hemisphere-gathering GL modules share
-// (nearfield, voxel_ao; shaders/illum/gather/): a gather buffer at 1, ½ or ¼
+// (nearfield, voxel_ao, vct, vct_ao, vpl; shaders/illum/gather/): a gather buffer at 1, ½ or ¼
 // of the image resolution, the interleaved direction sets its gather pass
 // reads (GATHER_DIRECTIONS in gather.glsl), the geometry-aware blur over the
 // interleave window and the joint bilateral upsampling with its composite
-// into the frame's sample image.
+// into the frame's sample image. Each method's gather shader runs the one entry of
+// gather_pass.glsl (the pixel, its receiver, the empty pixel) and defines only its per-pixel work.
 #pragma once
 #include <string>
 

@@ -22,24 +22,21 @@
 #include "shared/light_maps.glsl"
 #include "traverse/tracer.glsl"
 #define GATHER_DIRECTIONS
-#include "illum/gather/gather.glsl"
+#include "illum/gather/gather_pass.glsl"
 #include "params.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uIndirect;
 
 layout(std140, binding = UBO_PASS) uniform Pass { NearFieldPassParams pass; };
 
 
-void main() {
-  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(uIndirect);
-  if (q.x >= size.x || q.y >= size.y) return;
-  vec3 p, n;
-  if (!gatherReceiver(q, p, n)) {
-    imageStore(uIndirect, q, vec4(0.0f));
-    return;
-  }
+ivec2 gatherSize() { return imageSize(uIndirect); }
+
+void gatherEmpty(ivec2 q) {
+  imageStore(uIndirect, q, vec4(0.0f));
+}
+
+void gatherPixel(ivec2 q, vec3 p, vec3 n) {
   Basis frame = makeBasis(n);
   vec3 origin = p + n * pass.offset;
   vec3 sum = vec3(0.0f);

@@ -13,22 +13,19 @@
 #include "shared/gpu_scene.glsl"
 #include "cones.glsl"
 #include "params.glsl"
-#include "illum/gather/gather.glsl"
-layout(local_size_x = 8, local_size_y = 8) in;
+#include "illum/gather/gather_pass.glsl"
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uIndirect;
 layout(rgba32f, binding = IMAGE_OUTPUT2) uniform image2D uAoLow;
 layout(std140, binding = UBO_PASS) uniform Pass { VctDiffuseParams pass; };
 
-void main() {
-  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(uIndirect);
-  if (q.x >= size.x || q.y >= size.y) return;
-  vec3 p, n;
-  if (!gatherReceiver(q, p, n)) {
-    imageStore(uIndirect, q, vec4(0.0f));
-    imageStore(uAoLow, q, vec4(0.0f));
-    return;
-  }
+ivec2 gatherSize() { return imageSize(uIndirect); }
+
+void gatherEmpty(ivec2 q) {
+  imageStore(uIndirect, q, vec4(0.0f));
+  imageStore(uAoLow, q, vec4(0.0f));
+}
+
+void gatherPixel(ivec2 q, vec3 p, vec3 n) {
   int set = q.x % pass.sets + pass.sets * (q.y % pass.sets);
   Basis frame = turnedBasis(n, pass.turn + pass.setTurn * float(set));
   vec3 apex = p + n * pass.offset;

@@ -7,21 +7,18 @@
 // the opacity volume (cones.glsl), its occlusion weakened by 1/(1 + λ t/r).
 // AO = Σ w_k (1 − occlusion_k). Output: rgb = AO, w = 1 on a surface.
 #include "illum/vct/cones.glsl"
-#include "illum/gather/gather.glsl"
+#include "illum/gather/gather_pass.glsl"
 #include "params.glsl"
-layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uAo;
 layout(std140, binding = UBO_PASS) uniform Pass { VctAoParams pass; };
 
-void main() {
-  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(uAo);
-  if (q.x >= size.x || q.y >= size.y) return;
-  vec3 p, n;
-  if (!gatherReceiver(q, p, n)) {
-    imageStore(uAo, q, vec4(0.0f));
-    return;
-  }
+ivec2 gatherSize() { return imageSize(uAo); }
+
+void gatherEmpty(ivec2 q) {
+  imageStore(uAo, q, vec4(0.0f));
+}
+
+void gatherPixel(ivec2 q, vec3 p, vec3 n) {
   float jitter = pass.jitter * uintToUnitFloat(rngSeed(uint(q.x), uint(q.y), pass.seed));
   Basis frame = turnedBasis(n, pass.turn + jitter);
   vec3 apex = p + n * pass.offset;

@@ -10,23 +10,20 @@
 #include "shared/constants.glsl"
 #include "shared/sampling.glsl"
 #include "traverse/tracer.glsl"
-#include "illum/gather/gather.glsl"
+#include "illum/gather/gather_pass.glsl"
 #include "params.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uAo;
 
 layout(std140, binding = UBO_PASS) uniform Pass { VoxelAoParams pass; };
 
-void main() {
-  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(uAo);
-  if (q.x >= size.x || q.y >= size.y) return;
-  vec3 p, n;
-  if (!gatherReceiver(q, p, n)) {
-    imageStore(uAo, q, vec4(0.0f));
-    return;
-  }
+ivec2 gatherSize() { return imageSize(uAo); }
+
+void gatherEmpty(ivec2 q) {
+  imageStore(uAo, q, vec4(0.0f));
+}
+
+void gatherPixel(ivec2 q, vec3 p, vec3 n) {
   Basis frame = makeBasis(n);
   vec3 origin = p + n * pass.offset;
   int open = 0;

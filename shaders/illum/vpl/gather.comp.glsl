@@ -13,12 +13,11 @@
 // composites albedo × the gathered value into the sample.
 // One dispatch visits the subset's chains uBatchFirst … uBatchEnd − 1 (in
 // subset order; the kit's batches: gather.glsl).
-#include "illum/gather/gather.glsl"
+#include "illum/gather/gather_pass.glsl"
 #include "shared/vpl.glsl"
 #include "traverse/tracer.glsl"
 #include "vpl_shadow.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uGathered;
 layout(std430, binding = BINDING_VPLS) readonly buffer Vpls { Vpl vpls[]; };
 uniform uint uChains;       // N
@@ -51,15 +50,13 @@ bool shadowMapSees(Vpl v, uint slot, vec3 p, vec3 n) {
 }
 uniform float uOffset;      // the two-point test's offset along each normal, world units
 
-void main() {
-  ivec2 q = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(uGathered);
-  if (q.x >= size.x || q.y >= size.y) return;
-  vec3 p, n;
-  if (!gatherReceiver(q, p, n)) {
-    imageStore(uGathered, q, vec4(0.0f));
-    return;
-  }
+ivec2 gatherSize() { return imageSize(uGathered); }
+
+void gatherEmpty(ivec2 q) {
+  imageStore(uGathered, q, vec4(0.0f));
+}
+
+void gatherPixel(ivec2 q, vec3 p, vec3 n) {
   vec3 a = p + n * uOffset;
   uint sets = uint(uInterleave * uInterleave);
   vec3 sum = vec3(0.0f);
