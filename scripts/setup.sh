@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every build and run dependency from Debian packages. Idempotent:
 # packages already present are skipped, so a second run costs seconds.
+#   scripts/setup.sh [--tests]   --tests: also what only the suite needs (TEST_PKGS; scripts/test.sh)
 set -euo pipefail
 # Toolchain (clang-format for the suite's format check); libraries; Mesa's
 # llvmpipe for EGL (surfaceless) and OSMesa, so the GL code runs on a machine
@@ -26,6 +27,15 @@ PKGS=(
   python3-matplotlib chromium xvfb xauth
   mesa-vulkan-drivers glslang-tools
 )
+# Only the suite's: a one-node Slurm (munge, slurmctld, slurmd, sbatch) for
+# Slurm.SweepAsAJobArrayEqualsALocalSweep (scripts/test_slurm.sh starts its own daemons in a
+# temporary folder; the packages' services stay off).
+TEST_PKGS=(slurmctld slurmd slurm-client munge)
+case ${1:-} in
+  --tests) PKGS+=("${TEST_PKGS[@]}") ;;
+  "") ;;
+  *) echo "setup: unknown argument '$1' (usage: scripts/setup.sh [--tests])" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
