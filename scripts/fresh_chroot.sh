@@ -26,6 +26,9 @@ fresh_root() {
   rm -rf "$root"
   mkdir -p "$root"
   tar -C "$root" -xf "$cache"
+  # A Debian system's / is 755; the cache's top entry came from mktemp's 700 folder, and with it no
+  # user but root could reach /bin/sh (munge's postinst, `su munge`, failed on it).
+  chmod 755 "$root"
   cp /etc/resolv.conf "$root/etc/resolv.conf"
   mount -t proc proc "$root/proc"
   mount --rbind /sys "$root/sys"
