@@ -8,7 +8,7 @@
 #include "core/image_metrics.h"
 #include "core/progress.h"
 #include "experiments/compare.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi::app {
 

@@ -9,7 +9,7 @@
 #include "core/image_metrics.h"
 #include "core/json_text.h"
 #include "core/output_files.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi::app {
 

@@ -9,8 +9,8 @@
 #include "core/json_text.h"
 #include "core/params.h"
 #include "core/progress.h"
-#include "illum/framework/method_help.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/method_help.h"
+#include "illum/run/render_job.h"
 
 namespace vgi::app {
 

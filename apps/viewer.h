@@ -34,7 +34,7 @@
 #pragma once
 #include <string>
 
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi::app {
 

@@ -26,8 +26,8 @@
 #include "core/image.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
-#include "illum/framework/render_job.h"
 #include "illum/framework/sample_loop.h"
+#include "illum/run/render_job.h"
 
 namespace vgi::app {
 

@@ -6,7 +6,7 @@
 #include "core/json_text.h"
 #include "core/output_files.h"
 #include "core/params.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi::app {
 

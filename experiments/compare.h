@@ -11,7 +11,7 @@
 
 #include "core/image_metrics.h"
 #include "illum/framework/method.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi {
 

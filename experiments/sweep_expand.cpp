@@ -11,7 +11,7 @@
 #include "experiments/compare.h"
 #include "experiments/sweep_detail.h"
 #include "illum/framework/method.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi::sweep_detail {
 

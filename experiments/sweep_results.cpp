@@ -15,7 +15,7 @@
 #include "core/json_text.h"
 #include "core/output_files.h"
 #include "experiments/sweep_detail.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi {
 

@@ -12,7 +12,7 @@
 #include "core/output_files.h"
 #include "core/warnings.h"
 #include "experiments/sweep_detail.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi {
 

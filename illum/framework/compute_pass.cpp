@@ -3,11 +3,8 @@
 #include <glad/gl.h>
 
 #include "core/error.h"
-#include "core/gpu_scene.h"
 #include "illum/framework/sample_loop.h"
-#include "illum/resources/light_maps.h"
 #include "shaders/shared/bindings.glsl"
-#include "voxelize/value_textures.h"
 
 namespace vgi {
 
@@ -40,10 +37,12 @@ void checkBlockLayout(unsigned program, const std::string& block, size_t bytes, 
 const unsigned ComputePassBase::kImageAndFetchBarriers =
     GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT;
 
+void gbufferInput(Frame& f, unsigned) { f.gbuffer().bind(); }
+
 void ComputePassBase::create(Frame& f, const std::vector<std::string>& files, const ShaderDefines& defines,
-                             unsigned inputs, size_t paramBytes) {
+                             std::vector<PassInput> inputs, size_t paramBytes) {
   program_ = f.shaders().program(files, defines);
-  inputs_ = inputs;
+  inputs_ = std::move(inputs);
   std::string names;
   for (const std::string& file : files) names += (names.empty() ? "" : ", ") + file;
   checkBlockLayout(program_, "Pass", paramBytes, names);
@@ -52,10 +51,7 @@ void ComputePassBase::create(Frame& f, const std::vector<std::string>& files, co
 void ComputePassBase::begin(Frame& f, const UniformBuffer& params) const {
   glUseProgram(program_);
   params.bind(UBO_PASS);
-  if (inputs_ & kPassScene) f.resources.get<GpuScene>().bind(f.shaders(), program_);
-  if (inputs_ & kPassLightMaps) f.resources.get<LightMaps>().bind();
-  if (inputs_ & kPassValueTextures) f.resources.get<ValueTextures>().bind();
-  if (inputs_ & kPassGBuffer) f.gbuffer().bind();
+  for (PassInput bind : inputs_) bind(f, program_);
 }
 
 void ComputePassBase::dispatch(int width, int height, unsigned barriers) const {

@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/shader_library.h"
@@ -62,13 +63,11 @@ class UniformBlock {
   std::unique_ptr<UniformBuffer> buffer_;
 };
 
-// What a compute pass reads from the frame; use() binds them.
-enum PassInput : unsigned {
-  kPassScene = 1u,          // the GPU scene (materials, lights, textures)
-  kPassLightMaps = 2u,      // the light maps (shadow maps / RSM)
-  kPassGBuffer = 4u,        // this sample's G-buffer
-  kPassValueTextures = 8u,  // the value grids' 3D textures
-};
+// What a compute pass reads from the frame besides its parameters, each binding itself to the
+// program: a resource's input is declared beside the resource (illum/resources/: gpuSceneInput,
+// lightMapsInput, valueTexturesInput), the G-buffer's here. The framework knows the slots, not the kinds.
+using PassInput = void (*)(Frame& f, unsigned program);
+void gbufferInput(Frame& f, unsigned program);  // this sample's G-buffer
 
 // A compute pass over an image: its program, its parameter block P (declared
 // in GLSL as `layout(std140, binding = UBO_PASS) uniform Pass { P pass; };`), the
@@ -83,13 +82,14 @@ class ComputePassBase {
   static const unsigned kImageAndFetchBarriers;
 
  protected:
-  void create(Frame& f, const std::vector<std::string>& files, const ShaderDefines& defines, unsigned inputs,
-              size_t paramBytes);
+  void create(Frame& f, const std::vector<std::string>& files, const ShaderDefines& defines,
+              std::vector<PassInput> inputs, size_t paramBytes);
   // glUseProgram, `params` at UBO_PASS, the declared inputs.
   void begin(Frame& f, const UniformBuffer& params) const;
 
  private:
-  unsigned program_ = 0, inputs_ = 0;
+  unsigned program_ = 0;
+  std::vector<PassInput> inputs_;
 };
 
 template <class P>
@@ -97,8 +97,8 @@ class ComputePass : public ComputePassBase {
  public:
   P& params() { return block_.value; }
   void create(Frame& f, const std::vector<std::string>& files, const ShaderDefines& defines,
-              unsigned inputs) {
-    ComputePassBase::create(f, files, defines, inputs, sizeof(P));
+              std::vector<PassInput> inputs) {
+    ComputePassBase::create(f, files, defines, std::move(inputs), sizeof(P));
   }
   // Makes the program current, uploads and binds the parameters, binds the inputs.
   void use(Frame& f) {

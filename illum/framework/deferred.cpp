@@ -10,7 +10,6 @@
 #include "core/error.h"
 #include "core/gpu_scene.h"
 #include "core/shader_library.h"
-#include "illum/resources/light_maps.h"
 #include "shaders/shared/gbuffer.glsl"
 
 namespace vgi {
@@ -120,25 +119,6 @@ void GBuffer::bind() const {
   const unsigned units[4] = {TEXUNIT_GBUFFER_POSITION, TEXUNIT_GBUFFER_NORMAL, TEXUNIT_GBUFFER_ALBEDO,
                              TEXUNIT_GBUFFER_GEOMETRIC_NORMAL};
   for (unsigned i = 0; i < 4; ++i) glBindTextureUnit(units[i], tex_[i].get());
-}
-
-DirectPass::DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadowBias, float normalOffset)
-    : shaders_(shaders), gpu_(gpu) {
-  prog_ = shaders.program({"illum/direct/shade.comp.glsl"});
-  shaders.setUniform(prog_, "uShadowBias", shadowBias);
-  shaders.setUniform(prog_, "uNormalOffset", normalOffset);
-}
-
-void DirectPass::shade(const GBuffer& g, const LightMaps& maps, const FrameCamera& cam, unsigned target) {
-  glUseProgram(prog_);
-  gpu_.bind(shaders_, prog_);  // other passes may have used the same binding points
-  shaders_.setUniform(prog_, "uCameraPosition", cam.position);
-  shaders_.setUniform(prog_, "uInvViewProj", cam.invViewProj);
-  g.bind();
-  maps.bind();
-  glBindImageTexture(IMAGE_SAMPLE, target, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glDispatchCompute(unsigned(g.width() + 7) / 8, unsigned(g.height() + 7) / 8, 1);
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
 }  // namespace vgi

@@ -1,6 +1,6 @@
-// Building blocks the GL modules share: the camera of a (jittered) frame, the
-// G-buffer and the deferred direct-lighting pass. `direct` is these alone; the
-// GI modules add to them. (Accumulation is the sample loop's: illum/framework/sample_loop.h.)
+// Building blocks of every GL frame: the camera of a (jittered) frame and the G-buffer. (The deferred
+// direct-lighting pass is a kit: illum/kits/direct_pass.h; accumulation is the sample loop's:
+// illum/framework/sample_loop.h.)
 #pragma once
 #include <glm/glm.hpp>
 
@@ -11,7 +11,6 @@
 namespace vgi {
 
 class GpuScene;
-class LightMaps;
 class ShaderLibrary;
 
 // Halton radical inverse (sub-pixel jitter, frame rotations).
@@ -67,20 +66,6 @@ class GBuffer {
   ShaderLibrary& shaders_;
   GlTexture tex_[4];
   unsigned depth_ = 0, fbo_ = 0, prog_ = 0;
-};
-
-// Deferred direct lighting (emission + delta lights through the light maps;
-// environment behind) written into an RGBA32F image (a sample image of the
-// loop): the `direct` module's sample, and the GI modules' direct part.
-class DirectPass {
- public:
-  DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadowBias, float normalOffset);
-  void shade(const GBuffer& gbuffer, const LightMaps& maps, const FrameCamera& camera, unsigned targetImage);
-
- private:
-  ShaderLibrary& shaders_;
-  const GpuScene& gpu_;
-  unsigned prog_ = 0;
 };
 
 }  // namespace vgi

@@ -5,15 +5,8 @@
 #include "core/emitters.h"
 #include "core/profiler.h"
 #include "core/scene.h"
-#include "illum/resources/gpu_scene.h"
 
 namespace vgi {
-
-const ResourceKind& findResourceKind(const std::string& name) {
-  for (auto& k : resourceKinds())
-    if (k.name == name) return k;
-  fail("internal: no resource kind '", name, "' in the kinds table");
-}
 
 void requireGl(const ResourceNeed& need, const std::string& method, bool gl) {
   if (!gl) fail("method '", method, "' runs on the CPU but asks for the GL resource '", need.kind(), "'");
@@ -29,15 +22,13 @@ namespace {
 void addClosure(const ResourceNeed& need, std::vector<ResourceNeed>& out, int depth) {
   VGI_CHECK(depth < 32);  // the kinds' dependencies form no cycle
   if (std::find(out.begin(), out.end(), need) != out.end()) return;
-  for (auto& d : findResourceKind(need.kind()).dependencies(need)) addClosure(d, out, depth + 1);
+  for (auto& d : need.kindRow().dependencies(need)) addClosure(d, out, depth + 1);
   out.push_back(need);
 }
 }  // namespace
 
 std::vector<ResourceNeed> SceneNeeds::closure() const {
   std::vector<ResourceNeed> out;
-  // The G-buffer draws the GPU scene (the sample loop renders it before each sample).
-  if (gbuffer) addClosure(GpuSceneNeed{}, out, 0);
   for (auto& n : declared_) addClosure(n, out, 0);
   return out;
 }
@@ -46,7 +37,7 @@ std::vector<std::string> SceneNeeds::names() const {
   std::vector<std::string> n;
   if (gbuffer) n.push_back("gbuffer");
   for (auto& need : closure())
-    for (auto& name : findResourceKind(need.kind()).names(need)) n.push_back(name);
+    for (auto& name : need.kindRow().names(need)) n.push_back(name);
   return n;
 }
 
@@ -55,7 +46,7 @@ bool SceneNeeds::operator==(const SceneNeeds& o) const {
 }
 
 void SceneNeeds::check(const std::string& method, bool gl) const {
-  for (auto& need : closure()) findResourceKind(need.kind()).check(need, *this, method, gl);
+  for (auto& need : closure()) need.kindRow().check(need, *this, method, gl);
 }
 
 SceneResources::SceneResources(const Scene& scene, SceneNeeds needs, GlContext* gl, ShaderLibrary* shaders,
@@ -67,7 +58,7 @@ SceneResources::SceneResources(const Scene& scene, SceneNeeds needs, GlContext* 
       frameTimes_(std::move(frameTimes)),
       threads_(threads) {
   VGI_CHECK(bool(gl_) == bool(shaders_));
-  for (auto& need : needs_.closure()) entries_.push_back({need, &findResourceKind(need.kind()), nullptr});
+  for (auto& need : needs_.closure()) entries_.push_back({need, &need.kindRow(), nullptr});
 }
 
 SceneResources::~SceneResources() {
@@ -96,8 +87,8 @@ bool SceneResources::update(float time, Profiler& prof) {
   }
   lightsChanged_ = false;
   // The GL lights: the scene's delta lights, and with area lights a spot light per emitter point.
-  const bool glLights = std::any_of(entries_.begin(), entries_.end(),
-                                    [](const Entry& e) { return e.need.kind() == "gpu_scene"; });
+  const bool glLights =
+      std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.kind->drawsLights; });
   emitters_ = std::make_unique<Emitters>(Emitters::ofScene(scene_, time));
   sampleLights_ = glLights && !emitters_->empty();
   placeLights();

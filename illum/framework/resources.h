@@ -38,9 +38,12 @@ struct Light;
 class Emitters;
 class SceneNeeds;
 class SceneResources;
+struct ResourceKind;
 
 // One resource of a kind, by its spec. A spec type has
 //   static constexpr const char* kKind;   the kind's name in the kinds table
+//   static const ResourceKind& row();     its row of the kinds table (illum/resources/kinds.h): the
+//                                         framework reads a need's kind from the need, not a table
 //   nlohmann::json key() const;           what is allocated: a resource with this key is
 //                                         adopted across method and parameter changes
 // and may have
@@ -56,8 +59,10 @@ class ResourceNeed {
         key_(std::string(Spec::kKind) + spec.key().dump()),
         full_(key_ + settingsOf(spec, 0).dump()),
         spec_(std::make_shared<Spec>(spec)),
-        type_(&typeid(Spec)) {}
+        type_(&typeid(Spec)),
+        row_(&Spec::row()) {}
   const std::string& kind() const { return kind_; }
+  const ResourceKind& kindRow() const { return *row_; }
   const std::string& key() const { return key_; }
   template <class Spec>
   const Spec& spec() const {
@@ -80,6 +85,7 @@ class ResourceNeed {
   std::string kind_, key_, full_;
   std::shared_ptr<const void> spec_;
   const std::type_info* type_;
+  const ResourceKind* row_;
 };
 
 // A built resource. The cache calls update() at every update that builds (the
@@ -124,16 +130,18 @@ struct ResourceKind {
   std::unique_ptr<Resource> (*create)(const ResourceNeed& need, SceneResources& res);
   // The key of its stats in a render's `extra` (empty: none).
   std::string statsKey;
+  // It draws the scene's GL lights (the GPU scene): with area lights, SceneResources then places a
+  // spot light per emitter point each sample.
+  bool drawsLights = false;
 };
 
-const std::vector<ResourceKind>& resourceKinds();
-const ResourceKind& findResourceKind(const std::string& name);
 // The check of a GL-only kind: throws, naming `method`, when one that runs on the CPU asks for it.
 void requireGl(const ResourceNeed& need, const std::string& method, bool gl);
 
 // The resources one render of a method uses, and whether it draws the
-// G-buffer (the sample loop's render target of the image size, which reads
-// the GPU scene). GL methods get GL resources; CPU methods get host ones.
+// G-buffer (the sample loop's render target of the image size; it draws the
+// GPU scene, which a method declares with it: needGBuffer, illum/resources/gpu_scene.h).
+// GL methods get GL resources; CPU methods get host ones.
 class SceneNeeds {
  public:
   bool gbuffer = false;

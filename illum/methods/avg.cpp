@@ -55,9 +55,11 @@
 #include "core/shader_library.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
+#include "illum/kits/direct_pass.h"
 #include "illum/kits/shared_params.h"
 #include "illum/kits/vpl_kit.h"
 #include "illum/resources/bvh.h"
+#include "illum/resources/gpu_scene.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/occluders.h"
 #include "shaders/shared/avg.glsl"
@@ -170,7 +172,7 @@ class AvgMethod : public Method {
   std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
   SceneNeeds needs() const override {
     SceneNeeds n;
-    n.gbuffer = true;
+    needGBuffer(n);
     n.add(LightMapNeed{shadow_.resolution, false});
     if (s_.visibility == VplVisibility::Exact || tracing_ == "exact") n.add(BvhNeed{});
     if (s_.visibility == VplVisibility::ShadowMaps && vplShadowTriangles_ > 0)

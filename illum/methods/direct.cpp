@@ -20,7 +20,9 @@
 #include "core/gpu_scene.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
+#include "illum/kits/direct_pass.h"
 #include "illum/kits/shared_params.h"
+#include "illum/resources/gpu_scene.h"
 #include "illum/resources/light_maps.h"
 
 namespace vgi {
@@ -32,7 +34,7 @@ class DirectMethod : public Method {
   DirectMethod(ParamSet& p, const Scene&) { readShadowParams(p, shadow_); }
   SceneNeeds needs() const override {
     SceneNeeds n;
-    n.gbuffer = true;
+    needGBuffer(n);
     n.add(LightMapNeed{shadow_.resolution, false});
     return n;
   }

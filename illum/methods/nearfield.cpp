@@ -45,9 +45,11 @@
 #include "core/shader_library.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
+#include "illum/kits/direct_pass.h"
 #include "illum/kits/gather_kit.h"
 #include "illum/kits/shared_params.h"
 #include "illum/kits/tracer_kit.h"
+#include "illum/resources/gpu_scene.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "shaders/illum/nearfield/params.glsl"
@@ -98,7 +100,7 @@ class NearFieldMethod : public Method {
   std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
   SceneNeeds needs() const override {
     SceneNeeds n;
-    n.gbuffer = true;
+    needGBuffer(n);
     n.add(LightMapNeed{p_.shadow.resolution, true});
     addTracerNeeds(n, p_.grid, p_.tracer);
     return n;
@@ -125,7 +127,7 @@ void NearFieldMethod::prepareFrame(Frame& f) {
   ShaderDefines defs;
   addTracerDefine(defs, p_.tracer);
   indirect_.create(f, {"illum/nearfield/indirect.comp.glsl"}, defs,
-                   kPassScene | kPassLightMaps | kPassGBuffer);
+                   {gpuSceneInput, lightMapsInput, gbufferInput});
   // What stays the same over the frame's samples.
   kit_.setFrameUniforms(shaders, indirect_.program());
   shared::NearFieldPassParams& ip = indirect_.params();

@@ -45,8 +45,10 @@
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/cone_kit.h"
+#include "illum/kits/direct_pass.h"
 #include "illum/kits/gather_kit.h"
 #include "illum/kits/shared_params.h"
+#include "illum/resources/gpu_scene.h"
 #include "illum/resources/light_maps.h"
 #include "shaders/illum/vct/params.glsl"
 #include "shaders/shared/bindings.glsl"
@@ -101,7 +103,7 @@ class VctMethod : public Method {
   }
   SceneNeeds needs() const override {
     SceneNeeds n;
-    n.gbuffer = true;
+    needGBuffer(n);
     // The direct light (radiance=texels: the same maps, reflective, inject the volume too).
     n.add(LightMapNeed{vol_.shadow.resolution, vol_.radiance == "texels"});
     vol_.addNeed(n);
@@ -114,8 +116,8 @@ class VctMethod : public Method {
                                            vol_.shadow.normalOffset);
     ShaderDefines defs;
     vol_.addDefines(defs);
-    diffusePass_.create(f, {"illum/vct/diffuse.comp.glsl"}, defs, kPassScene | kPassGBuffer);
-    shade_.create(f, {"illum/vct/shade.comp.glsl"}, defs, kPassScene | kPassLightMaps | kPassGBuffer);
+    diffusePass_.create(f, {"illum/vct/diffuse.comp.glsl"}, defs, {gpuSceneInput, gbufferInput});
+    shade_.create(f, {"illum/vct/shade.comp.glsl"}, defs, {gpuSceneInput, lightMapsInput, gbufferInput});
     const float diag = f.resources.get<GridBox>().voxelDiagonal();
     shaders.setUniform(diffusePass_.program(), "uScale", kit_.scale());
     shared::VctDiffuseParams& d = diffusePass_.params();

@@ -45,6 +45,7 @@
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/cone_kit.h"
 #include "illum/kits/gather_kit.h"
+#include "illum/resources/gpu_scene.h"
 #include "shaders/illum/vct_ao/params.glsl"
 
 namespace vgi {
@@ -86,7 +87,7 @@ class VctAoMethod : public Method {
   }
   SceneNeeds needs() const override {
     SceneNeeds n;
-    n.gbuffer = true;
+    needGBuffer(n);
     vol_.addNeed(n);  // radiance=none: opacity only
     return n;
   }
@@ -95,7 +96,7 @@ class VctAoMethod : public Method {
     kit_.prepare(f, gather_);
     ShaderDefines defs;
     vol_.addDefines(defs);
-    ao_.create(f, {"illum/vct_ao/ao.comp.glsl"}, defs, kPassGBuffer);
+    ao_.create(f, {"illum/vct_ao/ao.comp.glsl"}, defs, {gbufferInput});
     shaders.setUniform(ao_.program(), "uScale", kit_.scale());
     shared::VctAoParams& p = ao_.params();
     VGI_CHECK(constellation_.size() <= std::size(p.cones));

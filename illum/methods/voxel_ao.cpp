@@ -30,6 +30,7 @@
 #include "illum/kits/gather_kit.h"
 #include "illum/kits/shared_params.h"
 #include "illum/kits/tracer_kit.h"
+#include "illum/resources/gpu_scene.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "shaders/illum/voxel_ao/params.glsl"
 #include "traverse/gl_ray_tracer.h"
@@ -53,7 +54,7 @@ class VoxelAoMethod : public Method {
   }
   SceneNeeds needs() const override {
     SceneNeeds n;
-    n.gbuffer = true;
+    needGBuffer(n);
     addTracerNeeds(n, grid_, tracer_);
     return n;
   }
@@ -62,7 +63,7 @@ class VoxelAoMethod : public Method {
     kit_.prepare(f, gather_);
     ShaderDefines defs;
     addTracerDefine(defs, tracer_);
-    ao_.create(f, {"illum/voxel_ao/ao.comp.glsl"}, defs, kPassGBuffer);
+    ao_.create(f, {"illum/voxel_ao/ao.comp.glsl"}, defs, {gbufferInput});
     const float diagonal = f.resources.get<GridBox>().voxelDiagonal();
     kit_.setFrameUniforms(shaders, ao_.program());
     shared::VoxelAoParams& p = ao_.params();

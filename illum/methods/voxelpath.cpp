@@ -34,8 +34,10 @@
 #include "illum/framework/compute_pass.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
+#include "illum/kits/direct_pass.h"
 #include "illum/kits/shared_params.h"
 #include "illum/kits/tracer_kit.h"
+#include "illum/resources/gpu_scene.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "illum/resources/value_grids.h"
@@ -79,7 +81,7 @@ class VoxelPathMethod : public Method {
   std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
   SceneNeeds needs() const override {
     SceneNeeds n;
-    n.gbuffer = true;
+    needGBuffer(n);
     n.add(LightMapNeed{shadow_.resolution, true});
     BinaryGridNeed grid = grid_;
     grid.values = {"normal", "albedo", "glossy"};
@@ -95,7 +97,7 @@ class VoxelPathMethod : public Method {
     ShaderDefines defs;
     addTracerDefine(defs, tracer_);
     path_.create(f, {"illum/voxelpath/path.comp.glsl"}, defs,
-                 kPassScene | kPassLightMaps | kPassValueTextures | kPassGBuffer);
+                 {gpuSceneInput, lightMapsInput, valueTexturesInput, gbufferInput});
     shared::VoxelPathParams& p = path_.params();
     p.maxDepth = maxDepth_;
     p.rrDepth = rrDepth_;

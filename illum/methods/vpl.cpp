@@ -47,10 +47,12 @@
 #include "core/shader_library.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
+#include "illum/kits/direct_pass.h"
 #include "illum/kits/shared_params.h"
 #include "illum/kits/tracer_kit.h"
 #include "illum/kits/vpl_kit.h"
 #include "illum/resources/bvh.h"
+#include "illum/resources/gpu_scene.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "illum/resources/value_grids.h"
@@ -96,7 +98,7 @@ class VplMethod : public Method {
   std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
   SceneNeeds needs() const override {
     SceneNeeds n;
-    n.gbuffer = true;
+    needGBuffer(n);
     n.add(LightMapNeed{shadow_.resolution, true});
     BinaryGridNeed grid = grid_;
     if (s_.bounces > 1) grid.values = {"normal", "albedo"};

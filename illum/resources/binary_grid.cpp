@@ -228,4 +228,9 @@ ResourceKind binaryGridKind() {
       "grid"};
 }
 
+const ResourceKind& BinaryGridNeed::row() {
+  static const ResourceKind k = binaryGridKind();
+  return k;
+}
+
 }  // namespace vgi

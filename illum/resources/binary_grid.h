@@ -22,6 +22,7 @@ class ParamSet;
 
 struct BinaryGridNeed {
   static constexpr const char* kKind = "binary_grid";
+  static const ResourceKind& row();  // its row of the kinds table (binaryGridKind())
   glm::uvec3 resolution{128};
   std::string voxelizer = "atlas";  // a name of voxelizerRegistry()
   // Cubic cells (cone tracing: a mip level's texel is a cube of 2^l cells):

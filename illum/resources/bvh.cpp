@@ -48,4 +48,9 @@ ResourceKind bvhKind() {
           ""};
 }
 
+const ResourceKind& BvhNeed::row() {
+  static const ResourceKind k = bvhKind();
+  return k;
+}
+
 }  // namespace vgi

@@ -12,6 +12,7 @@ namespace vgi {
 
 struct BvhNeed {
   static constexpr const char* kKind = "bvh";
+  static const ResourceKind& row();  // its row of the kinds table (bvhKind())
   nlohmann::json key() const { return nlohmann::json::object(); }
 };
 

@@ -211,4 +211,9 @@ ResourceKind coneVolumeKind() {
           "volume"};
 }
 
+const ResourceKind& ConeVolumeNeed::row() {
+  static const ResourceKind k = coneVolumeKind();
+  return k;
+}
+
 }  // namespace vgi

@@ -76,8 +76,9 @@ inline bool injectsRadiance(const std::string& radiance) {
 
 struct ConeVolumeNeed {
   static constexpr const char* kKind = "cone_volume";
-  BinaryGridNeed grid;              // cubic cells; with radiance=atlas its values hold "radiance"
-  std::string radiance = "inject";  // inject | texels | atlas | none
+  static const ResourceKind& row();  // its row of the kinds table (coneVolumeKind())
+  BinaryGridNeed grid;               // cubic cells; with radiance=atlas its values hold "radiance"
+  std::string radiance = "inject";   // inject | texels | atlas | none
   bool anisotropic = true;
   std::optional<LightMapNeed> lightMaps;   // inject, atlas: the direct light's maps
   float bias = 1.0f, normalOffset = 0.0f;  // inject: the maps' shadow test (texels, voxels)

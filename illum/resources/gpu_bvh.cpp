@@ -59,4 +59,9 @@ ResourceKind gpuBvhKind() {
           "gpu_bvh"};
 }
 
+const ResourceKind& GpuBvhNeed::row() {
+  static const ResourceKind k = gpuBvhKind();
+  return k;
+}
+
 }  // namespace vgi

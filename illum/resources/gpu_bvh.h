@@ -14,6 +14,7 @@ namespace vgi {
 
 struct GpuBvhNeed {
   static constexpr const char* kKind = "gpu_bvh";
+  static const ResourceKind& row();  // its row of the kinds table (gpuBvhKind())
   nlohmann::json key() const { return nlohmann::json::object(); }
 };
 

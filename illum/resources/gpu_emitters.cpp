@@ -76,4 +76,9 @@ ResourceKind gpuEmittersKind() {
           "gpu_emitters"};
 }
 
+const ResourceKind& GpuEmittersNeed::row() {
+  static const ResourceKind k = gpuEmittersKind();
+  return k;
+}
+
 }  // namespace vgi

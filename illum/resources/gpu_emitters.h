@@ -33,6 +33,7 @@ class GpuEmitters {
 
 struct GpuEmittersNeed {
   static constexpr const char* kKind = "gpu_emitters";
+  static const ResourceKind& row();  // its row of the kinds table (gpuEmittersKind())
   nlohmann::json key() const { return nlohmann::json::object(); }
 };
 

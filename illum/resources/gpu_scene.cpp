@@ -2,6 +2,7 @@
 
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
+#include "illum/framework/sample_loop.h"
 
 namespace vgi {
 
@@ -28,6 +29,13 @@ class GpuSceneResource : public Resource {
 };
 }  // namespace
 
+void gpuSceneInput(Frame& f, unsigned program) { f.resources.get<GpuScene>().bind(f.shaders(), program); }
+
+void needGBuffer(SceneNeeds& needs) {
+  needs.gbuffer = true;
+  needs.add(GpuSceneNeed{});
+}
+
 ResourceKind gpuSceneKind() {
   return {
       "gpu_scene",
@@ -40,7 +48,13 @@ ResourceKind gpuSceneKind() {
       [](const ResourceNeed&, SceneResources&) -> std::unique_ptr<Resource> {
         return std::make_unique<GpuSceneResource>();
       },
-      ""};
+      "",
+      true};
+}
+
+const ResourceKind& GpuSceneNeed::row() {
+  static const ResourceKind k = gpuSceneKind();
+  return k;
 }
 
 }  // namespace vgi

@@ -1,5 +1,8 @@
 // The resource kinds, as an explicit table (like the method registry): a new
-// shared structure is one file pair in this folder and one row here.
+// shared structure is one file pair in this folder and one row here. (The framework reads a need's
+// row from the need itself, ResourceNeed::kindRow(): it knows no kind.)
+#include "illum/resources/kinds.h"
+
 #include "illum/framework/resources.h"
 #include "illum/resources/binary_grid.h"
 #include "illum/resources/bvh.h"
@@ -15,10 +18,11 @@
 
 namespace vgi {
 
-const std::vector<ResourceKind>& resourceKinds() {
-  static const std::vector<ResourceKind> kinds = {
-      gpuSceneKind(),  lightMapsKind(),  binaryGridKind(), orMipPyramidKind(), valueGridsKind(),   bvhKind(),
-      occludersKind(), coneVolumeKind(), gpuBvhKind(),     gpuEmittersKind(),  sparseOctreeKind(),
+const std::vector<const ResourceKind*>& resourceKinds() {
+  static const std::vector<const ResourceKind*> kinds = {
+      &GpuSceneNeed::row(),  &LightMapNeed::row(),    &BinaryGridNeed::row(),   &OrMipPyramidNeed::row(),
+      &ValueGridNeed::row(), &BvhNeed::row(),         &OccluderNeed::row(),     &ConeVolumeNeed::row(),
+      &GpuBvhNeed::row(),    &GpuEmittersNeed::row(), &SparseOctreeNeed::row(),
   };
   return kinds;
 }

@@ -11,6 +11,7 @@
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
+#include "illum/framework/sample_loop.h"
 #include "illum/resources/gpu_scene.h"
 
 namespace vgi {
@@ -265,6 +266,8 @@ class LightMapsResource : public Resource {
 };
 }  // namespace
 
+void lightMapsInput(Frame& f, unsigned) { f.resources.get<LightMaps>().bind(); }
+
 ResourceKind lightMapsKind() {
   return {"light_maps",
           "shadow maps (or, reflective, RSMs: position, normal, reflected flux) of every delta light",
@@ -279,6 +282,11 @@ ResourceKind lightMapsKind() {
             return std::make_unique<LightMapsResource>(n.spec<LightMapNeed>());
           },
           "light_maps"};
+}
+
+const ResourceKind& LightMapNeed::row() {
+  static const ResourceKind k = lightMapsKind();
+  return k;
 }
 
 }  // namespace vgi

@@ -81,11 +81,16 @@ class LightMaps {
 
 struct LightMapNeed {
   static constexpr const char* kKind = "light_maps";
+  static const ResourceKind& row();  // its row of the kinds table (lightMapsKind())
   int resolution = 1024;
   bool reflective = false;  // reflective shadow maps (position, normal, flux) for VGI §5.1
   nlohmann::json key() const { return {{"resolution", resolution}, {"reflective", reflective}}; }
 };
 
 ResourceKind lightMapsKind();
+
+class Frame;
+// A compute pass's input (illum/framework/compute_pass.h): the light maps at their units.
+void lightMapsInput(Frame& f, unsigned program);
 
 }  // namespace vgi

@@ -108,4 +108,9 @@ ResourceKind occludersKind() {
           ""};
 }
 
+const ResourceKind& OccluderNeed::row() {
+  static const ResourceKind k = occludersKind();
+  return k;
+}
+
 }  // namespace vgi

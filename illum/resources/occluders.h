@@ -49,6 +49,7 @@ class Occluders {
 // `tolerance` (world units) from them; within the budget, the scene as it is.
 struct OccluderNeed {
   static constexpr const char* kKind = "occluders";
+  static const ResourceKind& row();  // its row of the kinds table (occludersKind())
   size_t triangles = 8192;
   float tolerance = 0.0f;
   nlohmann::json key() const { return {{"triangles", triangles}, {"tolerance", tolerance}}; }

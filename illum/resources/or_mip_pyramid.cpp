@@ -55,4 +55,9 @@ ResourceKind orMipPyramidKind() {
           "pyramid"};
 }
 
+const ResourceKind& OrMipPyramidNeed::row() {
+  static const ResourceKind k = orMipPyramidKind();
+  return k;
+}
+
 }  // namespace vgi

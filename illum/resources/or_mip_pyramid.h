@@ -10,6 +10,7 @@ namespace vgi {
 
 struct OrMipPyramidNeed {
   static constexpr const char* kKind = "or_mip_pyramid";
+  static const ResourceKind& row();  // its row of the kinds table (orMipPyramidKind())
   BinaryGridNeed grid;
   nlohmann::json key() const { return grid.key(); }
 };

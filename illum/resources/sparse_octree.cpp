@@ -121,4 +121,9 @@ ResourceKind sparseOctreeKind() {
           "volume"};
 }
 
+const ResourceKind& SparseOctreeNeed::row() {
+  static const ResourceKind k = sparseOctreeKind();
+  return k;
+}
+
 }  // namespace vgi

@@ -4,6 +4,7 @@
 
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
+#include "illum/framework/sample_loop.h"
 #include "shaders/shared/value_grid.glsl"
 #include "voxelize/atlas_voxelizer.h"
 #include "voxelize/value_grids.h"
@@ -91,6 +92,8 @@ void check(const ResourceNeed& need, const SceneNeeds&, const std::string& metho
 
 }  // namespace
 
+void valueTexturesInput(Frame& f, unsigned) { f.resources.get<ValueTextures>().bind(); }
+
 ResourceKind valueGridsKind() {
   return {"value_grids",
           "normals, albedo, glossiness, direct radiance per cell of the atlas grid as 3D textures (+ mips)",
@@ -110,6 +113,11 @@ ResourceKind valueGridsKind() {
             return std::make_unique<ValueGridsResource>(n.spec<ValueGridNeed>());
           },
           "value_grids"};
+}
+
+const ResourceKind& ValueGridNeed::row() {
+  static const ResourceKind k = valueGridsKind();
+  return k;
 }
 
 }  // namespace vgi

@@ -16,7 +16,8 @@ namespace vgi {
 
 struct ValueGridNeed {
   static constexpr const char* kKind = "value_grids";
-  BinaryGridNeed grid;  // voxelizer atlas; grid.values are the channels
+  static const ResourceKind& row();  // its row of the kinds table (valueGridsKind())
+  BinaryGridNeed grid;               // voxelizer atlas; grid.values are the channels
   ValueMips mips = ValueMips::None;
   std::optional<LightMapNeed> lightMaps;  // the radiance channel's direct light
   nlohmann::json key() const { return {{"grid", grid.key()}, {"mips", int(mips)}}; }
@@ -24,5 +25,9 @@ struct ValueGridNeed {
 };
 
 ResourceKind valueGridsKind();
+
+class Frame;
+// A compute pass's input (illum/framework/compute_pass.h): the value grids' 3D textures.
+void valueTexturesInput(Frame& f, unsigned program);
 
 }  // namespace vgi

@@ -15,7 +15,7 @@
 #include "core/image_metrics.h"
 #include "core/json_text.h"
 #include "experiments/sweep.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi {
 using test::CliRun;

@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "core/shader_library.h"
 #include "illum/framework/method.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 int main() {
   try {

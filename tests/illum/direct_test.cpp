@@ -5,7 +5,7 @@
 
 #include "core/image_metrics.h"
 #include "core/scene_loader.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 #include "render_util.h"
 #include "test_util.h"
 

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 
 #include "core/error.h"
 #include "core/gl_context.h"
@@ -19,8 +20,9 @@
 #include "core/params.h"
 #include "core/scene_loader.h"
 #include "core/shader_library.h"
-#include "illum/framework/render_job.h"
 #include "illum/framework/sample_loop.h"
+#include "illum/resources/kinds.h"
+#include "illum/run/render_job.h"
 #include "render_util.h"
 #include "test_util.h"
 #include "traverse/ray_tracers.h"
@@ -108,6 +110,30 @@ GlslangReport runGlslang(const std::string& dir) {
     if (log.find("WARNING") != std::string::npos) r.warnings.push_back(cmd + ":\n" + log);
   }
   return r;
+}
+
+// The framework reads each need's kind from the need (ResourceNeed::kindRow); the kinds table lists
+// every row once, by its name, and every need any method declares (at its defaults) is one of them.
+TEST(ResourceKinds, EveryNeedOfEveryMethodIsARowOfTheTable) {
+  std::set<std::string> names;
+  for (const ResourceKind* k : resourceKinds()) {
+    EXPECT_TRUE(names.insert(k->name).second) << k->name << " twice";
+    EXPECT_FALSE(k->description.empty()) << k->name;
+  }
+  const Scene scene = loadScene("builtin:cornell");
+  int needs = 0;
+  for (const MethodInfo& info : methodRegistry()) {
+    ParamSet p;
+    const std::unique_ptr<Method> m = info.create(p, scene);
+    for (const ResourceNeed& n : m->needs().closure()) {
+      ++needs;
+      EXPECT_EQ(n.kindRow().name, n.kind()) << info.name;
+      EXPECT_NE(std::find(resourceKinds().begin(), resourceKinds().end(), &n.kindRow()),
+                resourceKinds().end())
+          << info.name << ": " << n.kind() << " is not in illum/resources/kinds.cpp";
+    }
+  }
+  EXPECT_GT(needs, 20);
 }
 
 TEST(Modules, EveryMethodBuildsExactlyWhatItsNeedsDeclareAndPassesGlslang) {

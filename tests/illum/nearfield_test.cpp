@@ -7,8 +7,8 @@
 
 #include "core/image_metrics.h"
 #include "illum/framework/method.h"
-#include "illum/framework/method_help.h"
-#include "illum/framework/render_job.h"
+#include "illum/run/method_help.h"
+#include "illum/run/render_job.h"
 #include "render_util.h"
 #include "test_util.h"
 

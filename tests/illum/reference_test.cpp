@@ -7,8 +7,8 @@
 #include "core/progress.h"
 #include "core/scene_loader.h"
 #include "illum/framework/method.h"
-#include "illum/framework/render_job.h"
 #include "illum/framework/sample_loop.h"
+#include "illum/run/render_job.h"
 #include "test_util.h"
 
 namespace vgi {

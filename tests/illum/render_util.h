@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 namespace vgi::test {
 

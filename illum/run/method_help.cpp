@@ -1,4 +1,4 @@
-#include "illum/framework/method_help.h"
+#include "illum/run/method_help.h"
 
 #include <memory>
 #include <sstream>

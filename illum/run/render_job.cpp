@@ -1,4 +1,4 @@
-#include "illum/framework/render_job.h"
+#include "illum/run/render_job.h"
 
 #include <algorithm>
 #include <chrono>
