@@ -9,6 +9,7 @@
 #include "core/progress.h"
 #include "experiments/compare.h"
 #include "illum/run/render_job.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi::app {
 

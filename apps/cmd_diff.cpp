@@ -10,6 +10,7 @@
 #include "core/json_text.h"
 #include "core/output_files.h"
 #include "illum/run/render_job.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi::app {
 

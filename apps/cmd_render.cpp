@@ -11,6 +11,7 @@
 #include "core/progress.h"
 #include "illum/run/method_help.h"
 #include "illum/run/render_job.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi::app {
 

@@ -15,6 +15,7 @@
 #include "core/params.h"
 #include "core/progress.h"
 #include "illum/framework/resources.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi::app {
 

@@ -7,6 +7,7 @@
 #include "core/output_files.h"
 #include "core/params.h"
 #include "illum/run/render_job.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi::app {
 

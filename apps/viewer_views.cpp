@@ -6,6 +6,7 @@
 #include "core/output_files.h"
 #include "illum/framework/resources.h"
 #include "illum/resources/light_maps.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi::app {
 

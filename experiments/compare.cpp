@@ -9,6 +9,7 @@
 #include "core/json_text.h"
 #include "core/output_files.h"
 #include "core/progress.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi {
 

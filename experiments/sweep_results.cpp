@@ -16,6 +16,7 @@
 #include "core/output_files.h"
 #include "experiments/sweep_detail.h"
 #include "illum/run/render_job.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi {
 

@@ -13,6 +13,7 @@
 #include "core/warnings.h"
 #include "experiments/sweep_detail.h"
 #include "illum/run/render_job.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi {
 

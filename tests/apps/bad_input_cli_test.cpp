@@ -16,6 +16,7 @@
 #include "core/json_text.h"
 #include "experiments/sweep.h"
 #include "illum/run/render_job.h"
+#include "illum/run/render_outputs.h"
 
 namespace vgi {
 using test::CliRun;
