@@ -20,26 +20,29 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
                                         bool absWeightsDefault, float stepDefault) {
   ConeVolumeSettings s;
   if (withRadiance)
-    s.radiance =
+    s.radiance = coneRadianceOf(
         p.getString("radiance", "inject",
                     "voxel radiance: inject (conservative rasterization lit through the shadow maps, "
                     "the VCT thesis), texels (each texel of reflective shadow maps into its cell, the "
                     "2013 article; holes where the maps are coarser than the voxels) or atlas (the atlas "
                     "voxelizer's radiance channel, VGI 3; needs voxelizer=atlas)",
-                    {"inject", "texels", "atlas"});
+                    {"inject", "texels", "atlas"}));
   else
-    s.radiance = "none";
-  s.grid = readBinaryGridParams(p, 4, false, s.radiance == "atlas" ? "atlas" : "conservative");
+    s.radiance = ConeRadiance::None;
+  const bool atlas = s.radiance == ConeRadiance::Atlas;
+  s.grid = readBinaryGridParams(p, 4, false, atlas ? "atlas" : "conservative");
   s.grid.cubicCells = true;
-  if (s.radiance == "atlas" && s.grid.voxelizer != "atlas")
+  if (atlas && s.grid.voxelizer != "atlas")
     fail("parameter 'voxelizer': '", s.grid.voxelizer,
          "' with radiance=atlas (the radiance channel comes from the atlas voxelizer's points: "
          "voxelizer=atlas)");
-  s.volume = p.getString("volume", "dense",
-                         "the volume's storage: dense (3D textures with mip chains) or svo (a sparse voxel "
-                         "octree with 3x3x3 bricks, Crassin et al. 2011; the same values at the same "
-                         "resolution)",
-                         {"dense", "svo"});
+  const bool svo =
+      p.getString("volume", "dense",
+                  "the volume's storage: dense (3D textures with mip chains) or svo (a sparse voxel "
+                  "octree with 3x3x3 bricks, Crassin et al. 2011; the same values at the same "
+                  "resolution)",
+                  {"dense", "svo"}) == "svo";
+  s.volume = svo ? ConeVolumeSettings::Storage::Svo : ConeVolumeSettings::Storage::Dense;
   s.dilate = p.getBool("dilate", true,
                        "svo: also allocate the empty nodes whose bricks a trilinear sample next to a filled "
                        "neighbour needs (the dense volume's samples exactly; false: the articles' tree, "
@@ -48,8 +51,8 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
                            "svo, dynamic scenes: rebuild the octree at every k-th frame whose grid changed "
                            "(in between the last tree is lit)",
                            1, 1000);
-  if (s.volume == "svo") {
-    if (s.radiance == "atlas")
+  if (svo) {
+    if (atlas)
       fail(
           "parameter 'radiance': 'atlas' with volume=svo (the octree's leaves are lit by injection: "
           "radiance=inject)");
@@ -62,7 +65,7 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
                             "six-direction anisotropic mip chain (front-to-back per axis direction, VCT "
                             "thesis 3.2); false: isotropic 2x2x2 means");
   const double gib = cells * (24.0 + 1.15 + 9.15 + (s.anisotropic ? 6.9 : 0.0)) / double(1u << 30);
-  if (s.volume == "dense" && gib > 8.0)
+  if (!svo && gib > 8.0)
     fail("parameter 'voxels': ", s.grid.resolution.x, "x", s.grid.resolution.y, "x", s.grid.resolution.z,
          " needs ", gib, " GiB for the cone-tracing volume (at most 8 GiB)");
   s.absWeights =
@@ -79,10 +82,11 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
 ConeVolumeNeed ConeVolumeSettings::need() const {
   ConeVolumeNeed n;
   n.grid = grid;
-  if (radiance == "atlas") n.grid.values = {"radiance"};
+  if (radiance == ConeRadiance::Atlas) n.grid.values = {"radiance"};
   n.radiance = radiance;
   n.anisotropic = anisotropic;
-  if (radiance != "none") n.lightMaps = LightMapNeed{shadow.resolution, radiance == "texels"};
+  if (radiance != ConeRadiance::None)
+    n.lightMaps = LightMapNeed{shadow.resolution, radiance == ConeRadiance::Texels};
   if (injectsRadiance(radiance)) {
     n.bias = shadow.bias;
     n.normalOffset = shadow.normalOffset;
@@ -105,14 +109,14 @@ SparseOctreeNeed ConeVolumeSettings::octreeNeed() const {
 }
 
 void ConeVolumeSettings::addNeed(SceneNeeds& needs) const {
-  if (volume == "svo")
+  if (volume == Storage::Svo)
     needs.add(octreeNeed());
   else
     needs.add(need());
 }
 
 void ConeVolumeSettings::addDefines(ShaderDefines& defs) const {
-  if (volume == "svo") defs["CONE_SVO"] = "1";
+  if (volume == Storage::Svo) defs["CONE_SVO"] = "1";
   if (anisotropic) defs["VCT_ANISOTROPIC"] = "1";
   if (absWeights) defs["VCT_ABS_WEIGHTS"] = "1";
 }

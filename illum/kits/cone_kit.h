@@ -22,8 +22,8 @@ class ValueTextures;
 
 struct ConeVolumeSettings {
   BinaryGridNeed grid;
-  std::string radiance = "inject";  // inject | texels | atlas | none
-  std::string volume = "dense";     // dense (cone_volume) | svo (sparse_octree)
+  ConeRadiance radiance = ConeRadiance::Inject;
+  enum class Storage { Dense, Svo } volume = Storage::Dense;  // dense (cone_volume) | svo (sparse_octree)
   bool anisotropic = true;
   bool dilate = true;      // svo: allocate the nodes a neighbour's brick stencil needs
   int updateEvery = 1;     // svo: rebuild the tree at every k-th changed grid

@@ -105,7 +105,7 @@ class VctMethod : public Method {
     SceneNeeds n;
     needGBuffer(n);
     // The direct light (radiance=texels: the same maps, reflective, inject the volume too).
-    n.add(LightMapNeed{vol_.shadow.resolution, vol_.radiance == "texels"});
+    n.add(LightMapNeed{vol_.shadow.resolution, vol_.radiance == ConeRadiance::Texels});
     vol_.addNeed(n);
     return n;
   }

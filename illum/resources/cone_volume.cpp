@@ -16,8 +16,28 @@
 
 namespace vgi {
 
+const char* coneRadianceName(ConeRadiance r) {
+  switch (r) {
+    case ConeRadiance::Inject:
+      return "inject";
+    case ConeRadiance::Texels:
+      return "texels";
+    case ConeRadiance::Atlas:
+      return "atlas";
+    case ConeRadiance::None:
+      return "none";
+  }
+  return "none";
+}
+
+ConeRadiance coneRadianceOf(const std::string& name) {
+  for (ConeRadiance r : {ConeRadiance::Inject, ConeRadiance::Texels, ConeRadiance::Atlas, ConeRadiance::None})
+    if (name == coneRadianceName(r)) return r;
+  fail("internal: no cone radiance '", name, "'");
+}
+
 nlohmann::json ConeVolumeNeed::key() const {
-  return {{"grid", grid.key()}, {"radiance", radiance}, {"anisotropic", anisotropic}};
+  return {{"grid", grid.key()}, {"radiance", coneRadianceName(radiance)}, {"anisotropic", anisotropic}};
 }
 
 nlohmann::json ConeVolumeNeed::settings() const {
@@ -34,7 +54,7 @@ bool ConeVolume::update(SceneResources& res, const ResourceNeed& need, Profiler&
   need_ = need.spec<ConeVolumeNeed>();
   const glm::vec3 v = res.get<GridBox>(need_.grid).voxelSize();
   voxel_ = std::max({v.x, v.y, v.z});
-  if (need_.radiance == "atlas") {  // the value grids are the volume, kept current as a resource
+  if (need_.radiance == ConeRadiance::Atlas) {  // the value grids are the volume, kept current as a resource
     volume_ = &res.get<ValueTextures>(need_.valueGrids());
     return res.changed(need_.valueGrids());
   }
@@ -88,14 +108,14 @@ void InjectionSums::allocate(uint64_t slots) {
   glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
 
-float InjectionSums::inject(SceneResources& res, const GridBox& box, const std::string& radiance,
+float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadiance radiance,
                             const LightMapNeed& mapsNeed, float bias, float normalOffset,
                             const SparseVoxelOctree* octree, Profiler& prof) {
   const unsigned counts = counts_.get(), sums = sums_.get(), max = max_.get();
   const uint32_t zero = 0;
   glClearNamedBufferData(counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glClearNamedBufferData(sums, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  const bool texels = radiance == "texels";
+  const bool texels = radiance == ConeRadiance::Texels;
   ShaderLibrary& shaders = res.shaders();
   const GpuScene& gpu = res.get<GpuScene>();
   const LightMaps& maps = res.get<LightMaps>(mapsNeed);
@@ -164,7 +184,7 @@ nlohmann::json ConeVolume::stats() {
     j["injection_bytes"] = sums_.bytes();
     j["bytes"] = j["bytes"].get<double>() + sums_.bytes();
   }
-  j["radiance_source"] = need_.radiance;
+  j["radiance_source"] = coneRadianceName(need_.radiance);
   if (injectsRadiance(need_.radiance)) j["radiance_max"] = sums_.radianceMax();
   return j;
 }
@@ -190,20 +210,22 @@ ResourceKind coneVolumeKind() {
             const ConeVolumeNeed& c = n.spec<ConeVolumeNeed>();
             std::vector<ResourceNeed> d{c.pyramid()};
             if (injectsRadiance(c.radiance)) d.push_back(*c.lightMaps);
-            if (c.radiance == "atlas") d.push_back(c.valueGrids());
+            if (c.radiance == ConeRadiance::Atlas) d.push_back(c.valueGrids());
             return d;
           },
           [](const ResourceNeed& n, const SceneNeeds&, const std::string& method, bool gl) {
             const ConeVolumeNeed& c = n.spec<ConeVolumeNeed>();
             requireGl(n, method, gl);
-            if (c.radiance != "none" && !c.lightMaps)
-              fail("method '", method, "' asks for a cone volume with radiance=", c.radiance,
+            if (c.radiance != ConeRadiance::None && !c.lightMaps)
+              fail("method '", method,
+                   "' asks for a cone volume with radiance=", coneRadianceName(c.radiance),
                    " without light maps");
           },
           [](const ResourceNeed& n) {
             // With radiance=atlas the value grids are the volume: nothing of its own.
-            return n.spec<ConeVolumeNeed>().radiance == "atlas" ? std::vector<std::string>{}
-                                                                : std::vector<std::string>{"cone_volume"};
+            return n.spec<ConeVolumeNeed>().radiance == ConeRadiance::Atlas
+                       ? std::vector<std::string>{}
+                       : std::vector<std::string>{"cone_volume"};
           },
           [](const ResourceNeed& n, SceneResources&) -> std::unique_ptr<Resource> {
             return std::make_unique<ConeVolume>(n.spec<ConeVolumeNeed>());

@@ -42,6 +42,15 @@ class ConeSource {
   virtual float voxelSize() const = 0;
 };
 
+// Where a volume's radiance comes from (the `radiance` parameter, read once into this): injected from
+// the light maps by conservative rasterization (inject) or texel by texel (texels), the atlas
+// voxelizer's radiance channel (atlas), or none (the volume holds opacity only).
+enum class ConeRadiance { Inject, Texels, Atlas, None };
+const char* coneRadianceName(ConeRadiance r);          // its parameter value: "inject", …
+ConeRadiance coneRadianceOf(const std::string& name);  // a value the parameter allowed
+// Whether a volume's radiance is injected from the light maps (inject, texels).
+inline bool injectsRadiance(ConeRadiance r) { return r == ConeRadiance::Inject || r == ConeRadiance::Texels; }
+
 // The fixed-point sums vct's radiance injection writes per slot — a cell of
 // the dense volume (x fastest) or a leaf of the sparse octree — as
 // shared/value_grid.glsl defines them: a count (4 bytes) and rgb sums (16),
@@ -57,7 +66,7 @@ class InjectionSums {
   //           (shaders/illum/vct/inject.frag);
   //   texels  the 2013 article's: each reflective-shadow-map texel into the
   //           cell its surface point falls in (inject_texels.comp; `maps` reflective).
-  float inject(SceneResources& res, const GridBox& box, const std::string& radiance, const LightMapNeed& maps,
+  float inject(SceneResources& res, const GridBox& box, ConeRadiance radiance, const LightMapNeed& maps,
                float bias, float normalOffset, const SparseVoxelOctree* octree, Profiler& profiler);
   unsigned counts() const { return counts_.get(); }
   unsigned sums() const { return sums_.get(); }
@@ -69,16 +78,12 @@ class InjectionSums {
   uint64_t slots_ = 0;
   float radianceMax_ = 1.0f;
 };
-// Whether a volume's `radiance` is injected from the light maps (inject, texels).
-inline bool injectsRadiance(const std::string& radiance) {
-  return radiance == "inject" || radiance == "texels";
-}
 
 struct ConeVolumeNeed {
   static constexpr const char* kKind = "cone_volume";
   static const ResourceKind& row();  // its row of the kinds table (coneVolumeKind())
   BinaryGridNeed grid;               // cubic cells; with radiance=atlas its values hold "radiance"
-  std::string radiance = "inject";   // inject | texels | atlas | none
+  ConeRadiance radiance = ConeRadiance::Inject;
   bool anisotropic = true;
   std::optional<LightMapNeed> lightMaps;   // inject, atlas: the direct light's maps
   float bias = 1.0f, normalOffset = 0.0f;  // inject: the maps' shadow test (texels, voxels)

@@ -14,7 +14,7 @@ namespace vgi {
 
 nlohmann::json SparseOctreeNeed::key() const {
   return {{"grid", grid.key()},
-          {"radiance", radiance},
+          {"radiance", coneRadianceName(radiance)},
           {"anisotropic", anisotropic},
           {"dilate", dilate},
           {"update_every", updateEvery}};
@@ -92,7 +92,7 @@ nlohmann::json SparseOctree::stats() {
     // Occupied leaves no injected sample reached (radiance=texels: the maps' holes).
     j["unreached_leaves"] = octree_->countUnreachedLeaves(sums_.counts());
   }
-  j["radiance_source"] = need_.radiance;
+  j["radiance_source"] = coneRadianceName(need_.radiance);
   j["update_every"] = need_.updateEvery;
   j["lag_frames"] = lag_;
   return j;
@@ -111,7 +111,8 @@ ResourceKind sparseOctreeKind() {
             const SparseOctreeNeed& c = n.spec<SparseOctreeNeed>();
             requireGl(n, method, gl);
             if (injectsRadiance(c.radiance) && !c.lightMaps)
-              fail("method '", method, "' asks for a sparse octree with radiance=", c.radiance,
+              fail("method '", method,
+                   "' asks for a sparse octree with radiance=", coneRadianceName(c.radiance),
                    " without light maps");
           },
           [](const ResourceNeed&) { return std::vector<std::string>{"sparse_octree"}; },

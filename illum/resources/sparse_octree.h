@@ -22,9 +22,9 @@ namespace vgi {
 
 struct SparseOctreeNeed {
   static constexpr const char* kKind = "sparse_octree";
-  static const ResourceKind& row();  // its row of the kinds table (sparseOctreeKind())
-  BinaryGridNeed grid;               // cubic cells
-  std::string radiance = "inject";   // inject | texels | none
+  static const ResourceKind& row();              // its row of the kinds table (sparseOctreeKind())
+  BinaryGridNeed grid;                           // cubic cells
+  ConeRadiance radiance = ConeRadiance::Inject;  // inject | texels | none
   bool anisotropic = true;
   bool dilate = true;   // allocate the empty nodes a neighbour's stencil needs (no brick-border artefact)
   int updateEvery = 1;  // dynamic scenes: rebuild the tree at every k-th changed grid
