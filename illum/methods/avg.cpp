@@ -115,10 +115,10 @@ class AvgMethod : public Method {
     readVplParams(p, s_);
     s_.bounces =
         p.getInt("bounces", 3, "VPLs per chain at most (Russian roulette on the mean reflectance)", 1, 16);
-    shadowMap_ = p.getString("shadow_map", "cube",
-                             "per-VPL shadow maps: cube (six faces, exact for large triangles) or paraboloid "
-                             "(one hemisphere, the paper's choice for scenes of small triangles)",
-                             {"cube", "paraboloid"});
+    cubeMaps_ = p.getString("shadow_map", "cube",
+                            "per-VPL shadow maps: cube (six faces, exact for large triangles) or paraboloid "
+                            "(one hemisphere, the paper's choice for scenes of small triangles)",
+                            {"cube", "paraboloid"}) == "cube";
     vplShadowRes_ =
         p.getInt("vpl_shadow_res", 32, "a VPL shadow map's side (per cube face), texels", 2, 1024);
     vplShadowTriangles_ = p.getInt(
@@ -146,19 +146,19 @@ class AvgMethod : public Method {
     s_.visibility = vis == "shadowmaps" ? VplVisibility::ShadowMaps
                     : vis == "exact"    ? VplVisibility::Exact
                                         : VplVisibility::None;
-    tracing_ =
+    exactTracing_ =
         p.getString("tracing", "avg",
                     "VPL tracing: avg (ray marching the AVG) or exact (the same rays through the triangles, "
                     "Embree on the CPU)",
-                    {"avg", "exact"});
+                    {"avg", "exact"}) == "exact";
     readShadowParams(p, shadow_);
     diagonal_ = scene.bounds().diagonal();
     if (s_.visibility == VplVisibility::ShadowMaps) {
       // The atlas: one tile per VPL slot.
       const int64_t slots = std::max<int64_t>(1, int64_t(s_.chains) * s_.bounces);
       perRow_ = int(std::ceil(std::sqrt(double(slots))));
-      const int64_t tw = (shadowMap_ == "cube" ? 3 : 1) * int64_t(vplShadowRes_);
-      const int64_t th = (shadowMap_ == "cube" ? 2 : 1) * int64_t(vplShadowRes_);
+      const int64_t tw = (cubeMaps_ ? 3 : 1) * int64_t(vplShadowRes_);
+      const int64_t th = (cubeMaps_ ? 2 : 1) * int64_t(vplShadowRes_);
       atlasW_ = int64_t(perRow_) * tw;
       atlasH_ = (slots + perRow_ - 1) / perRow_ * th;
       if (atlasW_ > 16384 || atlasH_ > 16384)
@@ -174,7 +174,7 @@ class AvgMethod : public Method {
     SceneNeeds n;
     needGBuffer(n);
     n.add(LightMapNeed{shadow_.resolution, false});
-    if (s_.visibility == VplVisibility::Exact || tracing_ == "exact") n.add(BvhNeed{});
+    if (s_.visibility == VplVisibility::Exact || exactTracing_) n.add(BvhNeed{});
     if (s_.visibility == VplVisibility::ShadowMaps && vplShadowTriangles_ > 0)
       n.add(OccluderNeed{size_t(vplShadowTriangles_), vplShadowTolerance_ * diagonal_});
     return n;
@@ -219,7 +219,7 @@ class AvgMethod : public Method {
     const glm::uvec2 rotation = vplRotation(k, f.request.seed);
     {
       auto s = f.profiler.scope("vpls");
-      if (tracing_ == "exact") {
+      if (exactTracing_) {
         shootExact(f, k, rotation);
       } else {
         glUseProgram(shootProg_);
@@ -266,7 +266,7 @@ class AvgMethod : public Method {
 
  private:
   void shadowUniforms(ShaderLibrary& shaders, unsigned prog) const {
-    shaders.setUniform(prog, "uShadowCube", shadowMap_ == "cube" ? 1 : 0);
+    shaders.setUniform(prog, "uShadowCube", cubeMaps_ ? 1 : 0);
     shaders.setUniform(prog, "uShadowRes", vplShadowRes_);
     shaders.setUniform(prog, "uShadowTilesPerRow", perRow_);
     shaders.setUniform(prog, "uShadowFar", 2.0f * diagonal_);
@@ -297,7 +297,7 @@ class AvgMethod : public Method {
   }
 
   void renderShadowAtlas(Frame& f) const {
-    const int faces = shadowMap_ == "cube" ? 6 : 1;
+    const int faces = cubeMaps_ ? 6 : 1;
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
     glViewport(0, 0, GLsizei(atlasW_), GLsizei(atlasH_));
     glEnable(GL_DEPTH_TEST);
@@ -390,7 +390,8 @@ class AvgMethod : public Method {
   float vplShadowTolerance_ = 0.002f, vplShadowBias_ = 0.5f, lift_ = 1.0f, marchStep_ = 0.5f, diagonal_ = 0,
         cellDiagonal_ = 0, radius_ = 0;
   glm::vec3 centre_{0.0f};
-  std::string shadowMap_, tracing_;
+  bool cubeMaps_ = true;       // shadow_map=cube (six faces per VPL) or paraboloid (one)
+  bool exactTracing_ = false;  // tracing=exact (Embree) or avg (marching the AVG)
   VplSettings s_;
   ShadowParams shadow_;
   std::unique_ptr<DirectPass> direct_;
