@@ -25,8 +25,10 @@
 
 #include "core/error.h"
 #include "core/shader_library.h"
+#include "illum/framework/compute_pass.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/resources/or_mip_pyramid.h"
+#include "shaders/illum/voxel_view/params.glsl"
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gl_ray_tracer.h"
 
@@ -50,7 +52,7 @@ class VoxelViewMethod : public Method {
   void prepareFrame(Frame& f) override {
     ShaderDefines defs;
     addTracerDefine(defs, tracer_);
-    prog_ = f.shaders().program({"illum/voxel_view/view.comp.glsl"}, defs);
+    view_.create(f, {"illum/voxel_view/view.comp.glsl"}, defs, {});
     const GlPyramid& pyramid = f.resources.get<GlPyramid>();
     if (uint32_t(level_) >= pyramid.levels()) {
       const glm::uvec3 r = pyramid.box().resolution;
@@ -60,22 +62,21 @@ class VoxelViewMethod : public Method {
   }
   bool addSample(Frame& f, int) override {
     auto s = f.profiler.scope("trace_view");
-    ShaderLibrary& shaders = f.shaders();
-    glUseProgram(prog_);
-    f.resources.get<GlPyramid>().bind(shaders, prog_);
-    shaders.setUniform(prog_, "uInvViewProj", f.camera.invViewProj);
-    shaders.setUniform(prog_, "uEye", f.camera.position);
-    shaders.setUniform(prog_, "uFwd", f.camera.forward);
-    shaders.setUniform(prog_, "uClipNear", f.camera.clipNear);
-    shaders.setUniform(prog_, "uLevel", uint32_t(level_));
+    shared::VoxelViewParams& p = view_.params();
+    for (int c = 0; c < 4; ++c) p.invViewProj[c] = f.camera.invViewProj[c];
+    p.eye = glm::vec4(f.camera.position, f.camera.clipNear);
+    p.forward = glm::vec4(f.camera.forward, 0.0f);
     // The depth cue's range: the scene's nearest and farthest points from the eye.
     const Bounds b = f.scene.bounds(f.request.time);
     const glm::vec3 e = f.camera.position, nearest = glm::clamp(e, b.lo, b.hi);
     const glm::vec3 farthest = glm::max(glm::abs(e - b.lo), glm::abs(e - b.hi));
-    shaders.setUniform(prog_, "uDepthRange", glm::vec2(glm::length(e - nearest), glm::length(farthest)));
+    p.nearest = glm::length(e - nearest);
+    p.farthest = glm::length(farthest);
+    p.level = uint32_t(level_);
+    view_.use(f);
+    f.resources.get<GlPyramid>().bind(f.shaders(), view_.program());
     glBindImageTexture(IMAGE_SAMPLE, f.sampleImage("image"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glDispatchCompute(GLuint((f.width() + 7) / 8), GLuint((f.height() + 7) / 8), 1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    view_.dispatch(f.width(), f.height());
     return true;
   }
 
@@ -83,7 +84,7 @@ class VoxelViewMethod : public Method {
   std::string tracer_;
   BinaryGridNeed grid_;
   int level_ = 0;
-  unsigned prog_ = 0;
+  ComputePass<shared::VoxelViewParams> view_;
 };
 
 }  // namespace
