@@ -43,9 +43,9 @@ void ComputePassBase::create(Frame& f, const std::vector<std::string>& files, co
                              std::vector<PassInput> inputs, size_t paramBytes) {
   program_ = f.shaders().program(files, defines);
   inputs_ = std::move(inputs);
-  std::string names;
-  for (const std::string& file : files) names += (names.empty() ? "" : ", ") + file;
-  checkBlockLayout(program_, "Pass", paramBytes, names);
+  files_.clear();
+  for (const std::string& file : files) files_ += (files_.empty() ? "" : ", ") + file;
+  checkBlockLayout(program_, "Pass", paramBytes, files_);
 }
 
 void ComputePassBase::begin(Frame& f, const UniformBuffer& params) const {

@@ -77,6 +77,7 @@ void gbufferInput(Frame& f, unsigned program);  // this sample's G-buffer
 class ComputePassBase {
  public:
   unsigned program() const { return program_; }
+  const std::string& files() const { return files_; }  // its shader files, for messages
   // glDispatchCompute over ceil(w/8) × ceil(h/8) groups, then `barriers`.
   void dispatch(int width, int height, unsigned barriers = kImageAndFetchBarriers) const;
   static const unsigned kImageAndFetchBarriers;
@@ -89,6 +90,7 @@ class ComputePassBase {
 
  private:
   unsigned program_ = 0;
+  std::string files_;
   std::vector<PassInput> inputs_;
 };
 

@@ -41,88 +41,90 @@ void GatherKit::prepare(Frame& f, const GatherSettings& s) {
   blur_ = s.blur && s.interleave > 1;
   blurProg_ = shaders.program({"illum/gather/blur.comp.glsl"});
   upProg_ = shaders.program({"illum/gather/upsample.comp.glsl"});
+  checkBlockLayout(blurProg_, "Gather", sizeof(shared::GatherParams), "illum/gather/blur.comp.glsl");
+  checkBlockLayout(upProg_, "Gather", sizeof(shared::GatherParams), "illum/gather/upsample.comp.glsl");
+  shared::GatherParams& p = block_.value;
+  p = shared::GatherParams{};
   const float pixelAngle = 2.0f * std::tan(glm::radians(f.scene.camera.fovYDeg) * 0.5f) / float(f.height());
-  for (unsigned prog : {blurProg_, upProg_}) {
-    shaders.setUniform(prog, "uPixelAngle", pixelAngle);
-    shaders.setUniform(prog, "uScale", scale_);
-  }
-  shaders.setUniform(blurProg_, "uInterleave", s.interleave);
-  shaders.setUniform(upProg_, "uComposite", s.reflect ? 0 : 1);
-  shaders.setUniform(upProg_, "uWriteIndirect", f.wants("indirect") ? 1 : 0);
-  shaders.setUniform(upProg_, "uWriteDirect", f.wants("direct") ? 1 : 0);
+  p.camera = glm::vec4(f.camera.position, pixelAngle);
+  p.scale = scale_;
+  p.rays = s.rays;
+  p.interleave = s.interleave;
 }
 
-void GatherKit::setFrameUniforms(ShaderLibrary& shaders, unsigned prog) const {
-  shaders.setUniform(prog, "uScale", scale_);
-  shaders.setUniform(prog, "uRays", s_.rays);
-  shaders.setUniform(prog, "uInterleave", s_.interleave);
+void GatherKit::checkPass(const ComputePassBase& pass) {
+  checkBlockLayout(pass.program(), "Gather", sizeof(shared::GatherParams), pass.files());
 }
 
-void GatherKit::setSampleUniforms(ShaderLibrary& shaders, unsigned prog, int k) const {
-  shaders.setUniform(prog, "uFrame", k);
+void GatherKit::setSample(int k) {
+  block_.value.frame = k;
   // Sample 0 unrotated; later samples rotate by Halton (5, 7) points.
-  shaders.setUniform(prog, "uRotation", k == 0 ? glm::vec2(0.0f) : glm::vec2(halton(k, 5), halton(k, 7)));
+  block_.value.rotation = k == 0 ? glm::vec4(0.0f) : glm::vec4(halton(k, 5), halton(k, 7), 0.0f, 0.0f);
 }
 
-void GatherKit::dispatchGather(ShaderLibrary& shaders, unsigned prog, int items, int perDispatch) const {
+void GatherKit::upload() {
+  block_.upload();
+  block_.buffer().bind(UBO_GATHER);
+}
+
+void GatherKit::dispatchGather(int items, int perDispatch) {
   glBindImageTexture(IMAGE_OUTPUT, low_[0], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
   perDispatch = std::max(1, perDispatch);
+  shared::GatherParams& p = block_.value;
   for (int first = 0; first == 0 || first < items; first += perDispatch) {
-    shaders.setUniform(prog, "uBatchFirst", first);
-    shaders.setUniform(prog, "uBatchEnd", std::min(items, first + perDispatch));
-    shaders.setUniform(prog, "uAccumulate", first > 0 ? 1 : 0);
+    p.batchFirst = first;
+    p.batchEnd = std::min(items, first + perDispatch);
+    p.accumulate = first > 0 ? 1 : 0;
+    upload();
     glDispatchCompute(unsigned(lw_ + 7) / 8, unsigned(lh_ + 7) / 8, 1);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
 }
 
-namespace {
-// The blur (when on) of `low` into `scratch`; returns what the upsampling reads.
-unsigned blurInto(Frame& f, unsigned prog, unsigned low, unsigned scratch, int lw, int lh, const char* pass) {
+unsigned GatherKit::blurInto(Frame& f, unsigned low, const char* pass) {
   auto s = f.profiler.scope(pass);
-  glUseProgram(prog);
-  f.shaders().setUniform(prog, "uCameraPosition", f.camera.position);
+  glUseProgram(blurProg_);
+  block_.value.camera = glm::vec4(f.camera.position, block_.value.camera.w);
+  upload();
   f.gbuffer().bind();
   glBindTextureUnit(TEXUNIT_PASS_INPUT, low);
-  glBindImageTexture(IMAGE_OUTPUT, scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glDispatchCompute(unsigned(lw + 7) / 8, unsigned(lh + 7) / 8, 1);
+  glBindImageTexture(IMAGE_OUTPUT, low_[1], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glDispatchCompute(unsigned(lw_ + 7) / 8, unsigned(lh_ + 7) / 8, 1);
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-  return scratch;
+  return low_[1];
 }
-}  // namespace
 
-void GatherKit::resolve(Frame& f) const {
-  ShaderLibrary& shaders = f.shaders();
-  const unsigned input = blur_ ? blurInto(f, blurProg_, low_[0], low_[1], lw_, lh_, "blur") : low_[0];
+void GatherKit::upsample(Frame& f, unsigned input) {
+  glUseProgram(upProg_);
+  block_.value.camera = glm::vec4(f.camera.position, block_.value.camera.w);
+  upload();
+  f.gbuffer().bind();
+  glBindTextureUnit(TEXUNIT_PASS_INPUT, input);
+  glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void GatherKit::resolve(Frame& f) {
+  const unsigned input = blur_ ? blurInto(f, low_[0], "blur") : low_[0];
   auto s = f.profiler.scope(scale_ > 1 ? "upsample_composite" : "composite");
-  glUseProgram(upProg_);
-  shaders.setUniform(upProg_, "uCameraPosition", f.camera.position);
-  f.gbuffer().bind();
-  glBindTextureUnit(TEXUNIT_PASS_INPUT, input);
+  shared::GatherParams& p = block_.value;
+  p.composite = s_.reflect ? 0 : 1;
+  p.writeIndirect = f.wants("indirect") ? 1 : 0;
+  p.writeDirect = f.wants("direct") ? 1 : 0;
   bindSampleAndSplitImages(f);
-  glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  upsample(f, input);
 }
 
-void GatherKit::resolveValue(Frame& f, unsigned low, unsigned full, const std::string& name) const {
-  ShaderLibrary& shaders = f.shaders();
-  const unsigned input =
-      blur_ ? blurInto(f, blurProg_, low, low_[1], lw_, lh_, ("blur_" + name).c_str()) : low;
+void GatherKit::resolveValue(Frame& f, unsigned low, unsigned full, const std::string& name) {
+  const unsigned input = blur_ ? blurInto(f, low, ("blur_" + name).c_str()) : low;
   auto s = f.profiler.scope("upsample_" + name);
-  glUseProgram(upProg_);
-  shaders.setUniform(upProg_, "uCameraPosition", f.camera.position);
-  shaders.setUniform(upProg_, "uComposite", 1);
-  shaders.setUniform(upProg_, "uWriteIndirect", 0);
-  shaders.setUniform(upProg_, "uWriteDirect", 0);
-  f.gbuffer().bind();
-  glBindTextureUnit(TEXUNIT_PASS_INPUT, input);
+  shared::GatherParams& p = block_.value;
+  p.composite = 1;
+  p.writeIndirect = 0;
+  p.writeDirect = 0;
   glBindImageTexture(IMAGE_SAMPLE, full, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-  glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-  shaders.setUniform(upProg_, "uComposite", s_.reflect ? 0 : 1);
-  shaders.setUniform(upProg_, "uWriteIndirect", f.wants("indirect") ? 1 : 0);
-  shaders.setUniform(upProg_, "uWriteDirect", f.wants("direct") ? 1 : 0);
+  upsample(f, input);
 }
 
 }  // namespace vgi

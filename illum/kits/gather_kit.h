@@ -8,11 +8,13 @@
 #pragma once
 #include <string>
 
+#include "illum/framework/compute_pass.h"
+#include "shaders/illum/gather/params.glsl"
+
 namespace vgi {
 
 class Frame;
 class ParamSet;
-class ShaderLibrary;
 
 struct GatherSettings {
   int rays = 16;
@@ -32,26 +34,28 @@ class GatherKit {
  public:
   // Once per frame: the gather buffers (the frame's scratch textures) and programs.
   void prepare(Frame& frame, const GatherSettings& settings);
-  // The kit's uniforms of a gather program that uses GATHER_DIRECTIONS: uScale,
-  // uRays, uInterleave once per frame (prepare), uFrame and uRotation per sample.
-  void setFrameUniforms(ShaderLibrary& shaders, unsigned program) const;
-  void setSampleUniforms(ShaderLibrary& shaders, unsigned program, int sample) const;
+  // Throws unless a gather pass's block Gather (shaders/illum/gather/params.glsl) has the C++
+  // layout; once per pass, after it is created.
+  static void checkPass(const ComputePassBase& pass);
+  // This sample's directions (GATHER_DIRECTIONS): sample 0 unrotated, later ones rotated.
+  void setSample(int sample);
   // Binds the gather buffer at IMAGE_OUTPUT and dispatches the program in use
-  // over it, in batches of `perDispatch` of its `items` (rays, VPL chains):
-  // uBatchFirst, uBatchEnd, uAccumulate per dispatch (gather.glsl says why).
-  void dispatchGather(ShaderLibrary& shaders, unsigned program, int items, int perDispatch) const;
+  // over it, in batches of `perDispatch` of its `items` (rays, cones, VPL chains):
+  // the kit's parameters (its block at UBO_GATHER) with each batch's range
+  // (gather.glsl says why).
+  void dispatchGather(int items, int perDispatch);
   // The kit's ray-gathering modules' batch: 16 rays of up to 4 traces each
   // stay under llvmpipe's 65535 loop iterations per invocation.
   static constexpr int kRaysPerDispatch = 16;
   // Blur (when on and k > 1), then upsampling + composite into the sample
   // image, and the "indirect" / "direct" outputs when asked for; timed as
   // "blur" and "upsample_composite" (or "composite" at full resolution).
-  void resolve(Frame& frame) const;
+  void resolve(Frame& frame);
   // A second quantity of the gather (an RGBA32F image of the gather size, w = 1
   // on a surface; e.g. vct's AO) through the same blur and upsampling into the
   // full-resolution RGBA32F texture `full` (the value itself, no composite);
   // timed as "blur_<name>" and "upsample_<name>".
-  void resolveValue(Frame& frame, unsigned low, unsigned full, const std::string& name) const;
+  void resolveValue(Frame& frame, unsigned low, unsigned full, const std::string& name);
 
   int width() const { return lw_; }
   int scale() const { return scale_; }  // image pixels per gather pixel
@@ -66,6 +70,13 @@ class GatherKit {
   GatherSettings s_;
   int scale_ = 1, lw_ = 0, lh_ = 0;
   bool blur_ = false;
+  UniformBlock<shared::GatherParams> block_;
+  // Uploads the parameters and binds them at UBO_GATHER.
+  void upload();
+  // The blur (when on) of `low` into the second buffer; returns what the upsampling reads.
+  unsigned blurInto(Frame& f, unsigned low, const char* pass);
+  // The upsampling of `input` into the images bound at IMAGE_SAMPLE (…_AOV0/1).
+  void upsample(Frame& f, unsigned input);
   unsigned low_[2] = {0, 0};  // gathered, blurred
   unsigned blurProg_ = 0, upProg_ = 0;
 };

@@ -50,21 +50,21 @@ void VplKit::prepare(Frame& f, const VplSettings& s, const std::string& tracer, 
   s_ = s;
   sceneDiagonal_ = sceneDiagonal;
   dMin_ = s.clamp * sceneDiagonal;
-  ShaderLibrary& shaders = f.shaders();
   kit_.prepare(f, s.gather);
   ShaderDefines defs;
   addTracerDefine(defs, tracer);
-  prog_ = shaders.program({"illum/vpl/gather.comp.glsl"}, defs);
-  shaders.setUniform(prog_, "uScale", kit_.scale());
-  shaders.setUniform(prog_, "uChains", unsigned(s.chains));
-  shaders.setUniform(prog_, "uBounces", s.bounces);
-  shaders.setUniform(prog_, "uInterleave", s.gather.interleave);
-  shaders.setUniform(prog_, "uMinDistance2", minDistance2());
-  shaders.setUniform(prog_, "uVisibility",
-                     s.visibility == VplVisibility::Voxels       ? 1
-                     : s.visibility == VplVisibility::ShadowMaps ? 2
-                                                                 : 0);
-  shaders.setUniform(prog_, "uOffset", s.offset * voxelDiagonal);
+  gather_.create(f, {"illum/vpl/gather.comp.glsl"}, defs, {gbufferInput});
+  GatherKit::checkPass(gather_);
+  checkBlockLayout(gather_.program(), "VplShadow", sizeof(shared::VplShadowParams), gather_.files());
+  shared::VplGatherParams& p = gather_.params();
+  p.chains = unsigned(s.chains);
+  p.bounces = s.bounces;
+  p.minDistance2 = minDistance2();
+  p.visibility = s.visibility == VplVisibility::Voxels       ? shared::VPL_VISIBILITY_VOXELS
+                 : s.visibility == VplVisibility::ShadowMaps ? shared::VPL_VISIBILITY_SHADOW_MAPS
+                                                             : shared::VPL_VISIBILITY_NONE;
+  p.offset = s.offset * voxelDiagonal;
+  shadow_.value = shared::VplShadowParams{};
   const size_t slots = std::max<size_t>(1, size_t(s.chains) * size_t(s.bounces));
   if (slots != slots_) {
     vpls_ = makeBuffer(slots * sizeof(shared::Vpl));
@@ -72,19 +72,23 @@ void VplKit::prepare(Frame& f, const VplSettings& s, const std::string& tracer, 
   }
 }
 
-void VplKit::gather(Frame& f, const std::function<void(unsigned)>& bindExtra) const {
+void VplKit::gather(Frame& f, const std::function<void(unsigned)>& bindExtra) {
   if (s_.visibility == VplVisibility::Exact) {
     gatherExact(f);
     return;
   }
-  glUseProgram(prog_);
-  if (bindExtra) bindExtra(prog_);
-  f.gbuffer().bind();
+  gather_.use(f);
+  bindShadowParams();
+  if (bindExtra) bindExtra(gather_.program());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, vpls_.get());
   // Batches of chains per dispatch: llvmpipe's per-invocation loop limit (gather.glsl).
   const int sets = s_.gather.interleave * s_.gather.interleave;
-  kit_.dispatchGather(f.shaders(), prog_, (s_.chains + sets - 1) / sets,
-                      std::max(1, kRaysPerDispatch / s_.bounces));
+  kit_.dispatchGather((s_.chains + sets - 1) / sets, std::max(1, kRaysPerDispatch / s_.bounces));
+}
+
+void VplKit::bindShadowParams() {
+  shadow_.upload();
+  shadow_.buffer().bind(UBO_VPL_SHADOW);
 }
 
 std::vector<shared::Vpl> VplKit::read() const {
@@ -106,7 +110,7 @@ void VplKit::write(const std::vector<shared::Vpl>& v) const {
 // 10⁻⁴ of the scene diagonal along its normal, the VPL exactLift — avg's VPLs
 // sit inside their cells, off the surface: its maps' lift), written into the
 // kit's buffer.
-void VplKit::gatherExact(Frame& f) const {
+void VplKit::gatherExact(Frame& f) {
   const std::vector<shared::Vpl> v = read();
   const int W = f.width(), H = f.height();
   std::vector<glm::vec4> pos(size_t(W) * size_t(H)), nrm(pos.size());

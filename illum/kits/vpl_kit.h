@@ -13,6 +13,7 @@
 #include "core/gl_handles.h"
 #include "illum/framework/method.h"
 #include "illum/kits/gather_kit.h"
+#include "shaders/illum/vpl/params.glsl"
 #include "shaders/shared/vpl.glsl"
 
 namespace vgi {
@@ -54,12 +55,15 @@ class VplKit {
   void prepare(Frame& f, const VplSettings& s, const std::string& tracer, float voxelDiagonal,
                float sceneDiagonal);
   unsigned vplBuffer() const { return vpls_.get(); }
-  unsigned gatherProgram() const { return prog_; }
+  // The shadow-map atlas's layout the gather reads (zero, unused, without shadow maps): `avg` fills
+  // it before the first gather and binds it for its raster with bindShadowParams.
+  shared::VplShadowParams& shadowParams() { return shadow_.value; }
+  void bindShadowParams();
   // The gather of this sample ("gather" is timed by the caller); bindExtra
   // binds what the visibility reads besides the G-buffer and the VPLs
   // (the pyramid, the shadow atlas) to the gather program.
-  void gather(Frame& f, const std::function<void(unsigned program)>& bindExtra) const;
-  void resolve(Frame& f) const { kit_.resolve(f); }
+  void gather(Frame& f, const std::function<void(unsigned program)>& bindExtra);
+  void resolve(Frame& f) { kit_.resolve(f); }
   std::vector<shared::Vpl> read() const;
   void write(const std::vector<shared::Vpl>& v) const;
   // vpls_placed and vpl_flux per bounce (the last sample's), the clamp, the gather size; the VPL
@@ -68,12 +72,13 @@ class VplKit {
   float minDistance2() const { return dMin_ * dMin_; }
 
  private:
-  void gatherExact(Frame& f) const;
+  void gatherExact(Frame& f);
   VplSettings s_;
   GatherKit kit_;
   GlBuffer vpls_;
   size_t slots_ = 0;
-  unsigned prog_ = 0;
+  ComputePass<shared::VplGatherParams> gather_;
+  UniformBlock<shared::VplShadowParams> shadow_;
   float dMin_ = 0, sceneDiagonal_ = 0;
 };
 

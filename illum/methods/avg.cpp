@@ -265,14 +265,6 @@ class AvgMethod : public Method {
   }
 
  private:
-  void shadowUniforms(ShaderLibrary& shaders, unsigned prog) const {
-    shaders.setUniform(prog, "uShadowCube", cubeMaps_ ? 1 : 0);
-    shaders.setUniform(prog, "uShadowRes", vplShadowRes_);
-    shaders.setUniform(prog, "uShadowTilesPerRow", perRow_);
-    shaders.setUniform(prog, "uShadowFar", 2.0f * diagonal_);
-    shaders.setUniform(prog, "uShadowLift", lift_ * cellDiagonal_);
-  }
-
   void prepareShadowAtlas(Frame& f) {
     ShaderLibrary& shaders = f.shaders();
     if (!atlas_) {
@@ -287,16 +279,20 @@ class AvgMethod : public Method {
       glNamedFramebufferDrawBuffer(fbo_, GL_NONE);
     }
     shadowProg_ = shaders.program({"illum/vpl/shadow.vert.glsl", "illum/vpl/shadow.frag.glsl"});
-    shadowUniforms(shaders, shadowProg_);
-    shaders.setUniform(shadowProg_, "uAtlasSize", glm::ivec2(int(atlasW_), int(atlasH_)));
-    const unsigned gather = kit_.gatherProgram();
-    shadowUniforms(shaders, gather);
-    shaders.setUniform(gather, "uVplShadowBias", vplShadowBias_);
-    shaders.setUniform(gather, "uVplShadowTolerance",
-                       vplShadowTriangles_ > 0 ? f.resources.get<Occluders>().tolerance() : 0.0f);
+    checkBlockLayout(shadowProg_, "VplShadow", sizeof(shared::VplShadowParams), "illum/vpl/shadow.*.glsl");
+    shared::VplShadowParams& p = kit_.shadowParams();
+    p.cube = cubeMaps_ ? 1 : 0;
+    p.res = vplShadowRes_;
+    p.tilesPerRow = perRow_;
+    p.far = 2.0f * diagonal_;
+    p.lift = lift_ * cellDiagonal_;
+    p.bias = vplShadowBias_;
+    p.tolerance = vplShadowTriangles_ > 0 ? f.resources.get<Occluders>().tolerance() : 0.0f;
+    p.atlasWidth = int(atlasW_);
+    p.atlasHeight = int(atlasH_);
   }
 
-  void renderShadowAtlas(Frame& f) const {
+  void renderShadowAtlas(Frame& f) {
     const int faces = cubeMaps_ ? 6 : 1;
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
     glViewport(0, 0, GLsizei(atlasW_), GLsizei(atlasH_));
@@ -308,6 +304,7 @@ class AvgMethod : public Method {
     glClearDepth(1.0);
     glClear(GL_DEPTH_BUFFER_BIT);
     glUseProgram(shadowProg_);
+    kit_.bindShadowParams();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, kit_.vplBuffer());
     if (vplShadowTriangles_ > 0)
       f.resources.get<Occluders>().drawInstanced(s_.chains * s_.bounces * faces);

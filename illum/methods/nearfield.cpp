@@ -129,7 +129,7 @@ void NearFieldMethod::prepareFrame(Frame& f) {
   indirect_.create(f, {"illum/nearfield/indirect.comp.glsl"}, defs,
                    {gpuSceneInput, lightMapsInput, gbufferInput});
   // What stays the same over the frame's samples.
-  kit_.setFrameUniforms(shaders, indirect_.program());
+  GatherKit::checkPass(indirect_);
   shared::NearFieldPassParams& ip = indirect_.params();
   ip.radius = p_.radius;
   ip.offset = p_.offset * voxelDiagonal_;
@@ -148,8 +148,8 @@ bool NearFieldMethod::addSample(Frame& f, int k) {
     auto s = f.profiler.scope("indirect");
     indirect_.use(f);
     bindTracer(f.resources, f.shaders(), indirect_.program());
-    kit_.setSampleUniforms(f.shaders(), indirect_.program(), k);
-    kit_.dispatchGather(f.shaders(), indirect_.program(), kit_.settings().rays, GatherKit::kRaysPerDispatch);
+    kit_.setSample(k);
+    kit_.dispatchGather(kit_.settings().rays, GatherKit::kRaysPerDispatch);
   }
   kit_.resolve(f);
   return true;

@@ -119,7 +119,7 @@ class VctMethod : public Method {
     diffusePass_.create(f, {"illum/vct/diffuse.comp.glsl"}, defs, {gpuSceneInput, gbufferInput});
     shade_.create(f, {"illum/vct/shade.comp.glsl"}, defs, {gpuSceneInput, lightMapsInput, gbufferInput});
     const float diag = f.resources.get<GridBox>().voxelDiagonal();
-    shaders.setUniform(diffusePass_.program(), "uScale", kit_.scale());
+    GatherKit::checkPass(diffusePass_);
     shared::VctDiffuseParams& d = diffusePass_.params();
     VGI_CHECK(constellation_.size() <= std::size(d.cones));
     std::copy(constellation_.begin(), constellation_.end(), d.cones);
@@ -169,7 +169,7 @@ class VctMethod : public Method {
       diffusePass_.use(f);
       volume.bind(shaders, diffusePass_.program(), vol_.step);
       glBindImageTexture(IMAGE_OUTPUT2, aoLow_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-      kit_.dispatchGather(shaders, diffusePass_.program(), cones_, kConesPerDispatch);
+      kit_.dispatchGather(cones_, kConesPerDispatch);
     }
     kit_.resolve(f);
     if (ao_ && f.wants("ao")) kit_.resolveValue(f, aoLow_, aoFull_, "ao");

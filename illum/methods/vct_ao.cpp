@@ -92,12 +92,11 @@ class VctAoMethod : public Method {
     return n;
   }
   void prepareFrame(Frame& f) override {
-    ShaderLibrary& shaders = f.shaders();
     kit_.prepare(f, gather_);
     ShaderDefines defs;
     vol_.addDefines(defs);
     ao_.create(f, {"illum/vct_ao/ao.comp.glsl"}, defs, {gbufferInput});
-    shaders.setUniform(ao_.program(), "uScale", kit_.scale());
+    GatherKit::checkPass(ao_);
     shared::VctAoParams& p = ao_.params();
     VGI_CHECK(constellation_.size() <= std::size(p.cones));
     std::copy(constellation_.begin(), constellation_.end(), p.cones);
@@ -117,7 +116,7 @@ class VctAoMethod : public Method {
       ao_.params().jitter = jitter_ ? period : 0.0f;
       ao_.use(f);
       f.resources.get<ConeSource>().bind(f.shaders(), ao_.program(), vol_.step);
-      kit_.dispatchGather(f.shaders(), ao_.program(), int(constellation_.size()), 16);
+      kit_.dispatchGather(int(constellation_.size()), 16);
     }
     kit_.resolve(f);
     return true;

@@ -59,13 +59,12 @@ class VoxelAoMethod : public Method {
     return n;
   }
   void prepareFrame(Frame& f) override {
-    ShaderLibrary& shaders = f.shaders();
     kit_.prepare(f, gather_);
     ShaderDefines defs;
     addTracerDefine(defs, tracer_);
     ao_.create(f, {"illum/voxel_ao/ao.comp.glsl"}, defs, {gbufferInput});
     const float diagonal = f.resources.get<GridBox>().voxelDiagonal();
-    kit_.setFrameUniforms(shaders, ao_.program());
+    GatherKit::checkPass(ao_);
     shared::VoxelAoParams& p = ao_.params();
     p.radius = radius_;
     p.offset = offset_ * diagonal;
@@ -77,8 +76,8 @@ class VoxelAoMethod : public Method {
       auto s = f.profiler.scope("ao");
       ao_.use(f);
       bindTracer(f.resources, f.shaders(), ao_.program());
-      kit_.setSampleUniforms(f.shaders(), ao_.program(), k);
-      kit_.dispatchGather(f.shaders(), ao_.program(), kit_.settings().rays, GatherKit::kRaysPerDispatch);
+      kit_.setSample(k);
+      kit_.dispatchGather(kit_.settings().rays, GatherKit::kRaysPerDispatch);
     }
     kit_.resolve(f);
     return true;

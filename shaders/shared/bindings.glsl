@@ -41,6 +41,8 @@
 // ---- uniform buffers (std140 blocks of params structs: illum/framework/compute_pass.h)
 #define UBO_PASS 0         // a compute pass's own parameters: `uniform Pass { T p; }`
 #define UBO_VOXEL_HITS 1   // the voxel-hit rules of illum/voxel_hits.glsl (VoxelHitParams)
+#define UBO_GATHER 2       // the gather kit's parameters (illum/gather/params.glsl: GatherParams)
+#define UBO_VPL_SHADOW 3   // the VPL shadow-map atlas (illum/vpl/params.glsl: VplShadowParams)
 
 // ---- textures (samplers)
 #define TEXUNIT_GBUFFER_POSITION 0          // world position, w = 1 where a surface was seen

@@ -7,7 +7,6 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler2D uInput;
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D uOutput;
-uniform int uInterleave;
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
@@ -28,7 +27,7 @@ void main() {
   // same total on every k-periodic lattice, so each direction set still
   // counts equally on a flat surface, and one bright ray spreads as a soft
   // bump instead of a hard k×k square (visible at 1 spp).
-  int k = uInterleave;
+  int k = gather.interleave;
   for (int dy = 1 - k; dy <= k - 1; ++dy)
     for (int dx = 1 - k; dx <= k - 1; ++dx) {
       ivec2 qj = q + ivec2(dx, dy);
@@ -37,7 +36,7 @@ void main() {
       if (cj.w == 0.0f) continue;
       ivec2 pj = representative(qj, full);
       float w = float((k - abs(dx)) * (k - abs(dy))) * geometryWeight(p, n, texelFetch(gPosition, pj, 0).xyz, texelFetch(gNormal, pj, 0).xyz,
-                               float(uScale));
+                               float(gather.scale));
       sum += w * cj.xyz;
       wsum += w;
     }

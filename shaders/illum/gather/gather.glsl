@@ -16,20 +16,20 @@
 // so a blur window that loses some sets at an edge loses samples, not azimuths.
 #include "shared/gbuffer.glsl"
 #include "shared/sampling.glsl"
-uniform int uScale;  // 1, 2 or 4
+#include "params.glsl"
+layout(std140, binding = UBO_GATHER) uniform Gather { GatherParams gather; };
 
 // The image texel an indirect pixel stands for.
-ivec2 representative(ivec2 q, ivec2 full) { return min(q * uScale + uScale / 2, full - 1); }
+ivec2 representative(ivec2 q, ivec2 full) { return min(q * gather.scale + gather.scale / 2, full - 1); }
 
 // A gather pass runs in dispatches over batches of its items (rays, VPL
-// chains): items uBatchFirst … uBatchEnd − 1, added to what the earlier
-// dispatches of the sample stored (uAccumulate). llvmpipe ends every loop of
+// chains): items gather.batchFirst … gather.batchEnd − 1, added to what the
+// earlier dispatches of the sample stored (gather.accumulate). llvmpipe ends every loop of
 // an invocation once 65535 loop iterations have run in it in all (gallivm's
 // loop limiter counts the whole invocation), which one pass over 256 rays of
 // a few hundred tracer steps each reaches — the rest were silently dropped.
-uniform int uBatchFirst, uBatchEnd, uAccumulate;
 // What the earlier dispatches stored at q of the pass's rgba32f image (a macro: image formats do not pass).
-#define gatheredBefore(img, q) (uAccumulate != 0 ? imageLoad(img, q) : vec4(0.0f))
+#define gatheredBefore(img, q) (gather.accumulate != 0 ? imageLoad(img, q) : vec4(0.0f))
 
 // The surface gather pixel q stands for (its representative image pixel's):
 // false where no surface was seen there (the pass stores 0).
@@ -41,12 +41,9 @@ bool gatherReceiver(ivec2 q, out vec3 p, out vec3 n) {
   return P.w != 0.0f;
 }
 
-uniform vec3 uCameraPosition;
-uniform float uPixelAngle;   // world size of one full-resolution pixel per unit distance
-
 float geometryWeight(vec3 p, vec3 n, vec3 pj, vec3 nj, float pixels) {
   float plane = abs(dot(pj - p, n));
-  float scale = uPixelAngle * distance(p, uCameraPosition) * pixels;
+  float scale = gather.camera.w * distance(p, gather.camera.xyz) * pixels;
   float wn = max(dot(n, nj), 0.0f);
   wn *= wn;
   wn *= wn;  // cos⁴
@@ -55,16 +52,12 @@ float geometryWeight(vec3 p, vec3 n, vec3 pj, vec3 nj, float pixels) {
 }
 
 #ifdef GATHER_DIRECTIONS
-uniform int uRays;        // N
-uniform int uInterleave;  // k
-uniform vec2 uRotation;   // per-sample Cranley–Patterson rotation
-uniform int uFrame;       // the sample index: each interleave block adds its own rotation
-
 // The cosine-distributed direction of ray r of gather pixel q around `frame`.
 vec3 gatherDirection(ivec2 q, int r, Basis frame) {
-  uint set = uint(q.x % uInterleave + uInterleave * (q.y % uInterleave));
-  vec2 rotation = uRotation + blockRotation(uint(q.x / uInterleave), uint(q.y / uInterleave), uint(uFrame));
-  vec2 u = fract(interleavedSample(uint(r), set, uint(uRays), uint(uInterleave * uInterleave)) + rotation);
+  int k = gather.interleave;
+  uint set = uint(q.x % k + k * (q.y % k));
+  vec2 rotation = gather.rotation.xy + blockRotation(uint(q.x / k), uint(q.y / k), uint(gather.frame));
+  vec2 u = fract(interleavedSample(uint(r), set, uint(gather.rays), uint(k * k)) + rotation);
   return basisToWorld(frame, cosineSampleHemisphere(u));
 }
 #endif

@@ -40,7 +40,7 @@ void gatherPixel(ivec2 q, vec3 p, vec3 n) {
   Basis frame = makeBasis(n);
   vec3 origin = p + n * pass.offset;
   vec3 sum = vec3(0.0f);
-  for (int r = uBatchFirst; r < uBatchEnd; ++r) {
+  for (int r = gather.batchFirst; r < gather.batchEnd; ++r) {
     vec3 d = gatherDirection(q, r, frame);
     // With pass.passThrough the ray goes on past a hit voxel, up to three times,
     // when (a) a light sees through its entry point — nothing is there (a
@@ -67,5 +67,5 @@ void gatherPixel(ivec2 q, vec3 p, vec3 n) {
       if (pass.passThrough == 0 || !(b.seenThrough || ownBand) || !passHit(ray, pass.voxelDiagonal)) break;
     }
   }
-  imageStore(uIndirect, q, vec4(gatheredBefore(uIndirect, q).xyz + sum / float(uRays), 1.0f));
+  imageStore(uIndirect, q, vec4(gatheredBefore(uIndirect, q).xyz + sum / float(gather.rays), 1.0f));
 }

@@ -5,7 +5,7 @@
 // cone from the apex p + offset·n; the gather buffer receives
 // E = Σ w_k L_k (L_r = ρ E: the kit's composite multiplies the albedo in),
 // the second output the AO Σ w_k (1 − occlusion_k) within aoRadius.
-// Cones uBatchFirst … uBatchEnd − 1 of the dispatch (the kit's batching).
+// Cones gather.batchFirst … gather.batchEnd − 1 of the dispatch (the kit's batching).
 #include "shared/constants.glsl"
 #include "shared/sampling.glsl"
 #include "shared/brdf.glsl"
@@ -31,7 +31,7 @@ void gatherPixel(ivec2 q, vec3 p, vec3 n) {
   vec3 apex = p + n * pass.offset;
   vec3 E = vec3(0.0f);
   float ao = 0.0f;
-  for (int k = uBatchFirst; k < uBatchEnd; ++k) {
+  for (int k = gather.batchFirst; k < gather.batchEnd; ++k) {
     vec3 d = normalize(basisToWorld(frame, vec3(pass.cones[k].x, pass.cones[k].y, pass.cones[k].z)));
     ConeResult c = traceCone(apex, d, pass.tanHalf, pass.maxDistance, pass.aoRadius, pass.falloff, false, pass.offset, pass.guard != 0 ? dot(d, n) : -1.0f);
     vec3 L = c.radiance;

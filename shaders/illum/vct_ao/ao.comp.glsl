@@ -23,7 +23,7 @@ void gatherPixel(ivec2 q, vec3 p, vec3 n) {
   Basis frame = turnedBasis(n, pass.turn + jitter);
   vec3 apex = p + n * pass.offset;
   float ao = 0.0f;
-  for (int k = uBatchFirst; k < uBatchEnd; ++k) {
+  for (int k = gather.batchFirst; k < gather.batchEnd; ++k) {
     vec3 d = normalize(basisToWorld(frame, vec3(pass.cones[k].x, pass.cones[k].y, pass.cones[k].z)));
     ConeResult c = traceCone(apex, d, pass.tanHalf, pass.radius, pass.radius, pass.falloff, false, pass.offset, pass.guard != 0 ? dot(d, n) : -1.0f);
     ao += pass.cones[k].w * (1.0f - c.occlusion);

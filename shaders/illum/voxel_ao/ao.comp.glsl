@@ -27,7 +27,7 @@ void gatherPixel(ivec2 q, vec3 p, vec3 n) {
   Basis frame = makeBasis(n);
   vec3 origin = p + n * pass.offset;
   int open = 0;
-  for (int r = uBatchFirst; r < uBatchEnd; ++r) {
+  for (int r = gather.batchFirst; r < gather.batchEnd; ++r) {
     vec3 d = gatherDirection(q, r, frame);
     ResumableRay ray = resumableRay(origin, d, pass.radius);
     while (true) {
@@ -39,5 +39,5 @@ void gatherPixel(ivec2 q, vec3 p, vec3 n) {
       if (pass.passThrough == 0 || height >= pass.voxelDiagonal || !passHit(ray, pass.voxelDiagonal)) break;
     }
   }
-  imageStore(uAo, q, vec4(gatheredBefore(uAo, q).xyz + vec3(float(open) / float(uRays)), 1.0f));
+  imageStore(uAo, q, vec4(gatheredBefore(uAo, q).xyz + vec3(float(open) / float(gather.rays)), 1.0f));
 }

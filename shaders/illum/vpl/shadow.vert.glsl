@@ -5,7 +5,6 @@
 #include "vpl_shadow.glsl"
 layout(location = 0) in vec3 inPosition;
 layout(std430, binding = BINDING_VPLS) readonly buffer Vpls { Vpl vpls[]; };
-uniform ivec2 uAtlasSize;
 out vec3 vWorld;
 flat out vec3 vCentre;
 out float gl_ClipDistance[5];
@@ -19,12 +18,12 @@ void main() {
   vec4 c = vplShadowClip(v, f, inPosition - vCentre);
   // The face's clip space → its square of the atlas (affine in x/w, y/w, so in clip space).
   vec2 o = vec2(vplShadowFaceOrigin(s, f));
-  vec2 scale = float(uShadowRes) / vec2(uAtlasSize), shift = (2.0f * o + float(uShadowRes)) / vec2(uAtlasSize) - 1.0f;
+  vec2 scale = float(vplShadow.res) / vec2(vplShadow.atlasWidth, vplShadow.atlasHeight), shift = (2.0f * o + float(vplShadow.res)) / vec2(vplShadow.atlasWidth, vplShadow.atlasHeight) - 1.0f;
   gl_Position = vec4(c.xy * scale + c.w * shift, 0.0f, c.w);
   gl_ClipDistance[0] = c.w + c.x;
   gl_ClipDistance[1] = c.w - c.x;
   gl_ClipDistance[2] = c.w + c.y;
   gl_ClipDistance[3] = c.w - c.y;
-  gl_ClipDistance[4] = uShadowCube != 0 ? c.w - 1e-4f * uShadowFar : c.z + 1e-3f;
+  gl_ClipDistance[4] = vplShadow.cube != 0 ? c.w - 1e-4f * vplShadow.far : c.z + 1e-3f;
   if (v.position.w == 0.0f) gl_ClipDistance[4] = -1.0f;
 }
