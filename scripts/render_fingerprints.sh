@@ -66,3 +66,9 @@ row $C reference --set integrator=nearfield --set visibility=voxels
 row $C reference --set integrator=ao
 row $C reference --set integrator=direct
 row $root/scenes/leak-rooms-lit.json vct
+row $C reference_gl --aov direct,indirect
+row $O reference_gl --set integrator=path
+row $O reference_gl --set integrator=path --set emitter_sampling=light
+row $C reference_gl --set integrator=nearfield
+row $C reference_gl --set integrator=ao
+row $C reference_gl --set integrator=direct

@@ -28,12 +28,14 @@
 #include "core/gpu_scene.h"
 #include "core/params.h"
 #include "core/shader_library.h"
+#include "illum/framework/compute_pass.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/kits/exact_params.h"
 #include "illum/resources/gpu_bvh.h"
 #include "illum/resources/gpu_emitters.h"
 #include "illum/resources/gpu_scene.h"
+#include "shaders/illum/reference_gl/params.glsl"
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gpu_bvh.h"
 
@@ -59,55 +61,49 @@ class ReferenceGlMethod : public Method {
                                      : std::vector<std::string>{};
   }
   void prepareFrame(Frame& f) override {
-    ShaderLibrary& s = f.shaders();
+    shared::ReferenceGlParams& p = pass_.params();
     if (p_.integrator == ExactIntegrator::Ao) {
-      prog_ = s.program({"illum/reference_gl/ao.comp.glsl"});
-      s.setUniform(prog_, "uRadius", p_.radius);
+      pass_.create(f, {"illum/reference_gl/ao.comp.glsl"}, {}, {});
     } else {
       ShaderDefines defs;
       if (p_.integrator == ExactIntegrator::NearField) defs["REFERENCE_NEARFIELD"] = "1";
-      prog_ = s.program({"illum/reference_gl/path.comp.glsl"}, defs);
-      s.setUniform(prog_, "uMaxDepth", p_.maxDepth);
-      s.setUniform(prog_, "uRrDepth", p_.rrDepth);
-      s.setUniform(prog_, "uRadius", p_.radius);
-      s.setUniform(prog_, "uEnv", p_.env ? 1 : 0);
-      s.setUniform(prog_, "uEnvIndirect", p_.envIndirect ? 1 : 0);
+      pass_.create(f, {"illum/reference_gl/path.comp.glsl"}, defs, {gpuSceneInput});
+      p.maxDepth = p_.maxDepth;
+      p.rrDepth = p_.rrDepth;
+      p.env = p_.env ? 1 : 0;
+      p.envIndirect = p_.envIndirect ? 1 : 0;
       // The scene's own delta lights are the first entries of the GPU scene's lights.
-      s.setUniform(prog_, "uDeltaLights", int(f.scene.lights.size()));
-      s.setUniform(prog_, "uEmitterCount", int(f.resources.get<GpuEmitters>().count()));
-      s.setUniform(prog_, "uEmitterSampling",
-                   p_.emitterSampling == EmitterSampling::Mis     ? shared::EMITTER_SAMPLING_MIS
-                   : p_.emitterSampling == EmitterSampling::Light ? shared::EMITTER_SAMPLING_LIGHT
-                                                                  : shared::EMITTER_SAMPLING_BRDF);
-      s.setUniform(prog_, "uWriteIndirect", f.wants("indirect") ? 1 : 0);
-      s.setUniform(prog_, "uWriteDirect", f.wants("direct") ? 1 : 0);
+      p.deltaLights = int(f.scene.lights.size());
+      p.emitterCount = int(f.resources.get<GpuEmitters>().count());
+      p.emitterSampling = p_.emitterSampling == EmitterSampling::Mis     ? shared::EMITTER_SAMPLING_MIS
+                          : p_.emitterSampling == EmitterSampling::Light ? shared::EMITTER_SAMPLING_LIGHT
+                                                                         : shared::EMITTER_SAMPLING_BRDF;
+      p.writeIndirect = f.wants("indirect") ? 1 : 0;
+      p.writeDirect = f.wants("direct") ? 1 : 0;
     }
+    p.radius = p_.radius;
     // The reference's start offset: 2e-5 of the scene's diagonal at this time (plus the coordinates' part).
-    s.setUniform(prog_, "uEps", 2e-5f * f.scene.bounds(f.request.time).diagonal());
-    s.setUniform(prog_, "uSeed", f.request.seed);
+    p.eps = 2e-5f * f.scene.bounds(f.request.time).diagonal();
+    p.seed = f.request.seed;
     // Pixel positions are drawn per sample in the shader, through the reference's pinhole camera
     // (not the sample loop's jittered projection).
     const PinholeView v = pinholeView(f.scene.cameraAt(f.request.time), f.width(), f.height());
-    s.setUniform(prog_, "uEye", v.position);
-    s.setUniform(prog_, "uClipNear", v.clipNear);
-    s.setUniform(prog_, "uFwd", v.fwd);
-    s.setUniform(prog_, "uRight", v.right * (v.tanHalf * v.aspect));
-    s.setUniform(prog_, "uUp", v.up * v.tanHalf);
+    p.eye = glm::vec4(v.position, v.clipNear);
+    p.forward = glm::vec4(v.fwd, 0.0f);
+    p.right = glm::vec4(v.right * (v.tanHalf * v.aspect), 0.0f);
+    p.up = glm::vec4(v.up * v.tanHalf, 0.0f);
   }
   bool addSample(Frame& f, int k) override {
     auto scope = f.profiler.scope(p_.integratorName);
-    ShaderLibrary& s = f.shaders();
-    glUseProgram(prog_);
+    pass_.params().sampleIndex = uint32_t(k);
+    pass_.use(f);
     f.resources.get<GpuBvh>().bind();
     if (p_.integrator != ExactIntegrator::Ao) {
-      f.resources.get<GpuScene>().bind(s, prog_);
       f.resources.get<GpuScene>().bindVertices();
       f.resources.get<GpuEmitters>().bind();
     }
-    s.setUniform(prog_, "uSample", uint32_t(k));
     bindSampleAndSplitImages(f);
-    glDispatchCompute(unsigned(f.width() + 7) / 8, unsigned(f.height() + 7) / 8, 1);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    pass_.dispatch(f.width(), f.height());
     return true;
   }
   void finishFrame(Frame& f) override {
@@ -121,7 +117,7 @@ class ReferenceGlMethod : public Method {
  private:
   ExactParams p_;
   float diagonal_ = 0;
-  unsigned prog_ = 0;
+  ComputePass<shared::ReferenceGlParams> pass_;
 };
 
 }  // namespace

@@ -9,8 +9,6 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform image2D uImage;
 
-uniform float uRadius;  // world units
-
 void main() {
   ivec2 q;
   uint state;
@@ -26,7 +24,7 @@ void main() {
     u.x = rngNext(state);
     u.y = rngNext(state);
     const vec3 wi = basisToWorld(makeBasis(s.n), cosineSampleHemisphere(u));
-    if (dot(wi, s.ng) > 0.0f) ao = occluded(offsetOffSurface(p, s.ng, wi, uEps), wi, uRadius) ? 0.0f : 1.0f;
+    if (dot(wi, s.ng) > 0.0f) ao = occluded(offsetOffSurface(p, s.ng, wi, pass.eps), wi, pass.radius) ? 0.0f : 1.0f;
   }
   imageStore(uImage, q, vec4(vec3(ao), 1.0f));
 }

@@ -12,12 +12,8 @@ layout(std430, binding = BINDING_BVH_TRIS) readonly buffer BvhTris { vec4 bvhTri
 layout(std430, binding = BINDING_BVH_NORMALS) readonly buffer BvhNormals { vec4 bvhNormals[]; };
 #include "shared/trace_bvh.glsl"
 
-uniform vec3 uEye, uFwd;
-uniform float uClipNear;  // > 0: the camera's cut-away distance (PinholeView::origin)
-uniform vec3 uRight, uUp;  // scaled by tan(fov/2)·aspect and tan(fov/2) (illum/framework/deferred.h, PinholeView)
-uniform float uEps;        // the start offset's scene part (2e-5 of the diagonal, as the reference's)
-uniform uint uSample;
-uniform uint uSeed;
+#include "params.glsl"
+layout(std140, binding = UBO_PASS) uniform Pass { ReferenceGlParams pass; };
 
 // The camera ray through a uniformly random point of pixel q (seeded, as the
 // reference's: a box filter sampled at random, not the sample loop's
@@ -28,18 +24,18 @@ vec3 cameraRay(ivec2 q, ivec2 size, inout uint state) {
   jitter.x = rngNext(state);
   jitter.y = rngNext(state);
   const vec2 ndc = (vec2(q) + jitter) / vec2(size) * 2.0f - 1.0f;
-  return normalize(uFwd + ndc.x * uRight + ndc.y * uUp);
+  return normalize(pass.forward.xyz + ndc.x * pass.right.xyz + ndc.y * pass.up.xyz);
 }
 
 // Where the camera ray along dir starts: the eye, or its point on a cut-away camera's near plane.
-vec3 primaryOrigin(vec3 dir) { return uClipNear > 0.0f ? uEye + dir * (uClipNear / dot(dir, uFwd)) : uEye; }
+vec3 primaryOrigin(vec3 dir) { return pass.eye.w > 0.0f ? pass.eye.xyz + dir * (pass.eye.w / dot(dir, pass.forward.xyz)) : pass.eye.xyz; }
 
 // This invocation's pixel q of an image of `size`, its random stream (per
 // pixel, sample and seed) and its camera ray; false outside the image.
 bool pixelRay(ivec2 size, out ivec2 q, out uint rng, out vec3 dir) {
   q = ivec2(gl_GlobalInvocationID.xy);
   if (q.x >= size.x || q.y >= size.y) return false;
-  rng = rngSeed(uint(q.y * size.x + q.x), uSample, uSeed);
+  rng = rngSeed(uint(q.y * size.x + q.x), pass.sampleIndex, pass.seed);
   dir = cameraRay(q, size, rng);
   return true;
 }

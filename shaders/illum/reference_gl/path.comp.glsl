@@ -7,15 +7,15 @@
 //              the area lights per vertex (chosen by power, uniform on its
 //              triangle), BRDF sampling for the environment and, weighted by
 //              the power heuristic (Veach 1997, §9.2), the emitters; Russian
-//              roulette after uRrDepth bounces; "direct" is the light that
+//              roulette after pass.rrDepth bounces; "direct" is the light that
 //              reaches the first vertex along one segment, "indirect" the rest
-//   direct     path with uMaxDepth = 1
+//   direct     path with pass.maxDepth = 1
 //   nearfield  (REFERENCE_NEARFIELD) direct light at the visible point plus
-//              one bounce to a surface within uRadius, whose exact direct
+//              one bounce to a surface within pass.radius, whose exact direct
 //              light is the indirect part; rays that leave the radius read the
-//              environment when uEnv is set
+//              environment when pass.env is set
 // Materials, textures and delta lights come from the GPU scene
-// (shared/gpu_scene.glsl; the first uDeltaLights entries of `lights` are the
+// (shared/gpu_scene.glsl; the first pass.deltaLights entries of `lights` are the
 // scene's own, the rest the framework's per-sample emitter spots, not read
 // here), area lights from gpu_emitters (shared/emitters.glsl).
 #include "exact.glsl"
@@ -31,15 +31,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform image2D uImage;
 layout(rgba32f, binding = IMAGE_SAMPLE_AOV0) uniform writeonly image2D uIndirectAov;
 layout(rgba32f, binding = IMAGE_SAMPLE_AOV1) uniform writeonly image2D uDirectAov;
-uniform int uWriteIndirect, uWriteDirect;
 
-uniform int uMaxDepth, uRrDepth;  // path
-uniform float uRadius;            // nearfield, world units
-uniform int uEnv;                 // the environment lights the scene (path, direct, nearfield)
-uniform int uEnvIndirect;         // path: the environment seen from x0 counts as indirect
-uniform int uDeltaLights;
-uniform int uEmitterCount;
-uniform int uEmitterSampling;  // EMITTER_SAMPLING_*
 
 struct Surface {
   vec3 p, ng, n;  // ng and n face the incoming ray
@@ -86,13 +78,13 @@ bool intersectScene(vec3 o, vec3 d, float tmax, out Surface sp) {
   return true;
 }
 
-vec3 leaving(Surface sp, vec3 dir) { return offsetOffSurface(sp.p, sp.ng, dir, uEps); }
+vec3 leaving(Surface sp, vec3 dir) { return offsetOffSurface(sp.p, sp.ng, dir, pass.eps); }
 
 // Delta lights + one area-light point by NEE; `followed`: a BRDF sample
 // follows this vertex (then the NEE share is MIS-weighted, else it is 1).
 vec3 directLight(Surface sp, inout uint rng, bool followed) {
   vec3 sum = vec3(0.0f);
-  for (int i = 0; i < uDeltaLights; ++i) {
+  for (int i = 0; i < pass.deltaLights; ++i) {
     const PackedLight L = lights[i];
     const LightSample ls = sampleDeltaLight(L, sp.p);
     if (ls.radiance == vec3(0.0f) || dot(ls.wi, sp.n) <= 0.0f || dot(ls.wi, sp.ng) <= 0.0f) continue;
@@ -103,12 +95,12 @@ vec3 directLight(Surface sp, inout uint rng, bool followed) {
     if (occluded(o, ls.wi, tfar)) continue;
     sum += f * ls.radiance * dot(ls.wi, sp.n);
   }
-  if (uEmitterCount == 0 || (followed && uEmitterSampling == EMITTER_SAMPLING_BRDF)) return sum;
+  if (pass.emitterCount == 0 || (followed && pass.emitterSampling == EMITTER_SAMPLING_BRDF)) return sum;
   vec2 u;
   u.x = rngNext(rng);
   u.y = rngNext(rng);
   // The emitter: the first whose CDF reaches u.x (by power), then a point uniform on it.
-  int lo = 0, hi = uEmitterCount;
+  int lo = 0, hi = pass.emitterCount;
   while (lo < hi) {
     const int mid = (lo + hi) / 2;
     if (emitters[mid].p0Cdf.w < u.x)
@@ -116,7 +108,7 @@ vec3 directLight(Surface sp, inout uint rng, bool followed) {
     else
       hi = mid;
   }
-  const int e = min(lo, uEmitterCount - 1);
+  const int e = min(lo, pass.emitterCount - 1);
   const float cdfLo = emitters[e].e1CdfLo.w, width = emitters[e].p0Cdf.w - cdfLo;
   const vec3 ep = uniformTrianglePoint(emitters[e].p0Cdf.xyz, emitters[e].e1CdfLo.xyz, emitters[e].e2Area.xyz,
                                        emitterRescale(u.x, cdfLo, width), u.y);
@@ -136,7 +128,7 @@ vec3 directLight(Surface sp, inout uint rng, bool followed) {
   if (occluded(o, toPoint / len, len * (1.0f - 1e-4f))) return sum;
   const float pdfLight = (width / emitters[e].e2Area.w) * dist2 / cosL;  // solid angle
   float w = 1.0f;
-  if (followed && uEmitterSampling == EMITTER_SAMPLING_MIS) {
+  if (followed && pass.emitterSampling == EMITTER_SAMPLING_MIS) {
     const float pdfBrdf = brdfPdf(sp.brdf, sp.n, sp.wo, wi);
     w = powerHeuristic(pdfLight, pdfBrdf);
   }
@@ -145,8 +137,8 @@ vec3 directLight(Surface sp, inout uint rng, bool followed) {
 
 // The weight of emission met by a BRDF sample of density pdfBrdf (solid angle).
 float emissionWeight(Surface hit, float pdfBrdf) {
-  if (hit.emitter < 0 || uEmitterSampling == EMITTER_SAMPLING_BRDF) return 1.0f;
-  if (uEmitterSampling == EMITTER_SAMPLING_LIGHT) return 0.0f;
+  if (hit.emitter < 0 || pass.emitterSampling == EMITTER_SAMPLING_BRDF) return 1.0f;
+  if (pass.emitterSampling == EMITTER_SAMPLING_LIGHT) return 0.0f;
   const float cosL = abs(dot(emitters[hit.emitter].normalSides.xyz, hit.wo));
   if (!(cosL > 0.0f)) return 0.0f;
   const float pdfLight = emitterPdfArea(hit.emitter) * hit.t * hit.t / cosL;
@@ -167,11 +159,11 @@ vec3 pathLi(vec3 o, vec3 d, inout uint rng, inout vec3 indirect) {
   for (int depth = 0;; ++depth) {
     Surface sp;
     if (!intersectScene(o, d, 1e30f, sp)) {
-      // The camera sees the environment as background always; as a light only with uEnv.
-      if (depth == 0 || uEnv != 0) {
+      // The camera sees the environment as background always; as a light only with pass.env.
+      if (depth == 0 || pass.env != 0) {
         const vec3 e = beta * gpuEnvironmentRadiance(d);
         L += e;
-        if (depth >= 2 || (depth == 1 && uEnvIndirect != 0)) indirect += e;
+        if (depth >= 2 || (depth == 1 && pass.envIndirect != 0)) indirect += e;
       }
       break;
     }
@@ -180,7 +172,7 @@ vec3 pathLi(vec3 o, vec3 d, inout uint rng, inout vec3 indirect) {
       L += e;
       if (depth >= 2) indirect += e;
     }
-    if (depth == uMaxDepth) break;
+    if (depth == pass.maxDepth) break;
     const vec3 nee = beta * directLight(sp, rng, true);
     L += nee;
     if (depth >= 1) indirect += nee;
@@ -189,7 +181,7 @@ vec3 pathLi(vec3 o, vec3 d, inout uint rng, inout vec3 indirect) {
     if (!(pdf > 0.0f) || dot(wi, sp.n) <= 0.0f || dot(wi, sp.ng) <= 0.0f) break;
     beta *= evalBrdf(sp.brdf, sp.n, sp.wo, wi) * (dot(wi, sp.n) / pdf);
     pdfBrdf = pdf;
-    if (depth + 1 >= uRrDepth) {
+    if (depth + 1 >= pass.rrDepth) {
       const float q = russianRouletteQ(beta);
       if (rngNext(rng) < q) break;
       beta /= 1.0f - q;
@@ -211,10 +203,10 @@ vec3 nearFieldLi(vec3 o, vec3 d, inout uint rng, inout vec3 indirect) {
   // The bounce surface y: its emission is direct light at x (the MIS share),
   // its direct light the one indirect bounce.
   Surface y;
-  if (intersectScene(leaving(x, wi), wi, uRadius, y)) {
+  if (intersectScene(leaving(x, wi), wi, pass.radius, y)) {
     if (y.emission != vec3(0.0f)) L += weight * y.emission * emissionWeight(y, pdf);
     indirect = weight * directLight(y, rng, false);
-  } else if (uEnv != 0) {
+  } else if (pass.env != 0) {
     indirect = weight * gpuEnvironmentRadiance(wi);
   }
   return L + indirect;
@@ -232,6 +224,6 @@ void main() {
   const vec3 L = pathLi(primaryOrigin(dir), dir, state, indirect);
 #endif
   imageStore(uImage, q, vec4(L, 1.0f));
-  if (uWriteIndirect != 0) imageStore(uIndirectAov, q, vec4(indirect, 1.0f));
-  if (uWriteDirect != 0) imageStore(uDirectAov, q, vec4(L - indirect, 1.0f));
+  if (pass.writeIndirect != 0) imageStore(uIndirectAov, q, vec4(indirect, 1.0f));
+  if (pass.writeDirect != 0) imageStore(uDirectAov, q, vec4(L - indirect, 1.0f));
 }
