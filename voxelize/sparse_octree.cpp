@@ -12,7 +12,7 @@
 #include "core/profiler.h"
 #include "core/shader_library.h"
 #include "shaders/shared/bindings.glsl"
-#include "shaders/shared/svo.glsl"
+#include "shaders/shared/sparse_octree.glsl"
 
 namespace vgi {
 
@@ -115,7 +115,7 @@ void SparseVoxelOctree::build(unsigned words, ShaderLibrary& shaders, Profiler& 
   for (int i = 0; i < 4; ++i) {
     ShaderDefines d{{modes[i], "1"}};
     if (i == 2 && dilate_) d["DILATE"] = "1";
-    progs[i] = shaders.program({"voxelize/svo_build.comp.glsl"}, d);
+    progs[i] = shaders.program({"voxelize/sparse_octree_build.comp.glsl"}, d);
   }
   const glm::uvec3 r = box_.resolution;
   const glm::uvec4 res(r, r.z / 128u);
@@ -239,7 +239,7 @@ void SparseVoxelOctree::resolve(unsigned counts, unsigned sums, float radianceMa
     dispatchLinear(count);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   };
-  const std::string file = "voxelize/svo_filter.comp.glsl";
+  const std::string file = "voxelize/sparse_octree_filter.comp.glsl";
   {
     auto s = prof.scope("svo_resolve");
     ShaderDefines d{{"RESOLVE", "1"}};

@@ -5,23 +5,23 @@
 // volume of voxelize/value_textures.h, so the cone tracer reads either through
 // one sampling interface (shaders/illum/vct/cones.glsl, CONE_SVO).
 //
-// Build (shaders/voxelize/svo_build.comp): the fragment list is the binary
+// Build (shaders/voxelize/sparse_octree_build.comp): the fragment list is the binary
 // grid's occupied cells (one per cell, from any voxelizer's words); per level
 // from the root: flag the nodes the fragments fall in, allocate a tile of 8
 // children per flagged node (atomic counter), initialise the new tiles (0);
 // depth D = ⌈log2⌉ of the grid's longest side (≤ 10: 1024³). The leaves
 // (level D) are the cells: a leaf is occupied where a fragment flagged it.
-// Values (shaders/voxelize/svo_filter.comp): the leaves' premultiplied radiance
+// Values (shaders/voxelize/sparse_octree_filter.comp): the leaves' premultiplied radiance
 // from sums per leaf (vct's injection writes them: INJECT_SVO), then per level
 // up the tree the dense chain's kernels (boxMean8, or the six faces'
 // anisoReduce) over each node's children, then the bricks' borders.
 // Bricks: 3×3×3 texels per tile (the 8 children + one texel on the +side from
-// the neighbouring tiles; shared/svo.glsl explains why this is what the dense
+// the neighbouring tiles; shared/sparse_octree.glsl explains why this is what the dense
 // trilinear sample needs). Pools (RGBA16F 3D textures, as the dense chains):
 // anisotropic — the leaves' tiles in the iso pool, every other tile in six
 // face pools; isotropic — every tile in the iso pool. `dilate` also allocates
 // the empty nodes whose bricks a stencil at a filled neighbour needs (VCT-AO
-// §6.2's brick-border artefact; shared/svo.glsl).
+// §6.2's brick-border artefact; shared/sparse_octree.glsl).
 #pragma once
 #include <glm/glm.hpp>
 #include <map>
@@ -66,7 +66,7 @@ class SparseVoxelOctree {
   // filtering up the tree ("svo_filter") and the borders ("svo_borders").
   void resolve(unsigned counts, unsigned sums, float radianceMax, ShaderLibrary& shaders, Profiler& profiler);
   // Binds the node pool and the pools (the iso pool at TEXUNIT_VALUE_RADIANCE,
-  // the faces at TEXUNIT_VALUE_ANISO + f) and sets shared/svo_lookup.glsl's
+  // the faces at TEXUNIT_VALUE_ANISO + f) and sets shared/sparse_octree_lookup.glsl's
   // uniforms on `program`.
   void bind(ShaderLibrary& shaders, unsigned program) const;
 

@@ -34,7 +34,7 @@
 #define BINDING_EMITTERS 23        // SSBO PackedEmitter[] (shared/emitters.glsl; illum/resources/gpu_emitters.h)
 #define BINDING_EMITTER_OF 24      // SSBO int[]: per triangle (scene order) its emitter, or -1
 #define BINDING_SCENE_VERTICES 25  // SSBO float[]: the GPU scene's vertex buffer (core/gpu_scene.h, per corner)
-#define BINDING_SVO_NODES 26       // SSBO uint[]: the sparse octree's nodes (shared/svo.glsl, voxelize/sparse_octree.h)
+#define BINDING_SVO_NODES 26       // SSBO uint[]: the sparse octree's nodes (shared/sparse_octree.glsl, voxelize/sparse_octree.h)
 #define BINDING_SVO_COORDS 27      // SSBO uint[]: per node its packed cell (svoPackCell)
 #define BINDING_SVO_FRAGMENTS 28   // SSBO uint[]: the octree's fragments (packed cells)
 

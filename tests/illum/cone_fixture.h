@@ -1,4 +1,4 @@
-// Cone-volume fixtures of the cone-tracing tests (vct_test.cpp, svo_test.cpp):
+// Cone-volume fixtures of the cone-tracing tests (vct_test.cpp, sparse_octree_test.cpp):
 // a unit grid box, and the dense volume resolved on the GPU from given counts,
 // radiance sums and an occupancy grid.
 #pragma once

@@ -44,7 +44,7 @@
 #include "shared/value_textures.glsl"
 #include "voxelize/grid_uniforms.glsl"
 #ifdef CONE_SVO
-#include "shared/svo_lookup.glsl"
+#include "shared/sparse_octree_lookup.glsl"
 #endif
 uniform float uVoxelSize;  // world size of a level-0 cell
 uniform float uMaxLod;     // the chains' last level

@@ -6,7 +6,7 @@
 // fixed-point range of the second). Needs voxelize/grid_uniforms.glsl's uResolution.
 #include "shared/value_grid.glsl"
 #ifdef INJECT_SVO
-#include "shared/svo_lookup.glsl"
+#include "shared/sparse_octree_lookup.glsl"
 #endif
 #ifdef INJECT_MAX
 layout(std430, binding = BINDING_VALUE_RADIANCE_MAX) buffer RadianceMax { uint radianceMaxBits; };

@@ -15,7 +15,7 @@
 //            in all POOLS pools of one layout at once (the six faces, or the
 //            iso pool), so the neighbours are found once.
 // Brick b of a pool is tile t − base (uInBase, uOutBase).
-#include "shared/svo_lookup.glsl"
+#include "shared/sparse_octree_lookup.glsl"
 #include "shared/value_grid.glsl"
 layout(local_size_x = 64) in;
 layout(std430, binding = BINDING_SVO_COORDS) readonly buffer Coords { uint svoCoords[]; };

@@ -12,7 +12,7 @@
 //   ALLOCATE         per node of level uLevel (uFirst …): a flagged one gets a
 //                    tile of 8 children (atomic counter; the new tiles were
 //                    cleared to SVO_NONE: the initialisation).
-#include "shared/svo.glsl"
+#include "shared/sparse_octree.glsl"
 #include "shared/voxel_grid.glsl"
 #include "shared/bindings.glsl"
 layout(std430, binding = BINDING_VOXEL_COUNTER) buffer Counter { uint counter; };

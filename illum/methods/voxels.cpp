@@ -17,7 +17,7 @@
 //
 // Parameters: `vgi render --help-module voxels` (and docs/PARAMETERS.md), generated from the
 // ParamSet declarations (this file's and its kits'), whose doc strings are the one place they are written.
-#include "illum/methods/voxel_view.h"
+#include "illum/methods/voxels.h"
 
 #include <glad/gl.h>
 
@@ -28,7 +28,7 @@
 #include "illum/framework/compute_pass.h"
 #include "illum/framework/sample_loop.h"
 #include "illum/resources/or_mip_pyramid.h"
-#include "shaders/illum/voxel_view/params.glsl"
+#include "shaders/illum/voxels/params.glsl"
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gl_ray_tracer.h"
 
@@ -52,7 +52,7 @@ class VoxelViewMethod : public Method {
   void prepareFrame(Frame& f) override {
     ShaderDefines defs;
     addTracerDefine(defs, tracer_);
-    view_.create(f, {"illum/voxel_view/view.comp.glsl"}, defs, {});
+    view_.create(f, {"illum/voxels/view.comp.glsl"}, defs, {});
     const GlPyramid& pyramid = f.resources.get<GlPyramid>();
     if (uint32_t(level_) >= pyramid.levels()) {
       const glm::uvec3 r = pyramid.box().resolution;

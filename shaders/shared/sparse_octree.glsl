@@ -2,7 +2,10 @@
 // Sparse Voxelization Using the GPU Hardware Rasterizer", OpenGL Insights ch. 22,
 // 2012; Crassin et al. 2011 §3; ../shared/papers/002_…, the 2013 article), as
 // voxelize/sparse_octree.h builds it: the addressing that the GLSL build,
-// filter and cone passes and the C++ reference share.
+// filter and cone passes and the C++ reference share. Its files are named
+// sparse_octree* everywhere (here, voxelize/, illum/resources/, the tests); its
+// GLSL and C++ identifiers carry the short prefix svo / SVO_ (sparse voxel
+// octree), as does the parameter value that selects it (vct volume=svo).
 //
 // Nodes: one uint each in a node pool, in tiles of 8 siblings (tile t = nodes
 // 8t … 8t+7, octant x + 2y + 4z); node 0 is the root (tile 0 holds only it).

@@ -1,4 +1,4 @@
-// `voxels`' view pass parameters: one declaration for C++ (illum/methods/voxel_view.cpp fills them)
+// `voxels`' view pass parameters: one declaration for C++ (illum/methods/voxels.cpp fills them)
 // and GLSL (view.comp.glsl's block Pass at UBO_PASS). Layout rule: illum/framework/compute_pass.h.
 #ifdef __cplusplus
 #pragma once

@@ -1,4 +1,4 @@
-// `voxels`: a debug view of the binary grid from the camera (see voxel_view.cpp).
+// `voxels`: a debug view of the binary grid from the camera (see voxels.cpp).
 #pragma once
 #include <memory>
 

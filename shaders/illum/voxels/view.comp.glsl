@@ -1,4 +1,4 @@
-// `voxels` (illum/methods/voxel_view.cpp): the binary grid, or one OR-mip level,
+// `voxels` (illum/methods/voxels.cpp): the binary grid, or one OR-mip level,
 // seen from the camera. Per pixel, the jittered camera ray (GL rows bottom-up,
 // as the sample image) is traced with the chosen GLSL tracer through the
 // pyramid from level pass.level up (pyramidFromLevel: that level's columns are

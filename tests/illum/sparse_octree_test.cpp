@@ -7,7 +7,7 @@
 // equal cones through the dense volume (with dilation everywhere; without it,
 // except where a brick border intervenes, which is counted); degenerate cones
 // stay finite; the renders of vct and vct_ao with volume=svo, and bad parameters.
-#include "shaders/shared/svo.glsl"
+#include "shaders/shared/sparse_octree.glsl"
 
 #include <glad/gl.h>
 

@@ -1,10 +1,10 @@
 // GLSL lookups in the sparse voxel octree (voxelize/sparse_octree.h; the
-// layout in svo.glsl): the node holding a cell, a leaf's slot, and the
+// layout in sparse_octree.glsl): the node holding a cell, a leaf's slot, and the
 // trilinear sample of a level through its brick. Bound by
 // SparseVoxelOctree::bind (the node pool, the uniforms; the pools at the dense
 // volume's units: the iso pool at TEXUNIT_VALUE_RADIANCE, the six face pools
 // at TEXUNIT_VALUE_ANISO + f).
-#include "svo.glsl"
+#include "sparse_octree.glsl"
 #include "bindings.glsl"
 layout(std430, binding = BINDING_SVO_NODES) readonly buffer SvoNodes { uint svoNodes[]; };
 uniform uint uSvoDepth;      // D: the leaves' level (2^D cells per axis)
