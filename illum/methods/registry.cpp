@@ -12,8 +12,8 @@
 #include "illum/methods/vct.h"
 #include "illum/methods/vct_ao.h"
 #include "illum/methods/voxel_ao.h"
-#include "illum/methods/voxels.h"
 #include "illum/methods/voxelpath.h"
+#include "illum/methods/voxels.h"
 #include "illum/methods/vpl.h"
 
 namespace vgi {
