@@ -66,6 +66,12 @@ class Viewer {
   void restart();
   void frame();
   void draw(const Image& shown);
+  // Where the shown image is drawn in a framebuffer of fw × fh: the largest rectangle of its aspect
+  // left of the panel, centred (GL's lower-left origin).
+  struct ImageRect {
+    int x = 0, y = 0, width = 0, height = 0;
+  };
+  ImageRect imageRect(int fw, int fh) const;
   void panel();
   void timingsPanel();
   void parameterPanel();

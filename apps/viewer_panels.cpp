@@ -140,8 +140,9 @@ void Viewer::parameterPanel() {
 void Viewer::panel() {
   int fw = 0, fh = 0;
   glfwGetWindowSize(window_, &fw, &fh);
-  ImGui::SetNextWindowPos(ImVec2(float(opt_.render.width), 0), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(float(kPanelWidth), float(fh)), ImGuiCond_FirstUseEver);
+  // Docked to the window's right edge, its full height (the image fills the rest: draw()).
+  ImGui::SetNextWindowPos(ImVec2(float(fw - kPanelWidth), 0), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(float(kPanelWidth), float(fh)), ImGuiCond_Always);
   ImGui::Begin("vgi view");
   ImGui::TextWrapped("%s", job_->options().scene.c_str());
   ImGui::TextWrapped("GL: %s", gl_->renderer().c_str());

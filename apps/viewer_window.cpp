@@ -4,6 +4,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "apps/viewer_impl.h"
@@ -64,9 +65,11 @@ void Viewer::openWindow() {
   glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, GLFW_TRUE);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
   const std::string title = "vgi view: " + opt_.render.scene;
-  // The image at its size on the left, the panel beside it.
-  window_ = glfwCreateWindow(opt_.render.width + kPanelWidth, std::max(opt_.render.height, kPanelHeight),
-                             title.c_str(), nullptr, nullptr);
+  // The image on the left, scaled to fill an area of its own aspect at least the panel's height,
+  // the panel beside it.
+  const int areaH = std::max(opt_.render.height, kPanelHeight);
+  const int areaW = int(std::lround(double(areaH) * opt_.render.width / opt_.render.height));
+  window_ = glfwCreateWindow(areaW + kPanelWidth, areaH, title.c_str(), nullptr, nullptr);
   if (!window_) fail("vgi view: no OpenGL 4.5 core window (", lastGlfwError(), ")");
   gl_ = std::make_unique<GlfwContext>(window_);
   glfwSwapInterval(0);
@@ -81,6 +84,22 @@ void Viewer::openWindow() {
   imgui_ = true;
 }
 
+Viewer::ImageRect Viewer::imageRect(int fw, int fh) const {
+  // The area left of the panel (the panel's width in framebuffer pixels: the window may be scaled).
+  int ww = 0, wh = 0;
+  glfwGetWindowSize(window_, &ww, &wh);
+  const int panel = ww > 0 ? int(std::lround(double(kPanelWidth) * fw / ww)) : kPanelWidth;
+  const int aw = std::max(1, fw - panel), ah = std::max(1, fh);
+  // The largest rectangle of the image's aspect in it, centred.
+  const double scale = std::min(double(aw) / shownW_, double(ah) / shownH_);
+  ImageRect r;
+  r.width = std::max(1, int(std::lround(shownW_ * scale)));
+  r.height = std::max(1, int(std::lround(shownH_ * scale)));
+  r.x = (aw - r.width) / 2;
+  r.y = (ah - r.height) / 2;
+  return r;
+}
+
 void Viewer::draw(const Image& shown) {
   int fw = 0, fh = 0;
   glfwGetFramebufferSize(window_, &fw, &fh);
@@ -90,8 +109,10 @@ void Viewer::draw(const Image& shown) {
       glCreateTextures(GL_TEXTURE_2D, 1, &t);
       shownTexture_ = GlTexture(t);
       glTextureStorage2D(t, 1, GL_RGB32F, shown.width, shown.height);
-      glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+      glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
       shownW_ = shown.width;
       shownH_ = shown.height;
     }
@@ -108,7 +129,8 @@ void Viewer::draw(const Image& shown) {
   glClearColor(0.1f, 0.1f, 0.1f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   if (shownTexture_) {
-    glViewport(0, fh - shownH_, shownW_, shownH_);  // top left, one texel per pixel
+    const ImageRect r = imageRect(fw, fh);
+    glViewport(r.x, r.y, r.width, r.height);
     glUseProgram(displayProg_);
     display_->setUniform(displayProg_, "uExposure", exposure_);
     glBindTextureUnit(0, shownTexture_.get());

@@ -148,8 +148,18 @@ TEST(View, ScriptReplaysLikeRenderAndSurvivesBadInput) {
         << k << " in " << nf["viewer"]["panel_parameters"].dump();
   EXPECT_EQ(ao["viewer"]["panel_parameters"].size(), ao["params"].size()) << ao["params"].dump();
   EXPECT_GT(std::filesystem::file_size(dir + "/window.png"), 5000u) << "the window, panel included";
+  // The image fills the area beside the panel: a square of the panel's height (720), scaled up from
+  // 48×48, so almost none of the area is the window's background (grey 0.1, sRGB-decoded ~0.01).
   const Image window = readImage(dir + "/window.png");
-  EXPECT_EQ(window.width, 48 + 360);
+  EXPECT_EQ(window.width, 720 + 360);
+  EXPECT_EQ(window.height, 720);
+  size_t background = 0;
+  for (int y = 0; y < window.height; ++y)
+    for (int x = 0; x < 720 && x < window.width; ++x) {
+      const glm::vec3 c = window.pixels[size_t(y) * size_t(window.width) + size_t(x)];
+      background += glm::all(glm::lessThan(glm::abs(c - glm::vec3(0.0100228f)), glm::vec3(2e-3f)));
+    }
+  EXPECT_LT(background, size_t(720 * 720 / 50)) << "pixels of the image area left as background";
 }
 
 // A scene that loads but whose resources cannot be built (400 point lights need more light-map faces
