@@ -37,6 +37,7 @@ G=$root/scenes/cornell-glossy.json
 row $C direct
 row $O direct
 row $C nearfield --aov indirect
+row $C nearfield --aov indirect --set blur_visibility=false --set fixup=false
 row $O nearfield --aov indirect
 row $B nearfield --frames 2
 row $C nearfield --set tracer=dda

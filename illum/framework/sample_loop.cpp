@@ -152,6 +152,7 @@ size_t scratchTexelBytes(unsigned format) {
     case GL_RGBA16F:
       return 8;
     case GL_R32F:
+    case GL_R32UI:
     case GL_RGBA8:
       return 4;
     default:

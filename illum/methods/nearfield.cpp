@@ -76,6 +76,7 @@ class NearFieldMethod : public Method {
   NearFieldMethod(ParamSet& p, const Scene& scene) {
     NearFieldParams& q = p_;
     q.gather = readGatherParams(p, "indirect", true);
+    readGatherWallParams(p, q.gather, true, true);
     // The default makes near-field GI plainly visible: 0.5 × the diagonal
     // gathers 82 % of the exact one-bounce light on the Cornell box (0.1 ×:
     // 8 %) and all of it on Sibenik (docs/BENCHMARKS.md, the radius table).
@@ -115,13 +116,18 @@ class NearFieldMethod : public Method {
   GatherKit kit_;
   std::unique_ptr<DirectPass> direct_;
   ComputePass<shared::NearFieldPassParams> indirect_;
+  ComputePass<shared::NearFieldPassParams> indirectFixup_;  // gather.fixup: the same, at listed pixels
   float voxelDiagonal_ = 0;
 };
 
 void NearFieldMethod::prepareFrame(Frame& f) {
   ShaderLibrary& shaders = f.shaders();
-  kit_.prepare(f, p_.gather);
   voxelDiagonal_ = f.resources.get<GridBox>().voxelDiagonal();
+  ShaderDefines tracerDefs;
+  addTracerDefine(tracerDefs, p_.tracer);
+  // The neighbours' visibility tests start at least a voxel diagonal off their surfaces (half a
+  // diagonal leaves a surface lying on a cell boundary inside its own second layer of voxels).
+  kit_.prepare(f, p_.gather, tracerDefs, std::max(p_.offset, 1.0f) * voxelDiagonal_);
   direct_ = std::make_unique<DirectPass>(shaders, f.resources.get<GpuScene>(), p_.shadow.bias,
                                          p_.shadow.normalOffset);
   ShaderDefines defs;
@@ -130,6 +136,12 @@ void NearFieldMethod::prepareFrame(Frame& f) {
                    {gpuSceneInput, lightMapsInput, gbufferInput});
   // What stays the same over the frame's samples.
   GatherKit::checkPass(indirect_);
+  if (p_.gather.fixup) {
+    ShaderDefines fixupDefs = defs;
+    fixupDefs["GATHER_FIXUP"] = "1";
+    indirectFixup_.create(f, {"illum/nearfield/indirect.comp.glsl"}, fixupDefs,
+                          {gpuSceneInput, lightMapsInput, gbufferInput});
+  }
   shared::NearFieldPassParams& ip = indirect_.params();
   ip.radius = p_.radius;
   ip.offset = p_.offset * voxelDiagonal_;
@@ -151,7 +163,13 @@ bool NearFieldMethod::addSample(Frame& f, int k) {
     kit_.setSample(k);
     kit_.dispatchGather(kit_.settings().rays, GatherKit::kRaysPerDispatch);
   }
-  kit_.resolve(f);
+  const auto tracer = [&](unsigned program) { bindTracer(f.resources, f.shaders(), program); };
+  kit_.resolve(f, tracer, [&] {
+    indirectFixup_.params() = indirect_.params();
+    indirectFixup_.use(f);
+    tracer(indirectFixup_.program());
+    kit_.dispatchFixup(kit_.settings().rays, GatherKit::kRaysPerDispatch);
+  });
   return true;
 }
 
@@ -163,6 +181,7 @@ void NearFieldMethod::finishFrame(Frame& f) {
   extra["indirect_size"] = {kit_.width(), kit_.height()};
   extra["blur_window_px"] = kit_.blurWindow();
   extra["rays_per_frame"] = uint64_t(kit_.width()) * kit_.height() * p_.gather.rays;
+  kit_.stats(f);
 }
 
 }  // namespace

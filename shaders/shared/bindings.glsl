@@ -37,6 +37,7 @@
 #define BINDING_SVO_NODES 26       // SSBO uint[]: the sparse octree's nodes (shared/sparse_octree.glsl, voxelize/sparse_octree.h)
 #define BINDING_SVO_COORDS 27      // SSBO uint[]: per node its packed cell (svoPackCell)
 #define BINDING_SVO_FRAGMENTS 28   // SSBO uint[]: the octree's fragments (packed cells)
+#define BINDING_GATHER_FIXUP 29    // SSBO the gather kit's fix-up list (illum/gather/gather.glsl: GatherFixup)
 
 // ---- uniform buffers (std140 blocks of params structs: illum/framework/compute_pass.h)
 #define UBO_PASS 0         // a compute pass's own parameters: `uniform Pass { T p; }`
@@ -71,6 +72,7 @@
 #define TEXUNIT_VALUE_RADIANCE 28           // sampler3D RGBA16F mean diffuse direct radiance (rgb)
 #define TEXUNIT_ATLAS_RADIANCE 29           // atlas voxelizer: radiance (multi-valued grids)
 #define TEXUNIT_VPL_SHADOW 30               // sampler2D: the VPL shadow-map atlas (avg; illum/vpl/vpl_shadow.glsl)
+#define TEXUNIT_GATHER_FIXUP 31             // sampler2D RGBA32F: the gather kit's full-rate fix-ups (w = 1 where made)
 
 // ---- images
 #define IMAGE_OUTPUT 0                 // a pass's output

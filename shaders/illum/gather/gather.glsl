@@ -51,6 +51,22 @@ float geometryWeight(vec3 p, vec3 n, vec3 pj, vec3 nj, float pixels) {
   return wn * wp;
 }
 
+// GATHER_VISIBILITY: visibility.glsl (the blur, upsampling and edges passes include it).
+
+// GATHER_FIXUP (the kit's `fixup`): an image pixel none of whose gather pixels lies on its surface
+// (the upsampling would borrow the geometrically closest one's light: the front face of a thin wall
+// takes a room's light behind it, a pole the wall's behind it) is listed by the upsampling's
+// classifying run (GATHER_FIXUP_LIST) and gathered again at full rate, at the pixel itself, by the
+// method's own gather pass compiled with GATHER_FIXUP (gather_pass.glsl); the upsampling then takes
+// that value. The list's order follows the atomics, each entry's value only its pixel.
+#if defined(GATHER_FIXUP) || defined(GATHER_FIXUP_LIST)
+layout(std430, binding = BINDING_GATHER_FIXUP) buffer GatherFixup {
+  uint fixupCount;
+  uint fixupGroups[3];  // the fix-up run's glDispatchComputeIndirect: ⌈count / 64⌉, 1, 1
+  uint fixupPixels[];   // x | y << 16
+};
+#endif
+
 #ifdef GATHER_DIRECTIONS
 // The cosine-distributed direction of ray r of gather pixel q around `frame`.
 vec3 gatherDirection(ivec2 q, int r, Basis frame) {

@@ -14,6 +14,17 @@ ivec2 gatherSize();
 void gatherEmpty(ivec2 q);
 void gatherPixel(ivec2 q, vec3 p, vec3 n);
 
+#ifdef GATHER_FIXUP
+// The fix-up run (gather.glsl): invocation i gathers at listed image pixel i, which stands for
+// itself (its output is a full-resolution image); the kit dispatches ⌈count / 64⌉ groups.
+void main() {
+  uint i = gl_WorkGroupID.x * 64u + gl_LocalInvocationIndex;
+  if (i >= fixupCount) return;
+  ivec2 px = ivec2(int(fixupPixels[i] & 0xffffu), int(fixupPixels[i] >> 16u));
+  vec4 P = texelFetch(gPosition, px, 0);
+  gatherPixel(px, P.xyz, normalize(texelFetch(gNormal, px, 0).xyz));
+}
+#else
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = gatherSize();
@@ -25,3 +36,4 @@ void main() {
   }
   gatherPixel(q, p, n);
 }
+#endif

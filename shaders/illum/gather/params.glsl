@@ -22,7 +22,7 @@ struct GatherParams {
   int composite;      // the upsampling: 0 albedo × E over the sample's direct light; 1 E itself
   int writeIndirect;  // the upsampling: 1 writes the indirect part to its output channel
   int writeDirect;    // … and the direct part to its own
-  int pad0;
+  float visibilityOffset;  // GATHER_VISIBILITY: both ends of a neighbour's test lifted this far, world units
   int pad1;
 };
 
