@@ -213,6 +213,7 @@ void GatherKit::stats(Frame& f) const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glGetNamedBufferSubData(fixupList_.get(), 0, 4, &count);
   f.extra["fixup_pixels"] = count;
+  f.addStateBytes(double(fixupListBytes_));  // the list (its textures are the frame's scratch)
 }
 
 void GatherKit::resolve(Frame& f, const std::function<void(unsigned)>& bindTracer,

@@ -84,7 +84,8 @@ class GatherKit {
   void resolveValue(Frame& frame, unsigned low, unsigned full, const std::string& name,
                     const std::function<void(unsigned program)>& bindTracer = {});
 
-  // With settings.fixup: "fixup_pixels", the pixels the last sample gathered again at full rate.
+  // With settings.fixup: "fixup_pixels", the pixels the last sample gathered again at full rate, and
+  // the fix-up list's bytes as method state (Frame::addStateBytes).
   void stats(Frame& frame) const;
   int width() const { return lw_; }
   int scale() const { return scale_; }  // image pixels per gather pixel

@@ -264,11 +264,14 @@ TEST(Cli, StatsMeasureMemoryAfterTheResourcesAreBuilt) {
   EXPECT_GT(reported, 1e6);  // light maps, grid, pyramid
   EXPECT_EQ(m["resources_bytes"].get<double>(), reported);
   EXPECT_GT(m["growth_bytes"].get<double>(), 0.0);
-  EXPECT_EQ(m["method_bytes"].get<double>(), 0.0);  // nearfield keeps nothing of its own
-  // Its targets: the G-buffer (68 bytes per pixel), the film's image channel (48) and the gather's two
-  // RGBA32F textures at half resolution (2 x 16 bytes per 4 pixels).
-  EXPECT_EQ(m["targets_bytes"].get<double>(), 16.0 * 16 * (68 + 48) + 2 * 8 * 8 * 16);
-  EXPECT_EQ(m["reported_bytes"].get<double>(), reported + m["targets_bytes"].get<double>());
+  // nearfield keeps only the gather kit's fix-up list: a 16-byte header and a word per pixel.
+  EXPECT_EQ(m["method_bytes"].get<double>(), 16.0 + 4 * 16 * 16);
+  // Its targets: the G-buffer (68 bytes per pixel), the film's image channel (48), the fix-ups (an
+  // RGBA32F texture, 16), and at half resolution the gather's two RGBA32F textures (2 x 16 bytes per 4
+  // pixels) and the edge mask (R32UI, 4).
+  EXPECT_EQ(m["targets_bytes"].get<double>(), 16.0 * 16 * (68 + 48 + 16) + 8 * 8 * (2 * 16 + 4));
+  EXPECT_EQ(m["reported_bytes"].get<double>(),
+            reported + m["method_bytes"].get<double>() + m["targets_bytes"].get<double>());
   EXPECT_GT(m["growth_over_reported"].get<double>(), 0.1);
   EXPECT_GE(m["rss_bytes"].get<double>(), m["baseline"]["rss_bytes"].get<double>());
   // avg keeps its visibility grid and the VPLs' shadow atlas itself: counted as the method's bytes.
