@@ -50,10 +50,16 @@ void VplKit::prepare(Frame& f, const VplSettings& s, const std::string& tracer, 
   s_ = s;
   sceneDiagonal_ = sceneDiagonal;
   dMin_ = s.clamp * sceneDiagonal;
-  kit_.prepare(f, s.gather);
   ShaderDefines defs;
   addTracerDefine(defs, tracer);
+  // The neighbours' visibility tests start at least a voxel diagonal off their surfaces (nearfield.cpp).
+  kit_.prepare(f, s.gather, defs, std::max(s.offset, 1.0f) * voxelDiagonal);
   gather_.create(f, {"illum/vpl/gather.comp.glsl"}, defs, {gbufferInput});
+  if (s.gather.fixup) {
+    ShaderDefines fixupDefs = defs;
+    fixupDefs["GATHER_FIXUP"] = "1";
+    gatherFixup_.create(f, {"illum/vpl/gather.comp.glsl"}, fixupDefs, {gbufferInput});
+  }
   GatherKit::checkPass(gather_);
   checkBlockLayout(gather_.program(), "VplShadow", sizeof(shared::VplShadowParams), gather_.files());
   shared::VplGatherParams& p = gather_.params();
@@ -81,9 +87,25 @@ void VplKit::gather(Frame& f, const std::function<void(unsigned)>& bindExtra) {
   bindShadowParams();
   if (bindExtra) bindExtra(gather_.program());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, vpls_.get());
-  // Batches of chains per dispatch: llvmpipe's per-invocation loop limit (gather.glsl).
+  kit_.dispatchGather(chainBatches(), chainsPerDispatch());
+}
+
+int VplKit::chainBatches() const {
   const int sets = s_.gather.interleave * s_.gather.interleave;
-  kit_.dispatchGather((s_.chains + sets - 1) / sets, std::max(1, kRaysPerDispatch / s_.bounces));
+  return (s_.chains + sets - 1) / sets;
+}
+
+int VplKit::chainsPerDispatch() const { return std::max(1, kRaysPerDispatch / s_.bounces); }
+
+void VplKit::resolve(Frame& f, const std::function<void(unsigned)>& bindExtra) {
+  kit_.resolve(f, bindExtra, [&] {
+    gatherFixup_.params() = gather_.params();
+    gatherFixup_.use(f);
+    bindShadowParams();
+    if (bindExtra) bindExtra(gatherFixup_.program());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VPLS, vpls_.get());
+    kit_.dispatchFixup(chainBatches(), chainsPerDispatch());
+  });
 }
 
 void VplKit::bindShadowParams() {

@@ -63,7 +63,9 @@ class VplKit {
   // binds what the visibility reads besides the G-buffer and the VPLs
   // (the pyramid, the shadow atlas) to the gather program.
   void gather(Frame& f, const std::function<void(unsigned program)>& bindExtra);
-  void resolve(Frame& f) { kit_.resolve(f); }
+  // The kit's blur and upsampling; with the gather kit's remedies (vpl, visibility=voxels) bindExtra
+  // binds the tracer to their programs and to the gather's fix-up run.
+  void resolve(Frame& f, const std::function<void(unsigned program)>& bindExtra = {});
   std::vector<shared::Vpl> read() const;
   void write(const std::vector<shared::Vpl>& v) const;
   // vpls_placed and vpl_flux per bounce (the last sample's), the clamp, the gather size; the VPL
@@ -78,6 +80,10 @@ class VplKit {
   GlBuffer vpls_;
   size_t slots_ = 0;
   ComputePass<shared::VplGatherParams> gather_;
+  ComputePass<shared::VplGatherParams> gatherFixup_;  // settings.gather.fixup: at listed pixels
+  // Batches of chains per gather dispatch (llvmpipe's loop limit: gather.glsl).
+  int chainBatches() const;
+  int chainsPerDispatch() const;
   UniformBlock<shared::VplShadowParams> shadow_;
   float dMin_ = 0, sceneDiagonal_ = 0;
 };

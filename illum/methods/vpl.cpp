@@ -89,6 +89,12 @@ class VplMethod : public Method {
                                "(own-band hits are passed, as in voxelpath)",
                                0.0f, 100.0f);
     tracer_ = readTracerParam(p);
+    // The gather kit's wall remedies trace the voxels: with voxel visibility only. Off by default here:
+    // they stop the leak but cost noise where nothing leaks (docs/BENCHMARKS.md, "Remedies").
+    readGatherWallParams(p, s_.gather, false, false);
+    if (s_.visibility != VplVisibility::Voxels && (s_.gather.visibility || s_.gather.fixup))
+      fail("parameters 'blur_visibility' and 'fixup' trace the voxels: they need visibility=voxels, not '",
+           visibility, "'");
     // Static + frame grid, the pyramid (≈ 4/3 of a grid); the value grids (≈ 2 more) are checked when built.
     checkVplMemory(s_);
     grid_ = readBinaryGridParams(p, 4, s_.bounces > 1);
@@ -165,7 +171,9 @@ class VplMethod : public Method {
         if (s_.visibility == VplVisibility::Voxels) bindTracer(f.resources, shaders, prog);
       });
     }
-    kit_.resolve(f);
+    kit_.resolve(f, [&](unsigned prog) {
+      if (s_.visibility == VplVisibility::Voxels) bindTracer(f.resources, shaders, prog);
+    });
     return true;
   }
   void finishFrame(Frame& f) override {

@@ -289,6 +289,11 @@ TEST(Modules, BadParametersAndOutputsAreErrors) {
   test::expectError([] { render("builtin:cornell", "vpl", {"clamp=inf"}, 8, 1); }, {"clamp", "inf"});
   test::expectError(
       [] {
+        render("builtin:cornell", "vpl", {"visibility=exact", "fixup=true"}, 8, 1);
+      },
+      {"fixup", "visibility=voxels", "exact"});
+  test::expectError(
+      [] {
         render("builtin:cornell", "vpl", {"vpls=1048576", "bounces=8"}, 8, 1);
       },
       {"vpls", "1048576", "bounces", "MiB"});
