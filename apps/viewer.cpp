@@ -40,6 +40,7 @@ void Viewer::restart() {
   req_ = job_->request();
   req_.progress = false;
   req_.time = time_;
+  job_->placeLightsAt(time_);  // lights on a path follow the time (a light moved here has left its path)
   // Headless: exactly --frames samples, as `vgi render --spp N` takes them (the same jitter).
   req_.spp = opt_.frames > 0 ? opt_.frames : opt_.render.spp;
   req_.checkpoints.clear();

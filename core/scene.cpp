@@ -46,6 +46,24 @@ glm::mat4 Mesh::objectToWorld(float time) const {
   return m * transform;
 }
 
+bool Scene::hasLightPaths() const {
+  return std::any_of(lights.begin(), lights.end(), [](const Light& l) { return !l.keyframes.empty(); });
+}
+
+void Scene::placeLightsAt(float time) {
+  for (Light& l : lights) {
+    const std::vector<LightKey>& keys = l.keyframes;
+    if (keys.empty()) continue;
+    size_t i = 0;
+    while (i + 2 < keys.size() && time >= keys[i + 1].time) ++i;
+    const LightKey &a = keys[i], &b = keys[std::min(i + 1, keys.size() - 1)];
+    const float t = b.time > a.time ? glm::clamp((time - a.time) / (b.time - a.time), 0.0f, 1.0f) : 0.0f;
+    l.position = glm::mix(a.position, b.position, t);
+    const glm::vec3 d = glm::mix(a.direction, b.direction, t);
+    l.direction = glm::length(d) > 1e-3f ? glm::normalize(d) : (t < 0.5f ? a.direction : b.direction);
+  }
+}
+
 Camera Scene::cameraAt(float time) const {
   if (cameraPath.empty()) return camera;
   if (time <= cameraPath.front().time) return cameraPath.front().camera;

@@ -58,6 +58,13 @@ const char* lightTypeName(LightType type);  // "point", "spot", "directional" (t
 // Delta lights. Point/spot: intensity in W/sr (per RGB channel); directional:
 // irradiance on a surface facing the light. Spot: I(θ) = I0 cos(θ)^falloff for
 // θ ≤ cone half-angle, θ measured from `direction`.
+// A light's path: its position (point, spot) and direction (spot, directional) at `time`.
+struct LightKey {
+  float time = 0;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0, -1, 0};
+};
+
 struct Light {
   LightType type = LightType::Point;
   glm::vec3 position{0.0f};
@@ -65,6 +72,7 @@ struct Light {
   glm::vec3 intensity{1.0f};
   float coneHalfAngleDeg = 90.0f;
   float falloff = 1.0f;
+  std::vector<LightKey> keyframes;  // empty: fixed; else times increasing (Scene::placeLightsAt)
 };
 
 // Radiance arriving from directions that leave the scene: constant colour, or
@@ -125,6 +133,11 @@ struct Scene {
   bool hasDynamicMeshes() const;
   // The camera at `time`: `camera`, or the path's interpolation (position, target, up, field of view).
   Camera cameraAt(float time) const;
+  // Whether a light has keyframes; placeLightsAt moves each such light to its path at `time`: the
+  // position and the direction linearly interpolated between keys (the direction renormalized; where
+  // it would vanish, the nearer key's), clamped at the ends.
+  bool hasLightPaths() const;
+  void placeLightsAt(float time);
   glm::vec3 environmentRadiance(glm::vec3 dir) const;
 };
 

@@ -76,6 +76,9 @@ void checkSceneRanges(const Scene& scene, const std::string& origin) {
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const std::string where = "lights[" + std::to_string(i) + "]";
     coordinate(scene.lights[i].position, where + ".position");
+    for (size_t k = 0; k < scene.lights[i].keyframes.size(); ++k)
+      coordinate(scene.lights[i].keyframes[k].position,
+                 where + ".keyframes[" + std::to_string(k) + "].position");
     power(scene.lights[i].intensity, where + " intensity");
   }
   for (auto& m : scene.materials) power(m.emission, "material '" + m.name + "' emission");
@@ -223,6 +226,29 @@ void readMaterialOverride(const JsonCtx& c, const json& j, const std::string& wh
   conserveEnergy(m, c.file + ": " + where, scene.report);
 }
 
+// "keyframes" of a light: a path, each key's position (point, spot) and direction (spot,
+// directional) over the light's own, times increasing (Scene::placeLightsAt).
+void readLightPath(const JsonCtx& c, const json& kj, const std::string& where, Light& l) {
+  if (!kj.is_array() || kj.empty()) c.error(where, "expected a non-empty array");
+  const bool moves = l.type != LightType::Directional, turns = l.type != LightType::Point;
+  for (size_t k = 0; k < kj.size(); ++k) {
+    const std::string kw = where + "[" + std::to_string(k) + "]";
+    std::set<std::string> keys = {"time"};
+    if (moves) keys.insert("position");
+    if (turns) keys.insert("direction");
+    c.checkKeys(kj[k], kw, keys);
+    if (!kj[k].contains("time")) c.error(kw, "missing \"time\"");
+    LightKey key;
+    key.time = c.number(kj[k]["time"], kw + ".time");
+    if (!l.keyframes.empty() && key.time <= l.keyframes.back().time)
+      c.error(kw + ".time", "keyframe times must increase");
+    key.position = kj[k].contains("position") ? c.vec3(kj[k]["position"], kw + ".position") : l.position;
+    key.direction =
+        kj[k].contains("direction") ? c.direction(kj[k]["direction"], kw + ".direction") : l.direction;
+    l.keyframes.push_back(key);
+  }
+}
+
 Light readLight(const JsonCtx& c, const json& j, const std::string& where) {
   if (!j.is_object() || !j.contains("type"))
     c.error(where, "a light needs a \"type\" (spot, point, directional)");
@@ -233,13 +259,13 @@ Light readLight(const JsonCtx& c, const json& j, const std::string& where) {
     return c.color(j[key], where + "." + key);
   };
   if (type == "point") {
-    c.checkKeys(j, where, {"type", "position", "intensity"});
+    c.checkKeys(j, where, {"type", "position", "intensity", "keyframes"});
     l.type = LightType::Point;
     if (!j.contains("position")) c.error(where, "missing \"position\"");
     l.position = c.vec3(j["position"], where + ".position");
     l.intensity = intensity("intensity");
   } else if (type == "spot") {
-    c.checkKeys(j, where, {"type", "position", "direction", "intensity", "cone_deg", "falloff"});
+    c.checkKeys(j, where, {"type", "position", "direction", "intensity", "cone_deg", "falloff", "keyframes"});
     l.type = LightType::Spot;
     if (!j.contains("position")) c.error(where, "missing \"position\"");
     if (!j.contains("direction")) c.error(where, "missing \"direction\"");
@@ -257,7 +283,7 @@ Light readLight(const JsonCtx& c, const json& j, const std::string& where) {
         c.error(where + ".falloff", "must be in [0, 1000], got " + jsonExcerpt(j["falloff"]));
     }
   } else if (type == "directional") {
-    c.checkKeys(j, where, {"type", "direction", "irradiance"});
+    c.checkKeys(j, where, {"type", "direction", "irradiance", "keyframes"});
     l.type = LightType::Directional;
     if (!j.contains("direction")) c.error(where, "missing \"direction\"");
     l.direction = c.direction(j["direction"], where + ".direction");
@@ -265,6 +291,7 @@ Light readLight(const JsonCtx& c, const json& j, const std::string& where) {
   } else {
     c.error(where + ".type", "unknown light type '" + type + "' (spot, point, directional)");
   }
+  if (j.contains("keyframes")) readLightPath(c, j["keyframes"], where + ".keyframes", l);
   return l;
 }
 

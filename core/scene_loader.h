@@ -19,6 +19,9 @@
 //                "cone_deg": half-angle, "falloff": n}
 //             | {"type":"point", "position":[…], "intensity":…}
 //             | {"type":"directional", "direction":[…], "irradiance":…} ],
+//                each optionally with "keyframes": [ {"time": t, "position":…, "direction":…} ]
+//                (a path: position for point/spot, direction for spot/directional, each key over
+//                the light's own; linear between keys, clamped: Scene::placeLightsAt)
 //   "environment": {"color":[r,g,b]} | {"map":"latlong.exr", "scale": s},
 //   "two_sided_emission": false,   // emissive meshes (area lights) emit on their winding's
 //                                  // front side only, or (true) on both (core/emitters.h)

@@ -109,6 +109,7 @@ void placeLight(std::vector<Light>& lights, int index, glm::vec3 position) {
   if (lights[size_t(index)].type == LightType::Directional)
     fail("light ", index, " is directional (it has no position)");
   lights[size_t(index)].position = position;
+  lights[size_t(index)].keyframes.clear();  // placed: it stays there (its path, if any, is left)
 }
 
 namespace {
@@ -164,6 +165,7 @@ void checkRenderJob(const RenderOptions& options) {
 
 RenderJob::RenderJob(const RenderOptions& options, GlContext* gl) : opt_(options) {
   scene_ = jobScene(opt_);
+  scene_.placeLightsAt(opt_.time);  // what the stats describe: the lights at the (first) time
   gl_ = gl;
   setMethod(methodFor(opt_, scene_), opt_.set, opt_.aovs);
   baselineMemory_ = measuredMemory(this->gl() != nullptr);
@@ -199,6 +201,12 @@ void RenderJob::setMethod(const std::string& name, const std::vector<std::string
 }
 
 void RenderJob::lightsChanged() { resources_->lightsChanged(); }
+
+void RenderJob::placeLightsAt(float time) {
+  if (!scene_.hasLightPaths()) return;
+  scene_.placeLightsAt(time);
+  lightsChanged();
+}
 
 void RenderJob::makeResources(SceneNeeds needs) {
   auto fresh =
@@ -319,6 +327,7 @@ RenderOutput renderStillJob(RenderJob& job, const RenderOptions& opt, const Chec
   RenderRequest req = job.request();
   const nlohmann::json run = job.describe();
   req.time = opt.time;
+  job.placeLightsAt(req.time);
   Profiler profiler(gl != nullptr);
   if (onCheckpoint)
     req.onCheckpoint = [&](const RenderResult& sofar, Profiler& p) {
@@ -355,10 +364,10 @@ RenderOutput renderAnimationJob(RenderJob& job, const RenderOptions& opt, const 
   GlContext* gl = job.gl();
   RenderRequest req = job.request();
   nlohmann::json run = job.describe();
-  if (!job.scene().hasDynamicMeshes() && job.scene().cameraPath.empty()) {
+  if (!job.scene().hasDynamicMeshes() && job.scene().cameraPath.empty() && !job.scene().hasLightPaths()) {
     const std::string still = "--frames " + std::to_string(opt.frames) +
-                              ": the scene has no dynamic meshes and no camera path, so every frame shows "
-                              "the same instant";
+                              ": the scene has no dynamic meshes, no camera path and no light path, so every "
+                              "frame shows the same instant";
     run["warnings"].push_back(still);
     printWarning(still);
   }
@@ -374,6 +383,7 @@ RenderOutput renderAnimationJob(RenderJob& job, const RenderOptions& opt, const 
   for (int f = 0; f < opt.frames && !interrupted; ++f) {
     req.frame = f;
     req.time = req.frameTimes[size_t(f)];
+    job.placeLightsAt(req.time);
     const auto tf = Clock::now();
     Profiler profiler(gl != nullptr);
     out.result = renderFrame(job.method(), req, job.resources(), job.targets(), job.shaders(), profiler);

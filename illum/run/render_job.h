@@ -63,6 +63,9 @@ class RenderJob {
   // The scene's lights changed (the viewer moved one): the resources re-derive what depends on
   // them (light maps, radiance) at the next update, and keep the rest (the grid, the pyramid).
   void lightsChanged();
+  // The scene's keyframed lights at `time` (Scene::placeLightsAt), and lightsChanged(); nothing for a
+  // scene without light paths. The still and the frame loops call it before each render.
+  void placeLightsAt(float time);
   // The stats of the run (method, scene, size, camera, resolved parameters, GL renderer, revision, …).
   // Its "memory" (measured when called; a render measures again when done) holds what the process uses (core/gpu_memory.h), the same measured before any resource
   // was built ("baseline"), the bytes the resources, the method and the sample loop's targets report

@@ -111,11 +111,17 @@ TEST(Scene, ProjectSceneFilesLoadWhenTheirDataIsPresent) {
 }
 
 namespace {
-// A scene JSON over the built-in Cornell box with this "camera" object; returns its path.
-std::string cornellWithCamera(const std::string& name, const std::string& camera) {
+// A scene JSON over the built-in Cornell box with `key` (e.g. "camera") set to `value`; returns its path.
+std::string cornellWith(const std::string& name, const std::string& key, const std::string& value) {
   const std::string path = testing::TempDir() + "/" + name + ".json";
-  std::ofstream(path) << R"({"meshes": [{"path": "builtin:cornell"}], "camera": )" << camera << "}";
+  std::ofstream(path) << R"({"meshes": [{"path": "builtin:cornell"}], ")" << key << R"(": )" << value << "}";
   return path;
+}
+std::string cornellWithCamera(const std::string& name, const std::string& camera) {
+  return cornellWith(name, "camera", camera);
+}
+std::string cornellWithLights(const std::string& name, const std::string& lights) {
+  return cornellWith(name, "lights", lights);
 }
 }  // namespace
 
@@ -153,6 +159,56 @@ TEST(Scene, CameraPathThroughItsTargetKeepsAValidCamera) {
   const glm::vec3 halfway = s.cameraAt(0.5f).position;  // on the target: a key's camera
   EXPECT_TRUE(halfway == glm::vec3(0, 0, 1) || halfway == glm::vec3(0, 0, -1)) << halfway.z;
   EXPECT_EQ(s.cameraAt(0.75f).position, glm::vec3(0, 0, -0.5f));  // past it: interpolated again
+}
+
+// A light path: position and direction linear between keys (the direction renormalised), clamped at
+// the ends; a key inherits what it leaves out from the light; a light without keys stays.
+TEST(Scene, LightPathsInterpolateBetweenKeysAndClampAtTheEnds) {
+  Scene s = loadScene(cornellWithLights("light_path", R"([
+      {"type": "spot", "position": [0, 1, 0], "direction": [0, -1, 0], "intensity": 1, "keyframes": [
+        {"time": 0, "position": [0, 1, 0]},
+        {"time": 2, "position": [1, 1, 0], "direction": [1, 0, 0]}]},
+      {"type": "point", "position": [0.5, 0.5, 0.5], "intensity": 1}])"));
+  ASSERT_TRUE(s.hasLightPaths());
+  s.placeLightsAt(-1);
+  EXPECT_EQ(s.lights[0].position, glm::vec3(0, 1, 0));
+  EXPECT_EQ(s.lights[0].direction, glm::vec3(0, -1, 0));  // the key's: the light's own
+  s.placeLightsAt(1);
+  EXPECT_EQ(s.lights[0].position, glm::vec3(0.5f, 1, 0));
+  EXPECT_NEAR(glm::length(s.lights[0].direction - glm::normalize(glm::vec3(0.5f, -0.5f, 0))), 0.0f, 1e-6f);
+  s.placeLightsAt(9);
+  EXPECT_EQ(s.lights[0].position, glm::vec3(1, 1, 0));
+  EXPECT_EQ(s.lights[0].direction, glm::vec3(1, 0, 0));
+  EXPECT_EQ(s.lights[1].position, glm::vec3(0.5f, 0.5f, 0.5f));
+  EXPECT_FALSE(loadScene("builtin:cornell").hasLightPaths());
+}
+
+TEST(Scene, BadLightPathsAreNamed) {
+  using test::expectError;
+  expectError(
+      [] {
+        loadScene(cornellWithLights("bad_light_time", R"([{"type": "point", "position": [0, 1, 0],
+          "intensity": 1, "keyframes": [{"time": 1}, {"time": 0.5, "position": [0, 0, 0]}]}])"));
+      },
+      {"bad_light_time.json", "lights[0].keyframes[1].time", "increase"});
+  expectError(
+      [] {
+        loadScene(cornellWithLights("bad_light_key", R"([{"type": "directional", "direction": [0, -1, 0],
+          "irradiance": 1, "keyframes": [{"time": 0, "position": [0, 1, 0]}]}])"));
+      },
+      {"bad_light_key.json", "lights[0].keyframes[0]", "position"});
+  expectError(
+      [] {
+        loadScene(cornellWithLights("bad_light_empty", R"([{"type": "point", "position": [0, 1, 0],
+          "intensity": 1, "keyframes": []}])"));
+      },
+      {"bad_light_empty.json", "lights[0].keyframes", "non-empty"});
+  expectError(
+      [] {
+        loadScene(cornellWithLights("bad_light_dir", R"([{"type": "spot", "position": [0, 1, 0],
+          "direction": [0, -1, 0], "intensity": 1, "keyframes": [{"time": 0, "direction": [0, 0, 0]}]}])"));
+      },
+      {"bad_light_dir.json", "lights[0].keyframes[0].direction"});
 }
 
 TEST(Scene, BadCameraPathsAndCutAwaysAreNamed) {

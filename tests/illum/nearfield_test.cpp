@@ -210,6 +210,40 @@ Animation animate(const std::string& scene, int frames, float step) {
 }
 }  // namespace
 
+// A light on a path (scenes' "keyframes" of a light): every frame of `--frames` equals a still at its
+// time, and a still at a time equals the scene with the light placed there (--light): the light maps,
+// the radiance and the exact side all follow it; the grid is kept (lights only relight).
+TEST(NearField, AMovingLightsFramesEqualStillsWithTheLightPlaced) {
+  const std::string scene = testing::TempDir() + "/moving_light.json";
+  std::ofstream(scene) << R"({"meshes": [{"path": "builtin:cornell"}], "lights": [{"type": "point",
+      "position": [0.3, 0.4, 0.3], "intensity": 0.05, "keyframes": [
+        {"time": 0, "position": [0.12, 0.45, 0.2]}, {"time": 1, "position": [0.42, 0.45, 0.38]}]}]})";
+  Animation a = animate(scene, 2, 1.0f);
+  ASSERT_EQ(a.images.size(), 2u);
+  EXPECT_GT(compareImages(a.images[0], a.images[1]).relMse, 0.01) << "the light moved";
+  for (int f = 0; f < 2; ++f) {
+    RenderOptions o = smallNearField(scene);
+    o.time = float(f);
+    EXPECT_EQ(runRender(o).result.image.pixels, a.images[size_t(f)].pixels) << "frame " << f;
+    RenderOptions placed = smallNearField(scene);
+    placed.lightPositions = {{0, f == 0 ? glm::vec3(0.12f, 0.45f, 0.2f) : glm::vec3(0.42f, 0.45f, 0.38f)}};
+    EXPECT_EQ(runRender(placed).result.image.pixels, a.images[size_t(f)].pixels) << "frame " << f;
+  }
+  // The exact reference follows the same path.
+  RenderOptions ref = smallNearField(scene);
+  ref.method = "reference";
+  ref.set = {"integrator=direct"};
+  ref.frames = 2;
+  ref.timeStep = 1.0f;
+  std::vector<Image> refs;
+  runRender(ref, [&](int, const RenderOutput& out) { refs.push_back(out.result.image); });
+  ASSERT_EQ(refs.size(), 2u);
+  ref.frames = 1;
+  ref.time = 1.0f;
+  EXPECT_EQ(runRender(ref).result.image.pixels, refs[1].pixels);
+  EXPECT_GT(compareImages(refs[0], refs[1]).relMse, 0.01);
+}
+
 // `--frames`: static meshes are voxelized once and the cube re-inserted per
 // frame; every frame must equal a still rendered from scratch at its time
 // (the kept static grid, the rebuilt pyramid and RSMs are not stale).
