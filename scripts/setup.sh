@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs every build and run dependency from Debian packages. Idempotent:
 # packages already present are skipped, so a second run costs seconds.
-#   scripts/setup.sh [--tests]   --tests: also what only the suite needs (TEST_PKGS; scripts/test.sh)
+#   scripts/setup.sh [--tests | --demo]   --tests: also what only the suite needs (TEST_PKGS;
+#   scripts/test.sh); --demo: also what only the demo needs (DEMO_PKGS; scripts/demo.sh)
 set -euo pipefail
 # Toolchain (clang-format for the suite's format check); libraries; Mesa's
 # llvmpipe for EGL (surfaceless) and OSMesa, so the GL code runs on a machine
@@ -31,10 +32,13 @@ PKGS=(
 # Slurm.SweepAsAJobArrayEqualsALocalSweep (scripts/test_slurm.sh starts its own daemons in a
 # temporary folder; the packages' services stay off).
 TEST_PKGS=(slurmctld slurmd slurm-client munge)
+# Only the demo's (scripts/demo.sh): ffmpeg encodes its frames into a video.
+DEMO_PKGS=(ffmpeg)
 case ${1:-} in
   --tests) PKGS+=("${TEST_PKGS[@]}") ;;
+  --demo) PKGS+=("${DEMO_PKGS[@]}") ;;
   "") ;;
-  *) echo "setup: unknown argument '$1' (usage: scripts/setup.sh [--tests])" >&2; exit 2 ;;
+  *) echo "setup: unknown argument '$1' (usage: scripts/setup.sh [--tests | --demo])" >&2; exit 2 ;;
 esac
 missing=()
 for p in "${PKGS[@]}"; do

@@ -747,6 +747,10 @@ TEST(BadInputCli, MeasurementScriptsCheckTheirArgumentsAndPassOnVgisReason) {
   refused("VGI=" + vgiPath + " bash scripts/sweep_slurm.sh /no/such.json " + out,
           {"EXPERIMENT", "/no/such.json"});
   refused("bash scripts/sweep_slurm.sh one", {"usage"});
+  refused("bash scripts/demo.sh " + out + " 0", {"FRAMES", "'0'"});
+  refused("bash scripts/demo.sh " + out + " 2 640x", {"SIZE", "'640x'"});
+  refused("bash scripts/demo.sh " + out + " 2 64x36 1 /no/such/vgi", {"VGI", "/no/such/vgi"});
+  refused("bash scripts/demo.sh a 1 2x2 1 b c", {"usage"});
   refused("bash scripts/gpu_bench.sh --vgi", {"usage", "--vgi needs a value"});
   refused("bash scripts/gpu_bench.sh --vgi /no/such/vgi " + out, {"--vgi", "/no/such/vgi"});
   // A vgi command that fails: its reason reaches the person, from Python and from the shell.
