@@ -25,6 +25,17 @@ enum class Accumulation {
   Plain,        // one float add per sample (the pre-framework behaviour; drifts after ~10^4 samples)
 };
 
+// Whether the sample loop filters the frames of an animation over time, and how
+// (illum/framework/temporal.h; a method's `temporal` parameters: illum/kits/shared_params.h).
+struct TemporalSettings {
+  bool on = false;
+  float alpha = 0.1f;       // the least weight of a frame: history of at most 1 / alpha frames
+  float clampSigma = 1.0f;  // the history clipped to mean ± clampSigma·σ of the current 3×3; 0: not
+  // Frame f takes samples f·spp … (the history adds samples: lower static error) instead of the
+  // same samples 0 … spp − 1 every frame (where nothing changes, the frames are equal: no flicker).
+  bool continueSamples = false;
+};
+
 struct RenderRequest {
   const Scene* scene = nullptr;
   std::string method;  // its registry name (progress bar, messages)
@@ -37,6 +48,9 @@ struct RenderRequest {
   // and targets, `time` = frameTimes[frame]. A still: one frame.
   std::vector<float> frameTimes;
   int frame = 0;
+  // The index of this frame's first sample: 0, or f·spp for frame f of an animation the method
+  // filters over time with TemporalSettings::continueSamples.
+  int firstSample = 0;
   bool progress = true;           // draw a progress bar on a terminal
   std::vector<std::string> aovs;  // extra outputs asked for (a subset of Method::outputs())
   Accumulation accumulation = Accumulation::Compensated;
@@ -82,7 +96,7 @@ class Method {
   // Once per frame, after the scene resources are current: programs,
   // per-frame constants.
   virtual void prepareFrame(Frame&) {}
-  // Writes sample k (0-based) of the frame into the frame's sample targets
+  // Writes sample k (0-based; the frame's first is RenderRequest::firstSample) of the frame into the frame's sample targets
   // ("image" and each output asked for): GL methods into Frame::sampleImage
   // after the loop rendered the G-buffer, CPU methods into
   // Frame::samplePixels. Returns false if it stopped early (Ctrl-C): that
@@ -90,6 +104,8 @@ class Method {
   virtual bool addSample(Frame& frame, int k) = 0;
   // After the image is read back: the method's stats into Frame::extra.
   virtual void finishFrame(Frame&) {}
+  // Whether the frames of an animation are filtered over time (GL methods with a G-buffer).
+  virtual TemporalSettings temporal() const { return {}; }
 };
 
 // The exact computation of the integral an approximate method estimates

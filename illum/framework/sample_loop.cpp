@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <set>
 
 #include "core/error.h"
@@ -61,18 +62,23 @@ void GlFilm::accumulate(Accumulation mode) {
 }
 
 Image GlFilm::read(const std::string& channel, int samples) const {
+  return readTexture(sumTexture(channel), w_, h_, samples > 0 ? 1.0f / float(samples) : 0.0f);
+}
+
+unsigned GlFilm::sumTexture(const std::string& channel) const {
   auto it = channels_.find(channel);
   VGI_CHECK(it != channels_.end());
-  std::vector<glm::vec4> px(size_t(w_) * h_);
+  return it->second.sum.get();
+}
+
+Image readTexture(unsigned texture, int w, int h, float scale) {
+  std::vector<glm::vec4> px(size_t(w) * h);
   glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-  glGetTextureImage(it->second.sum.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(px.size() * sizeof(glm::vec4)),
-                    px.data());
-  Image image(w_, h_);
-  const float n = float(std::max(samples, 1));
-  for (int y = 0; y < h_; ++y)
-    for (int x = 0; x < w_; ++x)
-      image.at(x, y) = samples > 0 ? glm::vec3(px[size_t(h_ - 1 - y) * w_ + x]) / n
-                                   : glm::vec3(0.0f);  // GL rows start at the bottom
+  glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, GLsizei(px.size() * sizeof(glm::vec4)), px.data());
+  Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      image.at(x, y) = glm::vec3(px[size_t(h - 1 - y) * w + x]) * scale;  // GL rows start at the bottom
   return image;
 }
 
@@ -132,6 +138,7 @@ void SampleTargets::prepare(const RenderRequest& req, bool gl, bool gbuffer, Sha
   gbuffer_.reset();
   glFilm_.reset();
   cpuFilm_.reset();
+  temporal_.reset();
   w_ = req.width;
   h_ = req.height;
   channels_ = channels;
@@ -168,7 +175,14 @@ double SampleTargets::bytes() const {
   if (glFilm_) b += pixels * channels * 3 * 16;
   if (cpuFilm_) b += pixels * channels * (12 + 24);
   for (auto& [name, s] : scratch_) b += double(s.w) * double(s.h) * double(scratchTexelBytes(s.format));
+  if (temporal_) b += temporal_->bytes();
   return b;
+}
+
+TemporalFilter& SampleTargets::temporal(ShaderLibrary& shaders) {
+  VGI_CHECK(gbuffer_ && glFilm_);
+  if (!temporal_) temporal_ = std::make_unique<TemporalFilter>(w_, h_, channels_, shaders);
+  return *temporal_;
 }
 
 unsigned SampleTargets::scratchTexture(const std::string& name, int width, int height, unsigned format) {
@@ -240,20 +254,24 @@ SampleSession::SampleSession(Method& method, const RenderRequest& req, SceneReso
   before_ = callCounts(prof_);
 }
 
+FrameCamera SampleSession::camera(int k) const {
+  return frameCamera(req_.scene->cameraAt(req_.time),
+                     res_.needs().gbuffer ? res_.get<GpuScene>().bounds() : req_.scene->bounds(req_.time),
+                     req_.width, req_.height, k);
+}
+
 bool SampleSession::addSample() {
   const bool gl = shaders_ != nullptr;
-  const SceneNeeds& needs = res_.needs();
+  const int k = req_.firstSample + done_;
   if (gl) {
-    frame_.camera = frameCamera(req_.scene->cameraAt(req_.time),
-                                needs.gbuffer ? res_.get<GpuScene>().bounds() : req_.scene->bounds(req_.time),
-                                req_.width, req_.height, done_);
-    if (needs.gbuffer) {
+    frame_.camera = camera(k);
+    if (res_.needs().gbuffer) {
       auto s = prof_.scope("gbuffer");
       targets_.gbuffer()->render(res_.get<GpuScene>(), frame_.camera);
     }
   }
-  res_.beginSample(done_, req_.seed, prof_);
-  if (!method_.addSample(frame_, done_)) return false;  // stopped inside the sample: not counted
+  res_.beginSample(k, req_.seed, prof_);
+  if (!method_.addSample(frame_, k)) return false;  // stopped inside the sample: not counted
   {
     auto s = prof_.scope("accumulate");
     if (gl)
@@ -268,6 +286,7 @@ bool SampleSession::addSample() {
 
 Image SampleSession::read(const std::string& channel) const {
   auto s = prof_.scope("readback");
+  if (filtered_) return targets_.temporal()->read(channel);
   return shaders_ ? targets_.glFilm()->read(channel, done_) : targets_.cpuFilm()->read(channel, done_);
 }
 
@@ -292,6 +311,19 @@ RenderResult SampleSession::sofar() const {
 }
 
 RenderResult SampleSession::finish() {
+  const TemporalSettings temporal = method_.temporal();
+  if (temporal.on && shaders_ && targets_.gbuffer() && req_.frameTimes.size() > 1 && done_ > 0) {
+    auto s = prof_.scope("temporal");
+    const Camera cam = req_.scene->cameraAt(req_.time);
+    const float pixelSize = 2.0f * std::tan(0.5f * glm::radians(cam.fovYDeg)) / float(req_.height);
+    // The surfaces at the pixels' centres (sample 0's camera), the same in every frame where nothing
+    // moves: a jittered G-buffer's edge pixels would see another surface from frame to frame.
+    const FrameCamera centre = camera(0);
+    if (req_.firstSample + done_ - 1 != 0) targets_.gbuffer()->render(res_.get<GpuScene>(), centre);
+    targets_.temporal(*shaders_).resolve(*targets_.glFilm(), *targets_.gbuffer(), done_, centre, pixelSize,
+                                         temporal, req_.frame > 0);
+    filtered_ = true;
+  }
   RenderResult r = sofar();
   r.interrupted = done_ < req_.spp;
   method_.finishFrame(frame_);

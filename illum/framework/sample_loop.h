@@ -17,6 +17,7 @@
 #include "core/gl_handles.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/method.h"
+#include "illum/framework/temporal.h"
 
 namespace vgi {
 
@@ -34,6 +35,7 @@ class GlFilm {
   // sum += sample for every channel (shaders/illum/accumulate.comp.glsl).
   void accumulate(Accumulation mode);
   Image read(const std::string& channel, int samples) const;  // sum / samples, rows top-down
+  unsigned sumTexture(const std::string& channel) const;
 
  private:
   struct Channel {
@@ -44,6 +46,9 @@ class GlFilm {
   unsigned prog_ = 0;
   ShaderLibrary& shaders_;
 };
+
+// An RGBA32F texture's rgb × scale (GL rows bottom-up) as an image (rows top-down).
+Image readTexture(unsigned texture, int width, int height, float scale);
 
 // The same on the CPU: the method writes samplePixels (rows top-down), sums are doubles.
 class CpuFilm {
@@ -64,7 +69,7 @@ class CpuFilm {
 };
 
 // What the loop keeps between the frames of a run: the G-buffer, the film,
-// and the methods' scratch textures (kept while their size holds).
+// the temporal filter's history, and the methods' scratch textures (kept while their size holds).
 class SampleTargets {
  public:
   SampleTargets() = default;
@@ -76,12 +81,15 @@ class SampleTargets {
   GBuffer* gbuffer() { return gbuffer_.get(); }
   GlFilm* glFilm() { return glFilm_.get(); }
   CpuFilm* cpuFilm() { return cpuFilm_.get(); }
+  // The temporal filter of these targets (GL, with a G-buffer), made at the first call.
+  TemporalFilter& temporal(ShaderLibrary& shaders);
+  const TemporalFilter* temporal() const { return temporal_.get(); }
   // A 2D texture of one level, nearest filtering, kept across frames under `name` (RGBA32F, RGBA16F,
   // R32F or RGBA8).
   unsigned scratchTexture(const std::string& name, int width, int height, unsigned internalFormat);
   // What the targets hold: the G-buffer (four RGBA32F + 32-bit depth per pixel), the film (GL: sample,
   // sum and compensation RGBA32F per channel; CPU: float sample and double sum) and the scratch
-  // textures — the stats' memory `targets_bytes`.
+  // textures and the temporal filter's history — the stats' memory `targets_bytes`.
   double bytes() const;
 
  private:
@@ -95,6 +103,7 @@ class SampleTargets {
   std::unique_ptr<GBuffer> gbuffer_;
   std::unique_ptr<GlFilm> glFilm_;
   std::unique_ptr<CpuFilm> cpuFilm_;
+  std::unique_ptr<TemporalFilter> temporal_;
   std::map<std::string, Scratch> scratch_;
 };
 
@@ -161,15 +170,18 @@ class SampleSession {
   // request.spp samples); false if the method stopped inside it (Ctrl-C: not counted).
   bool addSample();
   int samples() const { return done_; }
-  // The mean of the samples so far of "image" or an output asked for (rows top-down).
+  // The mean of the samples so far of "image" or an output asked for (rows top-down); after finish()
+  // of a frame the method filters over time, the filtered image.
   Image read(const std::string& channel) const;
-  // The result with the samples so far: images, stats, `built`, `samplePasses`.
+  // The result with the samples so far: images, stats, `built`, `samplePasses`. A frame of an
+  // animation the method filters over time (Method::temporal) is filtered first.
   RenderResult finish();
   // The result so far without finishing the frame (a checkpoint).
   RenderResult sofar() const;
 
  private:
   void describe(RenderResult& r) const;
+  FrameCamera camera(int k) const;  // the camera of sample k (k = 0: no jitter)
   Method& method_;
   const RenderRequest& req_;
   SceneResources& res_;
@@ -180,6 +192,7 @@ class SampleSession {
   Frame frame_;
   std::map<std::string, long> before_;
   int done_ = 0;
+  bool filtered_ = false;  // finish() ran the temporal filter: read() answers its images
 };
 
 // One frame of `method`: the loop described at the top. `shaders` is set for GL methods.

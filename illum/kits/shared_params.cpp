@@ -36,6 +36,30 @@ bool readPassThrough(ParamSet& p, const std::string& rule) {
                        rule);
 }
 
+TemporalSettings readTemporal(ParamSet& p, const TemporalSettings& d) {
+  TemporalSettings t;
+  t.on =
+      p.getBool("temporal", d.on,
+                "the frames of an animation (--frames) are filtered over time: each frame is blended with "
+                "the previous frames' filtered image, reprojected through the G-buffer (history kept where "
+                "the previous frame saw the same surface, clipped to the current frame's neighbourhood); "
+                "a still is not changed");
+  t.alpha = p.getFloat("temporal_alpha", d.alpha,
+                       "the least weight of the current frame: the history holds at most 1/alpha frames",
+                       0.01f, 1.0f);
+  t.clampSigma = p.getFloat("temporal_clamp", d.clampSigma,
+                            "the history is clipped to the current frame's 3x3 mean +- this many standard "
+                            "deviations (0: not clipped)",
+                            0.0f, 100.0f);
+  t.continueSamples =
+      p.getString("temporal_samples", d.continueSamples ? "continue" : "repeat",
+                  "with temporal: repeat (every frame takes the same samples, so where nothing changes the "
+                  "frames are equal) or continue (frame f takes samples f*spp...: the history adds samples, "
+                  "lower error where nothing changes but each frame's new noise flickers)",
+                  {"repeat", "continue"}) == "continue";
+  return t;
+}
+
 int readBackProjection(ParamSet& p) {
   const std::string b =
       p.getString("backprojection", "plane",

@@ -6,6 +6,8 @@
 #pragma once
 #include <string>
 
+#include "illum/framework/method.h"
+
 namespace vgi {
 
 class ParamSet;
@@ -32,6 +34,10 @@ bool readPassThrough(ParamSet& params, const std::string& rule);
 // `backprojection`: the GLSL constant (shaders/illum/voxel_hit_params.glsl) of
 // how a hit finds its RSM texel: plane (default) or entry (VGI).
 int readBackProjection(ParamSet& params);
+
+// `temporal`, `temporal_alpha`, `temporal_clamp`: the sample loop's temporal filter of an
+// animation's frames (illum/framework/temporal.h), on by default with the defaults given.
+TemporalSettings readTemporal(ParamSet& params, const TemporalSettings& defaults = {true});
 
 // The near-field radius r as a fraction of the scene's diagonal, when not
 // given: nearfield's and its exact counterpart's (reference integrator=nearfield).

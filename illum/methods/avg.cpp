@@ -152,6 +152,7 @@ class AvgMethod : public Method {
                     "Embree on the CPU)",
                     {"avg", "exact"}) == "exact";
     readShadowParams(p, shadow_);
+    temporal_ = readTemporal(p);
     diagonal_ = scene.bounds().diagonal();
     if (s_.visibility == VplVisibility::ShadowMaps) {
       // The atlas: one tile per VPL slot.
@@ -264,7 +265,10 @@ class AvgMethod : public Method {
     }
   }
 
+  TemporalSettings temporal() const override { return temporal_; }
+
  private:
+  TemporalSettings temporal_;
   void prepareShadowAtlas(Frame& f) {
     ShaderLibrary& shaders = f.shaders();
     if (!atlas_) {

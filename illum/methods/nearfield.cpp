@@ -97,6 +97,7 @@ class NearFieldMethod : public Method {
 
     q.grid = readBinaryGridParams(p, 4);  // static + frame grid (atlas), the pyramid (≈ 4/3 of a grid)
     readShadowParams(p, q.shadow);
+    temporal_ = readTemporal(p);
   }
   std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
   SceneNeeds needs() const override {
@@ -110,7 +111,10 @@ class NearFieldMethod : public Method {
   bool addSample(Frame& f, int k) override;
   void finishFrame(Frame& f) override;
 
+  TemporalSettings temporal() const override { return temporal_; }
+
  private:
+  TemporalSettings temporal_;
   NearFieldParams p_;
   // Per frame (prepareFrame).
   GatherKit kit_;

@@ -95,6 +95,7 @@ class VctMethod : public Method {
         "shadow cones end this many cone widths (at least voxel diagonals) before the light", 0.0f, 100.0f);
     env_ = readEnv(p);
     gather_ = readGatherParams(p, "diffuse cone", true, false, 2);
+    temporal_ = readTemporal(p);
     constellation_ = ringConstellation(true, cones_ - 1, glm::degrees(std::atan(2.0f)));
   }
   std::vector<std::string> outputs() const override {
@@ -200,7 +201,10 @@ class VctMethod : public Method {
     f.extra["diffuse_constellation"] = cones;  // tangent-space axes, w the cosine share
   }
 
+  TemporalSettings temporal() const override { return temporal_; }
+
  private:
+  TemporalSettings temporal_;
   static constexpr int kConesPerDispatch = 16;
   ConeVolumeSettings vol_;
   int cones_ = 6;

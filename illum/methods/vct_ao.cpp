@@ -81,6 +81,7 @@ class VctAoMethod : public Method {
                          "self-occlusion");
     vol_ = readConeVolumeParams(p, false, true, false, 0.5f);
     gather_ = readGatherParams(p, "AO cone", false, false, 2);
+    temporal_ = readTemporal(p);
     constellation_ = cones_ == 3   ? ringConstellation(false, 3, 45.0f)
                      : cones_ == 5 ? ringConstellation(true, 4, 55.0f)
                                    : ringConstellation(true, 7, 60.0f);
@@ -131,7 +132,10 @@ class VctAoMethod : public Method {
     f.extra["constellation"] = cones;
   }
 
+  TemporalSettings temporal() const override { return temporal_; }
+
  private:
+  TemporalSettings temporal_;
   int cones_ = 8;
   float aperture_ = 60, overlap_ = 1, radius_ = 1, falloff_ = 0, offset_ = 1.5f;
   bool jitter_ = true, guard_ = true;

@@ -49,6 +49,7 @@ class VoxelAoMethod : public Method {
     gather_ = readGatherParams(p, "AO", false);
     tracer_ = readTracerParam(p);
     offset_ = readOffset(p);
+    temporal_ = readTemporal(p);
     passThrough_ = readPassThrough(p, "it lies within a voxel diagonal of the receiver's plane");
     grid_ = readBinaryGridParams(p, 4);  // static + frame grid (atlas), the pyramid (≈ 4/3 of a grid)
   }
@@ -89,7 +90,10 @@ class VoxelAoMethod : public Method {
     f.extra["blur_window_px"] = kit_.blurWindow();
   }
 
+  TemporalSettings temporal() const override { return temporal_; }
+
  private:
+  TemporalSettings temporal_;
   float radius_ = 0, offset_ = 0.5f;
   bool passThrough_ = true;
   GatherSettings gather_;

@@ -76,6 +76,7 @@ class VoxelPathMethod : public Method {
     // Static + frame grid, the pyramid (≈ 4/3 of a grid); the value grids (≈ 3 more) are checked when built.
     grid_ = readBinaryGridParams(p, 4, true);
     readShadowParams(p, shadow_);
+    temporal_ = readTemporal(p);
     traceLength_ = 4.0f * scene.bounds().diagonal() + 1e-6f;
   }
   std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
@@ -145,7 +146,10 @@ class VoxelPathMethod : public Method {
     f.extra["paths_per_sample"] = uint64_t(f.width()) * uint64_t(f.height());
   }
 
+  TemporalSettings temporal() const override { return temporal_; }
+
  private:
+  TemporalSettings temporal_;
   int maxDepth_ = 3, rrDepth_ = 3;
   float offset_ = 0.5f, clamp_ = 0, traceLength_ = 0, voxelDiagonal_ = 0;
   bool passThrough_ = true, glossy_ = true, env_ = true;

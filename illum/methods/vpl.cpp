@@ -99,6 +99,7 @@ class VplMethod : public Method {
     checkVplMemory(s_);
     grid_ = readBinaryGridParams(p, 4, s_.bounces > 1);
     readShadowParams(p, shadow_);
+    temporal_ = readTemporal(p);
     diagonal_ = scene.bounds().diagonal();
   }
   std::vector<std::string> outputs() const override { return {"direct", "indirect"}; }
@@ -191,7 +192,10 @@ class VplMethod : public Method {
     f.extra["voxel_diagonal"] = voxelDiagonal_;
   }
 
+  TemporalSettings temporal() const override { return temporal_; }
+
  private:
+  TemporalSettings temporal_;
   void bindGrid(Frame& f, unsigned prog) const {
     f.resources.get<GpuScene>().bind(f.shaders(), prog);
     f.resources.get<LightMaps>().bind();

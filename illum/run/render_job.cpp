@@ -383,6 +383,8 @@ RenderOutput renderAnimationJob(RenderJob& job, const RenderOptions& opt, const 
   for (int f = 0; f < opt.frames && !interrupted; ++f) {
     req.frame = f;
     req.time = req.frameTimes[size_t(f)];
+    const TemporalSettings temporal = job.method().temporal();
+    req.firstSample = temporal.on && temporal.continueSamples ? f * opt.spp : 0;
     job.placeLightsAt(req.time);
     const auto tf = Clock::now();
     Profiler profiler(gl != nullptr);

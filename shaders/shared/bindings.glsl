@@ -85,6 +85,9 @@
 #define IMAGE_ACCUMULATE_SAMPLE 0      // shaders/illum/accumulate.comp
 #define IMAGE_ACCUMULATE_SUM 1
 #define IMAGE_ACCUMULATE_COMPENSATION 2
+#define IMAGE_TEMPORAL_SUM 0           // shaders/illum/temporal/resolve.comp: the film's sum
+#define IMAGE_TEMPORAL_HISTORY 1       // the filtered image of the previous frame
+#define IMAGE_TEMPORAL_OUTPUT 2        // this frame's
 #define IMAGE_VALUE_OCCUPANCY 1        // voxelize/value_resolve.comp: the textures it writes
 #define IMAGE_VALUE_NORMAL 2
 #define IMAGE_VALUE_ALBEDO 3

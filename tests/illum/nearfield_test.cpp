@@ -197,8 +197,11 @@ RenderOptions smallNearField(const std::string& scene) {
   return o;
 }
 
+// Frames without the temporal filter (each frame its own samples): what these tests hold is that the
+// resources follow the animation, frame by frame (the filter has its tests: temporal_test.cpp).
 Animation animate(const std::string& scene, int frames, float step) {
   RenderOptions o = smallNearField(scene);
+  o.set.push_back("temporal=false");
   o.frames = frames;
   o.timeStep = step;
   Animation a;

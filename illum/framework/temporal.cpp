@@ -1,0 +1,88 @@
+#include "illum/framework/temporal.h"
+
+#include <glad/gl.h>
+
+#include "core/error.h"
+#include "core/shader_library.h"
+#include "illum/framework/deferred.h"
+#include "illum/framework/sample_loop.h"
+#include "shaders/shared/bindings.glsl"
+
+namespace vgi {
+
+namespace {
+// The cosine of the largest angle between a history texel's normal and the pixel's (≈ 25°), and how
+// far (in pixel sizes at the pixel's distance) its surface may lie off the pixel's tangent plane: the
+// G-buffers of two frames are jittered by up to a pixel, and a plane seen at a slant moves further.
+constexpr float kNormalCos = 0.9f;
+constexpr float kPlaneTolerance = 4.0f;
+}  // namespace
+
+TemporalFilter::TemporalFilter(int w, int h, const std::vector<std::string>& channels, ShaderLibrary& shaders)
+    : w_(w), h_(h) {
+  for (auto& c : channels) {
+    Channel ch;
+    for (GlTexture& t : ch.image) t = makeTexture2D(w_, h_, GL_RGBA32F);
+    channels_.emplace(c, std::move(ch));
+  }
+  previousPosition_ = makeTexture2D(w_, h_, GL_RGBA32F);
+  previousNormal_ = makeTexture2D(w_, h_, GL_RGBA32F);
+  prog_ = shaders.program({"illum/temporal/resolve.comp.glsl"});
+  checkBlockLayout(prog_, "Pass", sizeof(shared::TemporalParams), "illum/temporal/resolve.comp.glsl");
+}
+
+void TemporalFilter::resolve(const GlFilm& film, const GBuffer& gbuffer, int samples,
+                             const FrameCamera& camera, float pixelSize, const TemporalSettings& s,
+                             bool hasHistory) {
+  VGI_CHECK(samples > 0 && gbuffer.width() == w_ && gbuffer.height() == h_);
+  shared::TemporalParams& p = block_.value;
+  for (int c = 0; c < 4; ++c) {
+    p.viewProj[c] = camera.viewProj[c];
+    p.previousViewProj[c] = previousViewProj_[c];
+  }
+  p.eye = glm::vec4(camera.position, pixelSize);
+  p.invSamples = 1.0f / float(samples);
+  p.alpha = s.alpha;
+  p.clampSigma = s.clampSigma;
+  p.hasHistory = hasHistory ? 1 : 0;
+  p.planeTolerance = kPlaneTolerance;
+  p.normalCos = kNormalCos;
+  p.cameraStill = hasHistory && camera.viewProj == previousViewProj_ ? 1 : 0;
+  block_.upload();
+  glUseProgram(prog_);
+  block_.buffer().bind(UBO_PASS);
+  gbuffer.bind();
+  glBindTextureUnit(TEXUNIT_PASS_INPUT, previousPosition_.get());
+  glBindTextureUnit(TEXUNIT_PASS_INPUT2, previousNormal_.get());
+  const int next = 1 - current_;
+  for (auto& [name, c] : channels_) {
+    glBindImageTexture(IMAGE_TEMPORAL_SUM, film.sumTexture(name), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindImageTexture(IMAGE_TEMPORAL_HISTORY, c.image[current_].get(), 0, GL_FALSE, 0, GL_READ_ONLY,
+                       GL_RGBA32F);
+    glBindImageTexture(IMAGE_TEMPORAL_OUTPUT, c.image[next].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glDispatchCompute(unsigned(w_ + 7) / 8, unsigned(h_ + 7) / 8, 1);
+  }
+  // The next frame reads these images and this G-buffer's surfaces (copied after every dispatch that
+  // read the previous ones has run: the copy is a transfer, ordered after the image reads by the barrier).
+  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                  GL_TEXTURE_UPDATE_BARRIER_BIT);
+  glCopyImageSubData(gbuffer.texture(0), GL_TEXTURE_2D, 0, 0, 0, 0, previousPosition_.get(), GL_TEXTURE_2D, 0,
+                     0, 0, 0, w_, h_, 1);
+  glCopyImageSubData(gbuffer.texture(1), GL_TEXTURE_2D, 0, 0, 0, 0, previousNormal_.get(), GL_TEXTURE_2D, 0,
+                     0, 0, 0, w_, h_, 1);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+  previousViewProj_ = camera.viewProj;
+  current_ = next;
+}
+
+Image TemporalFilter::read(const std::string& channel) const {
+  auto it = channels_.find(channel);
+  VGI_CHECK(it != channels_.end());
+  return readTexture(it->second.image[current_].get(), w_, h_, 1.0f);
+}
+
+double TemporalFilter::bytes() const {
+  return double(w_) * double(h_) * 16.0 * double(2 * channels_.size() + 2);
+}
+
+}  // namespace vgi

@@ -1,0 +1,54 @@
+// The sample loop's temporal filter: the frames of an animation blended with the previous frames'
+// filtered image reprojected through the G-buffer (shaders/illum/temporal/resolve.comp.glsl says
+// how: camera reprojection of the surface's world position, history rejected where the previous
+// G-buffer saw another surface, clipped to the current frame's neighbourhood, an exponential average
+// of at most 1 / alpha frames). A method turns it on with TemporalSettings (Method::temporal); the
+// loop applies it at the end of every frame of an animation (the first has no history), and with
+// continueSamples the animation continues its frames' sample sequences (frame f takes samples f·spp …).
+#pragma once
+#include <glm/glm.hpp>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/gl_handles.h"
+#include "core/image.h"
+#include "illum/framework/compute_pass.h"
+#include "illum/framework/method.h"
+#include "shaders/illum/temporal/params.glsl"
+
+namespace vgi {
+
+class GlFilm;
+class GBuffer;
+class ShaderLibrary;
+struct FrameCamera;
+
+class TemporalFilter {
+ public:
+  TemporalFilter(int width, int height, const std::vector<std::string>& channels, ShaderLibrary& shaders);
+  // Filters the film's mean (its sum over `samples`) of every channel with the history (read when
+  // `hasHistory`: not the first frame of a run) and keeps the result and this frame's G-buffer
+  // surfaces as the next frame's history. `camera` is this frame's camera without jitter,
+  // `pixelSize` a pixel's size per unit distance.
+  void resolve(const GlFilm& film, const GBuffer& gbuffer, int samples, const FrameCamera& camera,
+               float pixelSize, const TemporalSettings& settings, bool hasHistory);
+  // The last resolve's image of `channel` (rows top-down).
+  Image read(const std::string& channel) const;
+  // Two RGBA32F images per channel and the previous G-buffer's position and normal.
+  double bytes() const;
+
+ private:
+  struct Channel {
+    GlTexture image[2];
+  };
+  int w_, h_;
+  std::map<std::string, Channel> channels_;
+  int current_ = 0;  // which image of each channel the last resolve wrote
+  GlTexture previousPosition_, previousNormal_;
+  glm::mat4 previousViewProj_{1.0f};
+  unsigned prog_ = 0;
+  UniformBlock<shared::TemporalParams> block_;
+};
+
+}  // namespace vgi
