@@ -36,10 +36,15 @@ float Viewer::sceneSize() const {
 }
 
 void Viewer::restart() {
+  // A session still here ends with a view change: the method, its parameters and the scene stand, so
+  // the temporal filter's history goes on (a change of those reset the session before).
+  viewFrame_ = session_ ? viewFrame_ + 1 : 0;
   session_.reset();
   req_ = job_->request();
   req_.progress = false;
   req_.time = time_;
+  req_.temporal = true;
+  req_.frame = viewFrame_;
   job_->placeLightsAt(time_);  // lights on a path follow the time (a light moved here has left its path)
   // Headless: exactly --frames samples, as `vgi render --spp N` takes them (the same jitter).
   req_.spp = opt_.frames > 0 ? opt_.frames : opt_.render.spp;
@@ -219,7 +224,9 @@ void Viewer::frame() {
       failed = !attempt(
           "render",
           [&] {
-            session_->addSample();
+            // While the camera moves each sample is a new frame, filtered with the frames before; when
+            // it stands the samples refine that frame, the mean taking over at 1/alpha samples.
+            if (session_->addSample()) session_->filter(float(session_->samples()));
             prof_->resolve(false);
           },
           false);

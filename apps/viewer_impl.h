@@ -125,6 +125,9 @@ class Viewer {
   int shownW_ = 0, shownH_ = 0;
   std::unique_ptr<RenderJob> job_;
   RenderRequest req_;
+  // The sessions since the last change of method, parameters or scene: each view change (camera,
+  // time, a light) starts the next frame of the temporal filter's history (0: no history).
+  int viewFrame_ = 0;
   std::unique_ptr<Profiler> prof_;
   std::unique_ptr<SampleSession> session_;
   Camera home_;

@@ -110,7 +110,10 @@ void Viewer::screenshot(const std::string& path) {
                            {"panel_parameters", panelKeys_},
                            {"gl_errors", gl_->errorCount()},
                            {"errors_reported", failures_},
-                           {"resources_kept", job_->resources().adopted()}};
+                           {"resources_kept", job_->resources().adopted()},
+                           // The image blends the frames before (the camera moved less than 1/alpha
+                           // samples ago): `command` renders the samples alone.
+                           {"filtered_over_time", session_->filtered()}};
     if (showingLightMap()) out.stats["viewer"]["light_face"] = lightFace_;
     // The job (and the `vgi render` command) that renders this image again.
     RenderOptions shot = job_->options();

@@ -48,6 +48,9 @@ struct RenderRequest {
   // and targets, `time` = frameTimes[frame]. A still: one frame.
   std::vector<float> frameTimes;
   int frame = 0;
+  // The loop may filter this frame over time where the method does (Method::temporal): the frames of
+  // an animation, and the viewer's. frame 0 has no history.
+  bool temporal = false;
   // The index of this frame's first sample: 0, or f·spp for frame f of an animation the method
   // filters over time with TemporalSettings::continueSamples.
   int firstSample = 0;

@@ -272,6 +272,7 @@ bool SampleSession::addSample() {
   }
   res_.beginSample(k, req_.seed, prof_);
   if (!method_.addSample(frame_, k)) return false;  // stopped inside the sample: not counted
+  filtered_ = false;
   {
     auto s = prof_.scope("accumulate");
     if (gl)
@@ -310,20 +311,25 @@ RenderResult SampleSession::sofar() const {
   return r;
 }
 
-RenderResult SampleSession::finish() {
+bool SampleSession::filter(float currentFrames) {
   const TemporalSettings temporal = method_.temporal();
-  if (temporal.on && shaders_ && targets_.gbuffer() && req_.frameTimes.size() > 1 && done_ > 0) {
-    auto s = prof_.scope("temporal");
-    const Camera cam = req_.scene->cameraAt(req_.time);
-    const float pixelSize = 2.0f * std::tan(0.5f * glm::radians(cam.fovYDeg)) / float(req_.height);
-    // The surfaces at the pixels' centres (sample 0's camera), the same in every frame where nothing
-    // moves: a jittered G-buffer's edge pixels would see another surface from frame to frame.
-    const FrameCamera centre = camera(0);
-    if (req_.firstSample + done_ - 1 != 0) targets_.gbuffer()->render(res_.get<GpuScene>(), centre);
-    targets_.temporal(*shaders_).resolve(*targets_.glFilm(), *targets_.gbuffer(), done_, centre, pixelSize,
-                                         temporal, req_.frame > 0);
-    filtered_ = true;
-  }
+  if (!temporal.on || !req_.temporal || !shaders_ || !targets_.gbuffer() || done_ == 0) return false;
+  if (filteredBefore_ && currentFrames * temporal.alpha >= 1.0f) return false;  // the mean itself
+  auto s = prof_.scope("temporal");
+  const Camera cam = req_.scene->cameraAt(req_.time);
+  const float pixelSize = 2.0f * std::tan(0.5f * glm::radians(cam.fovYDeg)) / float(req_.height);
+  // The surfaces at the pixels' centres (sample 0's camera), the same in every frame where nothing
+  // moves: a jittered G-buffer's edge pixels would see another surface from frame to frame.
+  const FrameCamera centre = camera(0);
+  if (req_.firstSample + done_ - 1 != 0) targets_.gbuffer()->render(res_.get<GpuScene>(), centre);
+  targets_.temporal(*shaders_).resolve(*targets_.glFilm(), *targets_.gbuffer(), done_, centre, pixelSize,
+                                       temporal, req_.frame > 0, !filteredBefore_, currentFrames);
+  filteredBefore_ = filtered_ = true;
+  return true;
+}
+
+RenderResult SampleSession::finish() {
+  if (!filteredBefore_) filter(1.0f);
   RenderResult r = sofar();
   r.interrupted = done_ < req_.spp;
   method_.finishFrame(frame_);

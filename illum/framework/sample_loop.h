@@ -173,8 +173,15 @@ class SampleSession {
   // The mean of the samples so far of "image" or an output asked for (rows top-down); after finish()
   // of a frame the method filters over time, the filtered image.
   Image read(const std::string& channel) const;
+  // Where the request allows it (RenderRequest::temporal) and the method filters over time
+  // (Method::temporal): filters the samples so far with the history (the session's first call starts
+  // a new frame of it; later calls refine that frame, its samples counting as `currentFrames` frames)
+  // and read() answers the filtered image until the next sample. False (nothing done) otherwise, or
+  // once a refining call would give the mean itself (samples ≥ 1/alpha: read() is the mean).
+  bool filter(float currentFrames);
+  bool filtered() const { return filtered_; }
   // The result with the samples so far: images, stats, `built`, `samplePasses`. A frame of an
-  // animation the method filters over time (Method::temporal) is filtered first.
+  // animation is filtered first (filter(1), unless the session filtered already).
   RenderResult finish();
   // The result so far without finishing the frame (a checkpoint).
   RenderResult sofar() const;
@@ -192,7 +199,8 @@ class SampleSession {
   Frame frame_;
   std::map<std::string, long> before_;
   int done_ = 0;
-  bool filtered_ = false;  // finish() ran the temporal filter: read() answers its images
+  bool filtered_ = false;        // read() answers the temporal filter's images
+  bool filteredBefore_ = false;  // the session started its frame of the filter's history
 };
 
 // One frame of `method`: the loop described at the top. `shaders` is set for GL methods.

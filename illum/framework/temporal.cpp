@@ -25,20 +25,32 @@ TemporalFilter::TemporalFilter(int w, int h, const std::vector<std::string>& cha
     for (GlTexture& t : ch.image) t = makeTexture2D(w_, h_, GL_RGBA32F);
     channels_.emplace(c, std::move(ch));
   }
-  previousPosition_ = makeTexture2D(w_, h_, GL_RGBA32F);
-  previousNormal_ = makeTexture2D(w_, h_, GL_RGBA32F);
+  for (int i = 0; i < 2; ++i) {
+    position_[i] = makeTexture2D(w_, h_, GL_RGBA32F);
+    normal_[i] = makeTexture2D(w_, h_, GL_RGBA32F);
+  }
   prog_ = shaders.program({"illum/temporal/resolve.comp.glsl"});
   checkBlockLayout(prog_, "Pass", sizeof(shared::TemporalParams), "illum/temporal/resolve.comp.glsl");
 }
 
 void TemporalFilter::resolve(const GlFilm& film, const GBuffer& gbuffer, int samples,
                              const FrameCamera& camera, float pixelSize, const TemporalSettings& s,
-                             bool hasHistory) {
-  VGI_CHECK(samples > 0 && gbuffer.width() == w_ && gbuffer.height() == h_);
+                             bool hasHistory, bool newFrame, float currentFrames) {
+  VGI_CHECK(samples > 0 && currentFrames > 0.0f && gbuffer.width() == w_ && gbuffer.height() == h_);
+  if (newFrame) {
+    history_ = out_;
+    out_ = 1 - history_;
+    // This frame's surfaces (rasterized: ordered before the copy), for the next frame.
+    glCopyImageSubData(gbuffer.texture(0), GL_TEXTURE_2D, 0, 0, 0, 0, position_[out_].get(), GL_TEXTURE_2D, 0,
+                       0, 0, 0, w_, h_, 1);
+    glCopyImageSubData(gbuffer.texture(1), GL_TEXTURE_2D, 0, 0, 0, 0, normal_[out_].get(), GL_TEXTURE_2D, 0,
+                       0, 0, 0, w_, h_, 1);
+    viewProj_[out_] = camera.viewProj;
+  }
   shared::TemporalParams& p = block_.value;
   for (int c = 0; c < 4; ++c) {
     p.viewProj[c] = camera.viewProj[c];
-    p.previousViewProj[c] = previousViewProj_[c];
+    p.previousViewProj[c] = viewProj_[history_][c];
   }
   p.eye = glm::vec4(camera.position, pixelSize);
   p.invSamples = 1.0f / float(samples);
@@ -47,42 +59,35 @@ void TemporalFilter::resolve(const GlFilm& film, const GBuffer& gbuffer, int sam
   p.hasHistory = hasHistory ? 1 : 0;
   p.planeTolerance = kPlaneTolerance;
   p.normalCos = kNormalCos;
-  p.cameraStill = hasHistory && camera.viewProj == previousViewProj_ ? 1 : 0;
+  p.cameraStill = hasHistory && camera.viewProj == viewProj_[history_] ? 1 : 0;
+  p.currentFrames = currentFrames;
   block_.upload();
   glUseProgram(prog_);
   block_.buffer().bind(UBO_PASS);
   gbuffer.bind();
-  glBindTextureUnit(TEXUNIT_PASS_INPUT, previousPosition_.get());
-  glBindTextureUnit(TEXUNIT_PASS_INPUT2, previousNormal_.get());
-  const int next = 1 - current_;
+  glBindTextureUnit(TEXUNIT_PASS_INPUT, position_[history_].get());
+  glBindTextureUnit(TEXUNIT_PASS_INPUT2, normal_[history_].get());
   for (auto& [name, c] : channels_) {
     glBindImageTexture(IMAGE_TEMPORAL_SUM, film.sumTexture(name), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(IMAGE_TEMPORAL_HISTORY, c.image[current_].get(), 0, GL_FALSE, 0, GL_READ_ONLY,
+    glBindImageTexture(IMAGE_TEMPORAL_HISTORY, c.image[history_].get(), 0, GL_FALSE, 0, GL_READ_ONLY,
                        GL_RGBA32F);
-    glBindImageTexture(IMAGE_TEMPORAL_OUTPUT, c.image[next].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(IMAGE_TEMPORAL_OUTPUT, c.image[out_].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(unsigned(w_ + 7) / 8, unsigned(h_ + 7) / 8, 1);
   }
-  // The next frame reads these images and this G-buffer's surfaces (copied after every dispatch that
-  // read the previous ones has run: the copy is a transfer, ordered after the image reads by the barrier).
+  // Read back, or read as the next frame's history (images, fetches), or overwritten by the next
+  // frame's G-buffer copy (a transfer): each after these dispatches.
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                   GL_TEXTURE_UPDATE_BARRIER_BIT);
-  glCopyImageSubData(gbuffer.texture(0), GL_TEXTURE_2D, 0, 0, 0, 0, previousPosition_.get(), GL_TEXTURE_2D, 0,
-                     0, 0, 0, w_, h_, 1);
-  glCopyImageSubData(gbuffer.texture(1), GL_TEXTURE_2D, 0, 0, 0, 0, previousNormal_.get(), GL_TEXTURE_2D, 0,
-                     0, 0, 0, w_, h_, 1);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-  previousViewProj_ = camera.viewProj;
-  current_ = next;
 }
 
 Image TemporalFilter::read(const std::string& channel) const {
   auto it = channels_.find(channel);
   VGI_CHECK(it != channels_.end());
-  return readTexture(it->second.image[current_].get(), w_, h_, 1.0f);
+  return readTexture(it->second.image[out_].get(), w_, h_, 1.0f);
 }
 
 double TemporalFilter::bytes() const {
-  return double(w_) * double(h_) * 16.0 * double(2 * channels_.size() + 2);
+  return double(w_) * double(h_) * 16.0 * double(2 * channels_.size() + 4);
 }
 
 }  // namespace vgi

@@ -28,14 +28,18 @@ class TemporalFilter {
  public:
   TemporalFilter(int width, int height, const std::vector<std::string>& channels, ShaderLibrary& shaders);
   // Filters the film's mean (its sum over `samples`) of every channel with the history (read when
-  // `hasHistory`: not the first frame of a run) and keeps the result and this frame's G-buffer
-  // surfaces as the next frame's history. `camera` is this frame's camera without jitter,
-  // `pixelSize` a pixel's size per unit distance.
+  // `hasHistory`: not the first frame of a run); the result, this frame's G-buffer surfaces and
+  // camera are the next frame's history. `newFrame`: the last result becomes the history (false: the
+  // same frame again, with more samples, reads the history its first resolve read). The mean counts
+  // as `currentFrames` frames. `camera` is this frame's camera without jitter, `pixelSize` a pixel's
+  // size per unit distance.
   void resolve(const GlFilm& film, const GBuffer& gbuffer, int samples, const FrameCamera& camera,
-               float pixelSize, const TemporalSettings& settings, bool hasHistory);
+               float pixelSize, const TemporalSettings& settings, bool hasHistory, bool newFrame,
+               float currentFrames);
   // The last resolve's image of `channel` (rows top-down).
   Image read(const std::string& channel) const;
-  // Two RGBA32F images per channel and the previous G-buffer's position and normal.
+  // Per frame of the two (the history, the one being filtered): an RGBA32F image per channel, the
+  // G-buffer's position and normal.
   double bytes() const;
 
  private:
@@ -44,9 +48,11 @@ class TemporalFilter {
   };
   int w_, h_;
   std::map<std::string, Channel> channels_;
-  int current_ = 0;  // which image of each channel the last resolve wrote
-  GlTexture previousPosition_, previousNormal_;
-  glm::mat4 previousViewProj_{1.0f};
+  // Frame slot `out_` is being filtered, `history_` holds the frame before: its images, the G-buffer
+  // surfaces at its pixel centres, its camera.
+  int out_ = 0, history_ = 1;
+  GlTexture position_[2], normal_[2];
+  glm::mat4 viewProj_[2] = {glm::mat4(1.0f), glm::mat4(1.0f)};
   unsigned prog_ = 0;
   UniformBlock<shared::TemporalParams> block_;
 };

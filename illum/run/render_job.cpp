@@ -237,6 +237,7 @@ RenderRequest RenderJob::request() const {
   req.progress = opt_.progress && opt_.frames == 1;
   req.aovs = opt_.aovs;
   req.frameTimes = frameTimes();
+  req.temporal = opt_.frames > 1;
   req.time = opt_.time;
   return req;
 }

@@ -101,6 +101,36 @@ TEST(View, FramesScreenshotEqualsRender) {
   EXPECT_EQ(s["viewer"]["gl_errors"], 0);
 }
 
+// The temporal filter in the viewer: after the camera moved, the first sample is blended with the
+// frames before (reprojected), nearer the converged view than that sample alone; standing, the samples
+// refine it and from 1/alpha samples on the image is their mean, bit for bit `vgi render` again.
+TEST(View, AMovingCameraIsFilteredOverTimeAndAStandingOneConverges) {
+  if (!haveXvfb()) GTEST_FAIL() << "/usr/bin/xvfb-run is missing: scripts/setup.sh installs xvfb";
+  const std::string dir = freshDir("view_temporal");
+  std::ofstream(dir + "/script.json") << R"([{"frames": 8}, {"orbit": [4, 0]}, {"frames": 1},
+    {"screenshot": ")" << dir << R"(/moved.exr"}, {"frames": 9}, {"screenshot": ")"
+                                      << dir << R"(/stood.exr"}])";
+  CliRun v = underXvfb("--size 48x48 --script " + dir + "/script.json");
+  ASSERT_EQ(v.code, 0) << v.output;
+  const nlohmann::json moved = stats(dir + "/moved.json"), stood = stats(dir + "/stood.json");
+  EXPECT_TRUE(moved["viewer"]["filtered_over_time"].get<bool>());
+  EXPECT_EQ(moved["spp"], 1);
+  EXPECT_FALSE(stood["viewer"]["filtered_over_time"].get<bool>());
+  EXPECT_EQ(stood["spp"], 10);
+  expectSameAsRender(dir, "stood");
+  // The moved view alone (its command: 1 sample) and converged (64).
+  const std::string cmd = moved["command"].get<std::string>().substr(4);
+  ASSERT_EQ(vgi(cmd + " --quiet -o " + dir + "/alone.exr").code, 0);
+  std::string converged = cmd;
+  const size_t spp = converged.find("--spp '1'");
+  ASSERT_NE(spp, std::string::npos) << cmd;
+  converged.replace(spp, 9, "--spp '64'");
+  ASSERT_EQ(vgi(converged + " --quiet -o " + dir + "/converged.exr").code, 0);
+  const double filtered = difference(dir + "/moved.exr", dir + "/converged.exr").relMse,
+               alone = difference(dir + "/alone.exr", dir + "/converged.exr").relMse;
+  EXPECT_LT(filtered, 0.8 * alone) << "filtered " << filtered << ", the sample alone " << alone;
+}
+
 // A script: orbit, rays=8, 4 frames, screenshot; bad input (a value out of range, an unknown method, a
 // scene that does not load) is reported and the viewer keeps running; voxel_ao, 4 frames, screenshot.
 // Each screenshot's JSON carries the `vgi render` command that renders it again, and it does.
@@ -348,7 +378,7 @@ TEST(View, MovingALightRelightsAndKeepsTheGrid) {
   const std::string dir = freshDir("view_light");
   const std::string script = dir + "/script.json";
   std::ofstream(script) << R"([{"frames": 2}, {"screenshot": ")" << dir << R"(/before.exr"},
-    {"light": "0=0.2,0.45,0.3"}, {"light": "3=0,0,0"}, {"frames": 2}, {"screenshot": ")"
+    {"light": "0=0.2,0.45,0.3"}, {"light": "3=0,0,0"}, {"frames": 10}, {"screenshot": ")"
                         << dir << R"(/after.exr"}])";
   CliRun v = underXvfb("--size 48x48 --script " + script);
   ASSERT_EQ(v.code, 0) << v.output;
@@ -364,6 +394,8 @@ TEST(View, MovingALightRelightsAndKeepsTheGrid) {
   ASSERT_NE(cmd.find("--light '0="), std::string::npos) << cmd;
   CliRun r = vgi(cmd.substr(4) + " --quiet -o " + dir + "/again.exr");
   ASSERT_EQ(r.code, 0) << cmd << "\n" << r.output;
+  // 10 samples since the light moved (1/temporal_alpha): the mean, no longer the temporal filter's blend.
+  EXPECT_FALSE(after["viewer"]["filtered_over_time"].get<bool>());
   EXPECT_EQ(difference(dir + "/after.exr", dir + "/again.exr").relMae, 0.0) << "bit-identical";
   for (const char* bad : {"5=0,0,0", "0=1,2", "x=1,2,3", "0=1,nan,2"}) {
     CliRun b =

@@ -18,7 +18,8 @@ struct TemporalParams {
   float planeTolerance;  // a history texel's surface within this many pixel sizes of the current plane
   float normalCos;       // … and its normal within this cosine of the current one
   int cameraStill;       // 1: the camera did not move since the previous frame
-  int pad0;
+  float currentFrames;   // how many frames the current mean counts as (an animation's frame: 1; the
+                         // viewer's standing camera: its samples)
 };
 
 SHARED_END

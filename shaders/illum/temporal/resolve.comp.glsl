@@ -11,9 +11,10 @@
 // and normal, not of which object's surface is there), and what its motion changed in the light is
 // held by clipping: the history is clamped to the current frame's 3×3 mean ± clampSigma·σ (variance
 // clipping, Salvi 2016; the box widened to hold the current value), per channel. Then
-// out = h + (c − h) / n, n the pixel's history length + 1, at most 1 / alpha (an exponential average
-// from there): where nothing changed and the frames repeat their samples, out = c exactly. w of the
-// output holds n.
+// out = h + (c − h)·m / n with m = currentFrames (1 for an animation's frame) and n = the history's
+// length + m, at most 1 / alpha (an exponential average from there), and out = c once m ≥ n: where
+// nothing changed and the frames repeat their samples, out = c exactly, and the viewer's standing
+// camera shows its own mean once it has 1 / alpha samples. w of the output holds n.
 #include "shared/bindings.glsl"
 #include "shared/gbuffer.glsl"
 #include "params.glsl"
@@ -27,6 +28,13 @@ layout(binding = TEXUNIT_PASS_INPUT2) uniform sampler2D uPreviousNormal;
 
 vec3 current(ivec2 px) { return imageLoad(uSum, px).xyz * pass.invSamples; }
 
+// The blend of history h (its length in w) with the current mean c, and the new length in w.
+vec4 blend(vec4 h, vec3 c) {
+  float n = min(h.w + pass.currentFrames, 1.0f / pass.alpha);
+  if (pass.currentFrames >= n) return vec4(c, n);
+  return vec4(h.xyz + (c - h.xyz) * (pass.currentFrames / n), n);  // h = c gives c exactly
+}
+
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = imageSize(uOut);
@@ -35,16 +43,14 @@ void main() {
   vec4 p = texelFetch(gPosition, px, 0);
   vec4 n = texelFetch(gNormal, px, 0);
   if (pass.hasHistory == 0) {  // the first frame: no history
-    imageStore(uOut, px, vec4(c, 1.0f));
+    imageStore(uOut, px, blend(vec4(0.0f), c));
     return;
   }
   if (p.w == 0.0f) {
     // No surface at the pixel's centre (the background, or an edge whose jittered samples saw one):
     // its history is its own pixel's where the camera stood still and saw no surface there either.
-    vec4 previous = imageLoad(uHistory, px);
     bool kept = pass.cameraStill != 0 && texelFetch(uPreviousPosition, px, 0).w == 0.0f;
-    float len = kept ? min(previous.w + 1.0f, 1.0f / pass.alpha) : 1.0f;
-    imageStore(uOut, px, vec4(kept ? previous.xyz + (c - previous.xyz) / len : c, len));
+    imageStore(uOut, px, blend(kept ? imageLoad(uHistory, px) : vec4(0.0f), c));
     return;
   }
   mat4 prev = mat4(pass.previousViewProj[0], pass.previousViewProj[1], pass.previousViewProj[2],
@@ -72,7 +78,7 @@ void main() {
     }
   }
   if (weight < 1e-3f) {  // disoccluded: this frame alone
-    imageStore(uOut, px, vec4(c, 1.0f));
+    imageStore(uOut, px, blend(vec4(0.0f), c));
     return;
   }
   history /= weight;
@@ -93,6 +99,5 @@ void main() {
     // The box holds the current value itself: where nothing changed (h = c) nothing is clipped.
     h = clamp(h, min(m1 - pass.clampSigma * sigma, c), max(m1 + pass.clampSigma * sigma, c));
   }
-  float len = min(history.w + 1.0f, 1.0f / pass.alpha);
-  imageStore(uOut, px, vec4(h + (c - h) / len, len));  // h = c gives c exactly
+  imageStore(uOut, px, blend(vec4(h, history.w), c));
 }
