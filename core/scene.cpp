@@ -98,14 +98,21 @@ size_t Scene::triangleCount() const {
   return n;
 }
 
-Bounds Scene::bounds(float time) const {
+namespace {
+Bounds meshBounds(const std::vector<Mesh>& meshes, float time, bool dynamicOnly) {
   Bounds b;
   for (auto& m : meshes) {
+    if (dynamicOnly && !m.dynamic) continue;
     glm::mat4 M = m.objectToWorld(time);
     for (auto& p : m.positions) b.extend(glm::vec3(M * glm::vec4(p, 1.0f)));
   }
   return b;
 }
+}  // namespace
+
+Bounds Scene::bounds(float time) const { return meshBounds(meshes, time, false); }
+
+Bounds Scene::dynamicBounds(float time) const { return meshBounds(meshes, time, true); }
 
 bool Scene::hasDynamicMeshes() const {
   for (auto& m : meshes)

@@ -130,6 +130,8 @@ struct Scene {
 
   size_t triangleCount() const;
   Bounds bounds(float time = 0) const;
+  // The dynamic meshes' bounds at `time` (empty without dynamic meshes).
+  Bounds dynamicBounds(float time) const;
   bool hasDynamicMeshes() const;
   // The camera at `time`: `camera`, or the path's interpolation (position, target, up, field of view).
   Camera cameraAt(float time) const;

@@ -146,6 +146,53 @@ void LightMaps::setLights(const std::vector<Light>& lights, const GpuScene& gpu)
 }
 
 void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler) {
+  draw(gpu, shaders, profiler, std::vector<bool>(layout_.faces.size(), true));
+}
+
+namespace {
+// Whether box b lies wholly outside one clip plane of viewProj (then the frustum cannot see it).
+bool outsideFrustum(const glm::mat4& viewProj, const Bounds& b) {
+  glm::vec4 c[8];
+  for (int i = 0; i < 8; ++i)
+    c[i] =
+        viewProj * glm::vec4(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z, 1.0f);
+  for (int axis = 0; axis < 3; ++axis)
+    for (float side : {-1.0f, 1.0f}) {
+      bool all = true;
+      for (const glm::vec4& p : c) all = all && side * p[axis] > p.w;
+      if (all) return true;
+    }
+  return false;
+}
+
+bool sameFace(const shared::LightFace& a, const shared::LightFace& b) {
+  return a.viewProj == b.viewProj && a.rayUnproject == b.rayUnproject && a.eyeOrtho == b.eyeOrtho &&
+         a.axisTexel == b.axisTexel;
+}
+}  // namespace
+
+int LightMaps::renderChanged(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler,
+                             const Bounds& moved) {
+  std::vector<bool> faces(layout_.faces.size(), true);
+  if (drawnLayout_.faces.size() == layout_.faces.size())
+    for (size_t f = 0; f < faces.size(); ++f)
+      faces[f] = !sameFace(layout_.faces[f], drawnLayout_.faces[f]) ||
+                 layout_.drawn[f] != drawnLayout_.drawn[f] ||
+                 (layout_.drawn[f] && !moved.empty() && !outsideFrustum(layout_.faces[f].viewProj, moved));
+  return draw(gpu, shaders, profiler, faces);
+}
+
+int LightMaps::draw(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler,
+                    const std::vector<bool>& faces) {
+  // (A face outside a spot's cone is only cleared: it counts when a drawn face does not.)
+  int cleared = 0;
+  redrawn_ = 0;
+  for (size_t f = 0; f < faces.size(); ++f) {
+    cleared += faces[f] ? 1 : 0;
+    redrawn_ += faces[f] && layout_.drawn[f] ? 1 : 0;
+  }
+  drawnLayout_ = layout_;
+  if (cleared == 0) return 0;
   const int channels = reflective_ ? 4 : 1;
   ShaderDefines defs;
   if (reflective_) defs["REFLECTIVE"] = "1";
@@ -164,6 +211,7 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
     const glm::ivec4 r = layout_.ranges[li];
     shaders.setUniform(prog, "uLight", int(li));
     for (int f = r.x; f < r.x + r.y; ++f) {
+      if (!faces[size_t(f)]) continue;  // as drawn before
       const shared::LightFace& face = layout_.faces[size_t(f)];
       for (int c = 0; c < channels; ++c)
         glNamedFramebufferTextureLayer(fbo_, GL_COLOR_ATTACHMENT0 + c, textures_[c], 0, f);
@@ -181,6 +229,7 @@ void LightMaps::render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& pr
     }
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return cleared;
 }
 
 LightMaps::~LightMaps() {
@@ -233,28 +282,43 @@ nlohmann::json LightMaps::describe() const {
   for (auto& r : layout_.ranges) (r.y == 6 ? cube : single)++;
   int drawn = 0;
   for (bool d : layout_.drawn) drawn += d ? 1 : 0;
-  return {{"faces", faceCount()},      {"faces_drawn", drawn},      {"cube", cube},   {"single_face", single},
-          {"resolution", resolution_}, {"reflective", reflective_}, {"bytes", bytes_}};
+  return {{"faces", faceCount()},  {"faces_drawn", drawn},      {"cube", cube},
+          {"single_face", single}, {"resolution", resolution_}, {"reflective", reflective_},
+          {"bytes", bytes_},       {"faces_redrawn", redrawn_}};
 }
 
 namespace {
 class LightMapsResource : public Resource {
  public:
   explicit LightMapsResource(const LightMapNeed& n) : need_(n) {}
+  // A frame of an animation draws again only the faces that can see what moved since the last
+  // (or whose light or frustum changed): the static scene in the others is as drawn.
   bool update(SceneResources& res, const ResourceNeed&, Profiler& prof) override {
     const GpuScene& gpu = res.get<GpuScene>();
-    if (!maps_)
+    const bool made = !maps_;
+    if (made)
       maps_ = std::make_unique<LightMaps>(res.lights(), gpu, need_.resolution, need_.reflective);
     else
       maps_->setLights(res.lights(), gpu);
+    const float before = time_;
+    time_ = res.time();
     if (res.sampleLights()) return false;  // beginSample draws them for the sample's lights
-    maps_->render(gpu, res.shaders(), prof);
+    if (made || !drawn_) {
+      maps_->render(gpu, res.shaders(), prof);
+    } else {
+      Bounds moved = res.scene().dynamicBounds(before);
+      const Bounds now = res.scene().dynamicBounds(time_);
+      if (!now.empty()) moved.extend(now.lo), moved.extend(now.hi);
+      if (maps_->renderChanged(gpu, res.shaders(), prof, moved) == 0) return false;
+    }
+    drawn_ = true;
     return true;
   }
   bool relight(SceneResources& res, const ResourceNeed&, Profiler& prof) override {
     const GpuScene& gpu = res.get<GpuScene>();
     maps_->setLights(res.lights(), gpu);
     maps_->render(gpu, res.shaders(), prof);
+    drawn_ = true;
     return true;
   }
   nlohmann::json stats() override { return maps_->describe(); }
@@ -263,6 +327,8 @@ class LightMapsResource : public Resource {
  private:
   LightMapNeed need_;
   std::unique_ptr<LightMaps> maps_;
+  float time_ = 0;      // the time the maps were last made current for
+  bool drawn_ = false;  // drawn for the scene's own lights (not a sample's emitter points)
 };
 }  // namespace
 

@@ -44,6 +44,11 @@ class LightMaps {
   // Renders the maps (timed as "shadow_maps" or "rsm") for the scene as `gpu`
   // holds it now (the frames of an animation).
   void render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler);
+  // The same for the faces that can have changed since they were drawn: a face whose layout (light,
+  // frustum) differs, or whose frustum meets `moved` (what moved since: the dynamic meshes' bounds
+  // before and after; the rest of the scene stands). Returns how many faces it cleared (and, inside a
+  // spot's cone, drew) again: 0 = the maps are as they were.
+  int renderChanged(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler, const Bounds& moved);
   // New positions and directions for lights of the same types as before (a
   // sample's emitter point, SceneResources::beginSample): the face layout is
   // made again; render() draws it.
@@ -70,7 +75,10 @@ class LightMaps {
 
  private:
   void uploadLayout();
+  int draw(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler, const std::vector<bool>& faces);
   LightFaceLayout layout_;
+  LightFaceLayout drawnLayout_;  // the layout each face was last drawn with
+  int redrawn_ = 0;              // drawn faces the last render drew again (the stats' faces_redrawn)
   int resolution_;
   bool reflective_;
   double bytes_ = 0;  // the textures and the depth buffer, as allocated

@@ -269,6 +269,12 @@ TEST(NearField, AnimationFramesEqualStillsAtTheirTimes) {
   EXPECT_GT(compareImages(a.images[0], a.images[2]).relMae, 0.01);
   EXPECT_TRUE(frames[0]["timings_ms"].contains("atlas_build"));
   EXPECT_FALSE(frames[1]["timings_ms"].contains("atlas_build"));
+  // Frames after the first draw again only the RSM faces that see the cube (on the floor: the light's
+  // downward face), and are the stills above all the same.
+  const nlohmann::json maps0 = frames[0]["extra"]["light_maps"], maps1 = frames[1]["extra"]["light_maps"];
+  EXPECT_EQ(maps0["faces_redrawn"], maps0["faces_drawn"]) << maps0.dump();
+  EXPECT_GE(maps1["faces_redrawn"].get<int>(), 1) << maps1.dump();
+  EXPECT_LT(maps1["faces_redrawn"].get<int>(), maps1["faces_drawn"].get<int>()) << maps1.dump();
   EXPECT_EQ(a.last.stats["frames_completed"], 3);
   EXPECT_EQ(a.last.stats["gl_errors"], 0);
 }
