@@ -125,6 +125,9 @@ struct AtlasVoxelizer::MeshGpu {
   float texelWorld = 0;  // world length of one texel of this mesh's atlas
   GLsizei corners = 0, lineIndices = 0;
   unsigned vao = 0, vbo = 0, ebo = 0;
+  // A dynamic mesh's atlas, drawn once in object space (position, triangle; with values normal,
+  // albedo, glossy): each frame moves its points by the mesh's transform instead of drawing it again.
+  unsigned kept[5] = {0, 0, 0, 0, 0};
 };
 
 AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
@@ -351,6 +354,7 @@ glm::ivec2 AtlasVoxelizer::insertStaticMeshes(Profiler& prof, nlohmann::json& at
   const VoxelizeRequest& req = request_;
   long lost = 0, sharedTotal = 0;
   for (size_t i = 0; i < meshes_.size(); ++i) {
+    if (meshes_[i]->dynamic) keepAtlas(*meshes_[i], prof);
     const MeshGpu& m = *meshes_[i];
     std::vector<int> ids;
     AtlasSamples* points = nullptr;
@@ -403,8 +407,11 @@ double AtlasVoxelizer::gpuBytes() const {
   bytes += R * R * (16.0 + 4.0);  // position + triangle id
   if (valueTargets_[0]) bytes += R * R * 16.0 * 3.0;
   if (radianceTarget_) bytes += R * R * 16.0;
-  for (const auto& m : meshes_)
+  for (const auto& m : meshes_) {
     bytes += double(m->corners) * kVertexFloats * 4.0 + double(m->lineIndices) * 4.0;
+    const double r = double(m->resolution);
+    if (m->kept[0]) bytes += r * r * (16.0 + 4.0 + (m->kept[2] ? 16.0 * 3.0 : 0.0));
+  }
   return bytes;
 }
 
@@ -413,6 +420,7 @@ AtlasVoxelizer::~AtlasVoxelizer() {
     unsigned b[2] = {m->vbo, m->ebo};
     glDeleteBuffers(2, b);
     glDeleteVertexArrays(1, &m->vao);
+    glDeleteTextures(5, m->kept);  // (0 names are ignored)
   }
   glDeleteFramebuffers(1, &fbo_);
   glDeleteTextures(2, targets_);
@@ -426,15 +434,42 @@ AtlasVoxelizer::~AtlasVoxelizer() {
 
 // What shaders/voxelize/atlas_point_cells.glsl reads: the atlas targets, the
 // mesh's corners and model matrix, the footprint radius.
+// A dynamic mesh's points are its kept atlas's (object space) moved by uPointModel; a static
+// mesh's are the targets' (drawn at their place: uPointModel = identity, which changes no bit).
 void AtlasVoxelizer::setPointCellInputs(unsigned program, const MeshGpu& m, float time) const {
-  request_.shaders->setUniform(program, "uFootprint", request_.atlasFootprint * m.texelWorld);
-  request_.shaders->setUniform(program, "uModel", modelToBox(m.mesh->objectToWorld(time), request_.box));
-  glBindTextureUnit(TEXUNIT_ATLAS_POSITION, targets_[0]);
-  glBindTextureUnit(TEXUNIT_ATLAS_TRIANGLE, targets_[1]);
+  const glm::mat4 model = modelToBox(m.mesh->objectToWorld(time), request_.box);
+  const bool kept = m.kept[0] != 0;
+  ShaderLibrary& sh = *request_.shaders;
+  sh.setUniform(program, "uFootprint", request_.atlasFootprint * m.texelWorld);
+  sh.setUniform(program, "uModel", model);
+  sh.setUniform(program, "uPointModel", kept ? model : glm::mat4(1.0f));
+  glBindTextureUnit(TEXUNIT_ATLAS_POSITION, kept ? m.kept[0] : targets_[0]);
+  glBindTextureUnit(TEXUNIT_ATLAS_TRIANGLE, kept ? m.kept[1] : targets_[1]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
 }
 
-void AtlasVoxelizer::renderAtlas(const MeshGpu& m, float time, unsigned prog, int targets) const {
+void AtlasVoxelizer::keepAtlas(MeshGpu& m, Profiler& prof) {
+  auto s = prof.scope("atlas_render");
+  const bool values = valueTargets_[0] != 0;
+  const int R = m.resolution, n = values ? 5 : 2;
+  glUseProgram(renderProg_);
+  if (values) {
+    materials_->bind(*request_.shaders, renderProg_);
+    request_.shaders->setUniform(renderProg_, "uMaterial", m.material);
+  }
+  renderAtlas(m, glm::mat4(1.0f), renderProg_, n);
+  const unsigned from[5] = {targets_[0], targets_[1], valueTargets_[0], valueTargets_[1], valueTargets_[2]};
+  const GLenum formats[5] = {GL_RGBA32F, GL_R32I, GL_RGBA32F, GL_RGBA32F, GL_RGBA32F};
+  glCreateTextures(GL_TEXTURE_2D, n, m.kept);
+  for (int k = 0; k < n; ++k) {
+    glTextureStorage2D(m.kept[k], 1, formats[k], R, R);
+    glTextureParameteri(m.kept[k], GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // (an integer texture needs it)
+    glTextureParameteri(m.kept[k], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glCopyImageSubData(from[k], GL_TEXTURE_2D, 0, 0, 0, 0, m.kept[k], GL_TEXTURE_2D, 0, 0, 0, 0, R, R, 1);
+  }
+}
+
+void AtlasVoxelizer::renderAtlas(const MeshGpu& m, const glm::mat4& model, unsigned prog, int targets) const {
   const int R = m.resolution;
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   const GLenum bufs[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
@@ -448,7 +483,7 @@ void AtlasVoxelizer::renderAtlas(const MeshGpu& m, float time, unsigned prog, in
   glClearBufferfv(GL_COLOR, 0, clearPos);
   glClearBufferiv(GL_COLOR, 1, clearId);
   for (int k = 2; k < targets; ++k) glClearBufferfv(GL_COLOR, k, clearPos);
-  request_.shaders->setUniform(prog, "uModel", modelToBox(m.mesh->objectToWorld(time), request_.box));
+  request_.shaders->setUniform(prog, "uModel", model);
   glBindVertexArray(m.vao);
   // Corners and edges first, the fill last: a texel whose centre a triangle
   // covers keeps that centre's point (the regular lattice the resolution
@@ -480,7 +515,7 @@ void AtlasVoxelizer::insertRadiance(float time, const std::function<void(unsigne
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, radianceMaxBuffer_);
     for (auto& m : meshes_) {
       request_.shaders->setUniform(radianceRenderProg_, "uMaterial", m->material);
-      renderAtlas(*m, time, radianceRenderProg_, 6);
+      renderAtlas(*m, modelToBox(m->mesh->objectToWorld(time), request_.box), radianceRenderProg_, 6);
     }
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     uint32_t bits = 0;
@@ -494,7 +529,7 @@ void AtlasVoxelizer::insertRadiance(float time, const std::function<void(unsigne
   for (auto& m : meshes_) {
     glUseProgram(radianceRenderProg_);
     request_.shaders->setUniform(radianceRenderProg_, "uMaterial", m->material);
-    renderAtlas(*m, time, radianceRenderProg_, 6);
+    renderAtlas(*m, modelToBox(m->mesh->objectToWorld(time), request_.box), radianceRenderProg_, 6);
     glUseProgram(radianceInsertProg_);
     request_.shaders->setUniform(radianceInsertProg_, "uAtlasSize", glm::ivec2(m->resolution));
     request_.shaders->setUniform(radianceInsertProg_, "uRadianceMax", radianceMax_);
@@ -511,14 +546,15 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
                                      const ValueBuffers* values, unsigned counter, Profiler& prof,
                                      std::vector<int>* ids, AtlasSamples* points) {
   const int R = m.resolution;
-  {
+  const bool kept = m.kept[0] != 0;  // a dynamic mesh: its points move, nothing is drawn
+  if (!kept) {
     auto s = prof.scope("atlas_render");
     glUseProgram(renderProg_);
     if (values) {
       materials_->bind(*request_.shaders, renderProg_);
       request_.shaders->setUniform(renderProg_, "uMaterial", m.material);
     }
-    renderAtlas(m, time, renderProg_, values ? 5 : 2);
+    renderAtlas(m, modelToBox(m.mesh->objectToWorld(time), request_.box), renderProg_, values ? 5 : 2);
   }
   {
     auto s = prof.scope("insertion");
@@ -536,24 +572,34 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     request_.shaders->setUniform(valueProg_, "uAtlasSize", glm::ivec2(R));
     setPointCellInputs(valueProg_, m, time);
     const unsigned units[3] = {TEXUNIT_ATLAS_NORMAL, TEXUNIT_ATLAS_ALBEDO, TEXUNIT_ATLAS_GLOSSY};
-    for (unsigned k = 0; k < 3; ++k) glBindTextureUnit(units[k], valueTargets_[k]);
+    for (unsigned k = 0; k < 3; ++k) glBindTextureUnit(units[k], kept ? m.kept[2 + k] : valueTargets_[k]);
+    // Kept normals are the object's: turned by the transform's normal matrix.
+    const glm::mat4 model = modelToBox(m.mesh->objectToWorld(time), request_.box);
+    request_.shaders->setUniform(
+        valueProg_, "uNormalModel",
+        kept ? glm::mat4(glm::transpose(glm::inverse(glm::mat3(model)))) : glm::mat4(1.0f));
+    request_.shaders->setUniform(valueProg_, "uTurnNormals", kept ? 1 : 0);
     values->bind();
     glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   }
+  const unsigned positions = kept ? m.kept[0] : targets_[0], triangles = kept ? m.kept[1] : targets_[1];
   if (ids) {
     ids->assign(size_t(R) * size_t(R), -1);
-    glGetTextureSubImage(targets_[1], 0, 0, 0, 0, R, R, 1, GL_RED_INTEGER, GL_INT,
+    glGetTextureSubImage(triangles, 0, 0, 0, 0, R, R, 1, GL_RED_INTEGER, GL_INT,
                          GLsizei(ids->size() * sizeof(int)), ids->data());
   }
   if (points) {
-    points->positions.assign(size_t(R) * size_t(R), glm::vec4(0.0f));
-    glGetTextureSubImage(targets_[0], 0, 0, 0, 0, R, R, 1, GL_RGBA, GL_FLOAT,
-                         GLsizei(points->positions.size() * sizeof(glm::vec4)), points->positions.data());
-    points->triangles.assign(size_t(R) * size_t(R), -1);
-    glGetTextureSubImage(targets_[1], 0, 0, 0, 0, R, R, 1, GL_RED_INTEGER, GL_INT,
-                         GLsizei(points->triangles.size() * sizeof(int)), points->triangles.data());
     const glm::mat4 model = modelToBox(m.mesh->objectToWorld(time), request_.box);
+    points->positions.assign(size_t(R) * size_t(R), glm::vec4(0.0f));
+    glGetTextureSubImage(positions, 0, 0, 0, 0, R, R, 1, GL_RGBA, GL_FLOAT,
+                         GLsizei(points->positions.size() * sizeof(glm::vec4)), points->positions.data());
+    if (kept)  // the points where the insertion put them (atlas_point_cells.glsl: uPointModel)
+      for (glm::vec4& p : points->positions)
+        if (p.w != 0.0f) p = glm::vec4(glm::vec3(model * glm::vec4(glm::vec3(p), 1.0f)), p.w);
+    points->triangles.assign(size_t(R) * size_t(R), -1);
+    glGetTextureSubImage(triangles, 0, 0, 0, 0, R, R, 1, GL_RED_INTEGER, GL_INT,
+                         GLsizei(points->triangles.size() * sizeof(int)), points->triangles.data());
     points->corners.clear();
     for (const glm::uvec3& tri : m.mesh->triangles)
       for (int k = 0; k < 3; ++k)

@@ -75,8 +75,11 @@ class AtlasVoxelizer {
   void createTargets();
   glm::ivec2 insertStaticMeshes(Profiler& profiler, nlohmann::json& atlases,
                                 std::vector<AtlasSamples>* atlasPoints);
-  // Draws the mesh's atlas at `time` with `program` into the first `targets` attachments.
-  void renderAtlas(const MeshGpu& mesh, float time, unsigned program, int targets) const;
+  // Draws the mesh's atlas with `program` into the first `targets` attachments, its points through
+  // `model` (object → offset from the grid's origin: modelToBox at a time; identity: object space).
+  void renderAtlas(const MeshGpu& mesh, const glm::mat4& model, unsigned program, int targets) const;
+  // A dynamic mesh's atlas in object space, drawn once into its own textures (MeshGpu::kept).
+  void keepAtlas(MeshGpu& mesh, Profiler& profiler);
   VoxelizeRequest request_;
   std::vector<std::unique_ptr<MeshGpu>> meshes_;
   std::unique_ptr<GpuGridBuffer> static_, frame_;

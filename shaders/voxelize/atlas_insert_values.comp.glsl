@@ -16,6 +16,8 @@ layout(std430, binding = BINDING_VALUE_COUNTS) buffer Counts { uint counts[]; };
 layout(std430, binding = BINDING_VALUE_NORMAL) buffer NormalSums { uint normalSums[]; };
 layout(std430, binding = BINDING_VALUE_ALBEDO) buffer AlbedoSums { uint albedoSums[]; };
 layout(std430, binding = BINDING_VALUE_GLOSSY) buffer GlossySums { uint glossySums[]; };
+uniform mat4 uNormalModel;  // a kept (object-space) atlas's normals → the grid's (normal matrix)
+uniform int uTurnNormals;   // 1: the atlas is kept (a dynamic mesh); 0: its normals are the grid's already
 #ifdef VALUE_RADIANCE
 layout(binding = TEXUNIT_ATLAS_RADIANCE) uniform sampler2D atlasRadiance;
 layout(std430, binding = BINDING_VALUE_RADIANCE) buffer RadianceSums { uint radianceSums[]; };
@@ -30,6 +32,7 @@ void visitCell(ivec2 t, uvec3 cell) {
 #endif
 #ifdef VALUE_NORMAL
   vec4 n = texelFetch(atlasNormal, t, 0);
+  if (uTurnNormals != 0 && dot(n.xyz, n.xyz) > 0.0f) n.xyz = normalize(mat3(uNormalModel) * n.xyz);
   for (uint c = 0u; c < 3u; ++c) atomicAdd(normalSums[valueIndex(cell, uResolution, c)], toFixed(n[c], -1.0f, 1.0f));
 #endif
 #ifdef VALUE_ALBEDO

@@ -12,6 +12,10 @@ layout(std430, binding = BINDING_ATLAS_CORNERS) readonly buffer Corners { float 
 uniform ivec2 uAtlasSize;
 uniform float uFootprint;  // world radius; 0: the point only
 uniform mat4 uModel;  // object → offset from the grid's origin (AtlasVoxelizer::modelToBox)
+// The atlas's points → offsets from the grid's origin: a dynamic mesh's kept atlas holds object space
+// (uPointModel = uModel: the points move with the mesh, no atlas is drawn per frame); a static mesh's
+// atlas holds the offsets (identity, which changes no bit).
+uniform mat4 uPointModel;
 
 vec3 gridCorner(GridParams g, int i) {
   int o = ATLAS_VERTEX_FLOATS * i;
@@ -24,7 +28,8 @@ bool visitPointCells(ivec2 t) {
   vec4 p = texelFetch(atlasPosition, t, 0);
   if (p.w == 0.0f) return false;
   GridParams g = gridFromUniforms();
-  vec3 q = offsetToGrid(g, p.xyz);  // the atlas holds offsets from the grid's origin
+  precise vec4 moved = uPointModel * vec4(p.xyz, 1.0f);  // rounds like the CPU (the points' read-back)
+  vec3 q = offsetToGrid(g, moved.xyz);
   if (!insideGrid(g, q)) return true;
   uvec3 own = gridCell(g, q);
   visitCell(t, own);

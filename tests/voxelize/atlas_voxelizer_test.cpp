@@ -311,6 +311,32 @@ TEST(AtlasVoxelizer, ResolutionRuleFindsEveryInteriorCellOfAPlane) {
 }  // namespace vgi
 
 namespace vgi {
+// A dynamic mesh's atlas is drawn once in object space and its points moved by the mesh's transform
+// at insertion (no atlas drawn per frame): the GPU's moved points insert what the CPU inserts from the
+// same points moved by glm, bit for bit, at a time the mesh has moved to, footprints included.
+TEST(AtlasVoxelizer, AMovedMeshsKeptAtlasInsertsLikeTheCpu) {
+  GlFixture f;
+  Scene s = loadScene(test::writeMovingTriangleScene("kept"));
+  VoxelizeRequest r = f.request(s, {64, 64, 128});
+  r.time = 1.0f;
+  Profiler prof(true);
+  nlohmann::json stats;
+  std::vector<AtlasSamples> points;
+  BinaryGrid gpu = voxelizeAtlasGl(r, prof, stats, &points);
+  BinaryGrid cpu(r.box);
+  for (auto& atlas : points) insertAtlasPoints(atlas, cpu);
+  EXPECT_EQ(gpu.words(), cpu.words());
+  EXPECT_EQ(stats["dynamic_meshes"], 1);
+  // The same time from frames: the kept atlas is moved again, not drawn.
+  AtlasVoxelizer v(r, prof);
+  v.voxelizeFrame(0.0f, prof);
+  v.voxelizeFrame(1.0f, prof);
+  EXPECT_EQ(v.readFrame().words(), gpu.words());
+  prof.resolve(true);
+  EXPECT_EQ(prof.callCounts()["atlas_render"], 8 + 8) << "each mesh's atlas once per voxelizer";
+  EXPECT_EQ(f.gl->errorCount(), 0);
+}
+
 // Static meshes are voxelized once; every frame copies that grid and inserts the
 // dynamic meshes: going forward and back in time reproduces the same grids, and
 // each frame equals a fresh voxelization at its time.
