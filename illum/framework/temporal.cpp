@@ -6,6 +6,7 @@
 #include "core/shader_library.h"
 #include "illum/framework/deferred.h"
 #include "illum/framework/sample_loop.h"
+#include "shaders/illum/temporal/params.glsl"
 #include "shaders/shared/bindings.glsl"
 
 namespace vgi {
@@ -31,6 +32,7 @@ TemporalFilter::TemporalFilter(int w, int h, const std::vector<std::string>& cha
   }
   prog_ = shaders.program({"illum/temporal/resolve.comp.glsl"});
   checkBlockLayout(prog_, "Pass", sizeof(shared::TemporalParams), "illum/temporal/resolve.comp.glsl");
+  params_ = std::make_unique<UniformBuffer>(sizeof(shared::TemporalParams));
 }
 
 void TemporalFilter::resolve(const GlFilm& film, const GBuffer& gbuffer, int samples,
@@ -47,7 +49,8 @@ void TemporalFilter::resolve(const GlFilm& film, const GBuffer& gbuffer, int sam
                        0, 0, 0, w_, h_, 1);
     viewProj_[out_] = camera.viewProj;
   }
-  shared::TemporalParams& p = block_.value;
+  static_assert(sizeof(shared::TemporalParams) % 16 == 0, "std140: padded to 16 bytes");
+  shared::TemporalParams p{};
   for (int c = 0; c < 4; ++c) {
     p.viewProj[c] = camera.viewProj[c];
     p.previousViewProj[c] = viewProj_[history_][c];
@@ -61,9 +64,9 @@ void TemporalFilter::resolve(const GlFilm& film, const GBuffer& gbuffer, int sam
   p.normalCos = kNormalCos;
   p.cameraStill = hasHistory && camera.viewProj == viewProj_[history_] ? 1 : 0;
   p.currentFrames = currentFrames;
-  block_.upload();
+  params_->upload(&p);
   glUseProgram(prog_);
-  block_.buffer().bind(UBO_PASS);
+  params_->bind(UBO_PASS);
   gbuffer.bind();
   glBindTextureUnit(TEXUNIT_PASS_INPUT, position_[history_].get());
   glBindTextureUnit(TEXUNIT_PASS_INPUT2, normal_[history_].get());

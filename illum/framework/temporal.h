@@ -8,6 +8,7 @@
 #pragma once
 #include <glm/glm.hpp>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,6 @@
 #include "core/image.h"
 #include "illum/framework/compute_pass.h"
 #include "illum/framework/method.h"
-#include "shaders/illum/temporal/params.glsl"
 
 namespace vgi {
 
@@ -54,7 +54,9 @@ class TemporalFilter {
   GlTexture position_[2], normal_[2];
   glm::mat4 viewProj_[2] = {glm::mat4(1.0f), glm::mat4(1.0f)};
   unsigned prog_ = 0;
-  UniformBlock<shared::TemporalParams> block_;
+  // Its shared::TemporalParams (shaders/illum/temporal/params.glsl, read by the .cpp only: an installed
+  // header includes no shader but shaders/shared/).
+  std::unique_ptr<UniformBuffer> params_;
 };
 
 }  // namespace vgi
