@@ -100,7 +100,12 @@ run() {  # run NAME ARGS… : vgi ARGS, its output in raw/NAME.log; a failure is
   local name=$1
   shift
   if ! (cd "$repo" && "$vgi" "$@") > "$out/raw/$name.log" 2>&1; then
-    note "FAILED: vgi $*: $(grep 'vgi: error:' "$out/raw/$name.log" | tail -1) (raw/$name.log)"
+    # vgi's reason; else a sanitizer's lines (a report, or the checker's own crash at exit)
+    local why
+    why=$(grep 'vgi: error:' "$out/raw/$name.log" | tail -1 || true)
+    [ -n "$why" ] || why=$(grep -E 'ERROR: [A-Za-z]+Sanitizer|runtime error:|Tracer caught signal|Sanitizer has encountered' \
+      "$out/raw/$name.log" | head -3 | tr '\n' ' ' || true)
+    note "FAILED: vgi $*: $why (raw/$name.log)"
     return 1
   fi
 }
