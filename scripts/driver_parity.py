@@ -69,6 +69,7 @@ RENDERS = [
     ("vct_texels", "cornell", ["--method", "vct", "--set", GRID, "--set", "radiance=texels"]),
     ("vct_atlas", "cornell", ["--method", "vct", "--set", GRID, "--set", "radiance=atlas"]),
     ("vct_squared", "cornell", ["--method", "vct", "--set", GRID, "--set", "face_weights=squared"]),
+    ("vct_directional", "cornell", ["--method", "vct", "--set", GRID, "--set", "directional=true"]),
     ("vct_ao", "cornell", ["--method", "vct_ao", "--set", GRID]),
     ("vct_ao_svo", "cornell", ["--method", "vct_ao", "--set", GRID, "--set", "volume=svo"]),
     ("voxels", "cornell", ["--method", "voxels", "--set", GRID]),

@@ -18,19 +18,7 @@ const char* valueMipsName(ValueMips m) {
   return m == ValueMips::None ? "none" : m == ValueMips::Isotropic ? "isotropic" : "anisotropic";
 }
 
-namespace {
-constexpr GLenum kChannelFormat[4] = {GL_RGBA16F, GL_RGBA8, GL_RGBA16F,
-                                      GL_RGBA16F};  // normal, albedo, glossy, radiance
-const char* formatName(GLenum f) {
-  return f == GL_RGBA16F ? "rgba16f" : f == GL_RGBA8 ? "rgba8" : f == GL_R8 ? "r8" : "r32ui";
-}
-size_t texelBytes(GLenum f) { return f == GL_RGBA16F ? 8 : f == GL_RGBA8 || f == GL_R32UI ? 4 : 1; }
-
-glm::uvec3 halve(glm::uvec3 s, int times) {
-  return glm::max(glm::uvec3(1u), glm::uvec3(s.x >> times, s.y >> times, s.z >> times));
-}
-
-GlTexture makeTexture3D(glm::uvec3 size, int levels, GLenum format, bool linear) {
+GlTexture makeGridTexture3D(glm::uvec3 size, int levels, unsigned format, bool linear) {
   unsigned t = 0;
   glCreateTextures(GL_TEXTURE_3D, 1, &t);
   glTextureStorage3D(t, levels, format, GLsizei(size.x), GLsizei(size.y), GLsizei(size.z));
@@ -44,6 +32,18 @@ GlTexture makeTexture3D(glm::uvec3 size, int levels, GLenum format, bool linear)
   const float zero[4] = {0, 0, 0, 0};
   glTextureParameterfv(t, GL_TEXTURE_BORDER_COLOR, zero);
   return GlTexture(t);
+}
+
+namespace {
+constexpr GLenum kChannelFormat[4] = {GL_RGBA16F, GL_RGBA8, GL_RGBA16F,
+                                      GL_RGBA16F};  // normal, albedo, glossy, radiance
+const char* formatName(GLenum f) {
+  return f == GL_RGBA16F ? "rgba16f" : f == GL_RGBA8 ? "rgba8" : f == GL_R8 ? "r8" : "r32ui";
+}
+size_t texelBytes(GLenum f) { return f == GL_RGBA16F ? 8 : f == GL_RGBA8 || f == GL_R32UI ? 4 : 1; }
+
+glm::uvec3 halve(glm::uvec3 s, int times) {
+  return glm::max(glm::uvec3(1u), glm::uvec3(s.x >> times, s.y >> times, s.z >> times));
 }
 
 void dispatch3D(glm::uvec3 size) { glDispatchCompute((size.x + 3) / 4, (size.y + 3) / 4, (size.z + 3) / 4); }
@@ -88,16 +88,16 @@ ValueTextures::ValueTextures(const GridBox& box, std::vector<std::string> channe
   if (int(std::max({r.x, r.y, r.z})) > max3d)
     fail("multi-valued grid ", r.x, "x", r.y, "x", r.z, ": exceeds GL_MAX_3D_TEXTURE_SIZE ", max3d);
   const double cells = double(r.x) * r.y * r.z, chain = levels_ > 1 ? 8.0 / 7.0 : 1.0;
-  count_ = makeTexture3D(r, 1, GL_R32UI, false);
-  occupancy_ = makeTexture3D(r, levels_, GL_R8, true);
+  count_ = makeGridTexture3D(r, 1, GL_R32UI, false);
+  occupancy_ = makeGridTexture3D(r, levels_, GL_R8, true);
   bytes_ = size_t(cells * (4 + chain));
   for (auto& ch : channels_) {
     const uint32_t k = valueChannelIndex(ch);
-    channel_[k] = makeTexture3D(r, levels_, kChannelFormat[k], true);
+    channel_[k] = makeGridTexture3D(r, levels_, kChannelFormat[k], true);
     bytes_ += size_t(cells * chain * double(texelBytes(kChannelFormat[k])));
     if (mips == ValueMips::Anisotropic && k != shared::VALUE_CHANNEL_GLOSSY)
       for (int f = 0; f < 6; ++f) {
-        aniso_[k][f] = makeTexture3D(halve(r, 1), std::max(1, levels_ - 1), GL_RGBA16F, true);
+        aniso_[k][f] = makeGridTexture3D(halve(r, 1), std::max(1, levels_ - 1), GL_RGBA16F, true);
         bytes_ += size_t(cells / 8 * chain * 8);
       }
   }
@@ -118,7 +118,7 @@ unsigned ValueTextures::textureOf(const std::string& channel) const {
 }
 
 void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders, Profiler& prof,
-                            unsigned occupancyWords) {
+                            unsigned occupancyWords, unsigned radianceDirection) {
   {
     auto s = prof.scope("value_resolve");
     ShaderDefines defs;
@@ -174,13 +174,20 @@ void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders,
   for (auto& ch : channels_)
     isoChain(channel_[valueChannelIndex(ch)].get(), kChannelFormat[valueChannelIndex(ch)]);
   if (mips_ != ValueMips::Anisotropic || levels_ < 2) return;
-  const unsigned prog =
+  const unsigned plain =
       shaders.program({"voxelize/value_mip.comp.glsl"}, {{"ANISOTROPIC", "1"}, {"OUTPUT_FORMAT", "rgba16f"}});
-  glUseProgram(prog);
-  glBindTextureUnit(TEXUNIT_PASS_INPUT2, occupancy_.get());
   for (auto& ch : channels_) {
     const uint32_t k = valueChannelIndex(ch);
     if (k == shared::VALUE_CHANNEL_GLOSSY) continue;
+    const bool directional = radianceDirection && k == shared::VALUE_CHANNEL_RADIANCE;
+    const unsigned prog =
+        directional
+            ? shaders.program({"voxelize/value_mip.comp.glsl"},
+                              {{"ANISOTROPIC", "1"}, {"DIRECTIONAL", "1"}, {"OUTPUT_FORMAT", "rgba16f"}})
+            : plain;
+    glUseProgram(prog);
+    glBindTextureUnit(TEXUNIT_PASS_INPUT2, occupancy_.get());
+    if (directional) glBindTextureUnit(TEXUNIT_VALUE_DIRECTION, radianceDirection);
     for (unsigned f = 0; f < 6; ++f) {
       shaders.setUniform(prog, "uFace", f);
       const unsigned face = aniso_[k][f].get();

@@ -59,9 +59,12 @@ class ValueTextures {
   // Level 0 from the sums ("value_resolve"), then the mips ("value_mips").
   // occupancyWords: a binary grid's words (an OR-mip pyramid, level 0 first)
   // that decide the occupancy instead of count > 0 (cone tracing's opacity
-  // from any voxelizer); 0: the counts decide.
+  // from any voxelizer); 0: the counts decide. radianceDirection: a level-0
+  // texture of the direction each cell's radiance leaves in (vct's
+  // `directional`: illum/resources/cone_volume.h), which the radiance's
+  // anisotropic chain then reads its first level through (value_mip.comp, DIRECTIONAL).
   void resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders, Profiler& profiler,
-               unsigned occupancyWords = 0);
+               unsigned occupancyWords = 0, unsigned radianceDirection = 0);
   // Binds count, occupancy and the channels at their TEXUNIT_VALUE_* units.
   void bind() const;
   // Binds the six faces of `channel`'s anisotropic chain at TEXUNIT_VALUE_ANISO + face.
@@ -91,6 +94,10 @@ class ValueTextures {
   GlTexture aniso_[4][6];  // normal, albedo, radiance (glossy unused)
   size_t bytes_ = 0;
 };
+
+// A 3D texture of a grid's cells: `levels` levels of `format`, filtered
+// (linear, and between levels) or not, 0 outside the grid (a border of 0).
+GlTexture makeGridTexture3D(glm::uvec3 size, int levels, unsigned format, bool linear);
 
 // The C++ builders of one mip level through the same kernels (tests compare
 // the GPU's levels with these): `in` is a level of size inSize, x fastest.

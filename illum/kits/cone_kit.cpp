@@ -64,7 +64,24 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
   s.anisotropic = p.getBool("anisotropic", anisotropicDefault,
                             "six-direction anisotropic mip chain (front-to-back per axis direction, VCT "
                             "thesis 3.2); false: isotropic 2x2x2 means");
-  const double gib = cells * (24.0 + 1.15 + 9.15 + (s.anisotropic ? 6.9 : 0.0)) / double(1u << 30);
+  if (withRadiance) {
+    s.directional = p.getBool(
+        "directional", false,
+        "level-0 radiance seen from the cone's side: each voxel keeps the direction its injected light "
+        "leaves in, so a wall voxel lit on one face does not glow from the other (ours; radiance=inject, "
+        "volume=dense, anisotropic)");
+    const char* why = s.radiance != ConeRadiance::Inject ? "radiance=inject"
+                      : svo                              ? "volume=dense"
+                      : !s.anisotropic                   ? "anisotropic=true"
+                                                         : nullptr;
+    if (s.directional && why)
+      fail("parameter 'directional': true needs ", why, " (radiance=", coneRadianceName(s.radiance),
+           ", volume=", svo ? "svo" : "dense", ", anisotropic=", s.anisotropic ? "true" : "false", ")");
+  }
+  // directional: its sums 16 and its texture 4.
+  const double gib = cells *
+                     (24.0 + 1.15 + 9.15 + (s.anisotropic ? 6.9 : 0.0) + (s.directional ? 20.0 : 0.0)) /
+                     double(1u << 30);
   if (!svo && gib > 8.0)
     fail("parameter 'voxels': ", s.grid.resolution.x, "x", s.grid.resolution.y, "x", s.grid.resolution.z,
          " needs ", gib, " GiB for the cone-tracing volume (at most 8 GiB)");
@@ -85,6 +102,7 @@ ConeVolumeNeed ConeVolumeSettings::need() const {
   if (radiance == ConeRadiance::Atlas) n.grid.values = {"radiance"};
   n.radiance = radiance;
   n.anisotropic = anisotropic;
+  n.directional = directional;
   if (radiance != ConeRadiance::None)
     n.lightMaps = LightMapNeed{shadow.resolution, radiance == ConeRadiance::Texels};
   if (injectsRadiance(radiance)) {
@@ -118,6 +136,7 @@ void ConeVolumeSettings::addNeed(SceneNeeds& needs) const {
 void ConeVolumeSettings::addDefines(ShaderDefines& defs) const {
   if (volume == Storage::Svo) defs["CONE_SVO"] = "1";
   if (anisotropic) defs["VCT_ANISOTROPIC"] = "1";
+  if (directional) defs["VCT_DIRECTIONAL"] = "1";
   if (absWeights) defs["VCT_ABS_WEIGHTS"] = "1";
 }
 

@@ -13,6 +13,7 @@
 #include "traverse/gl_ray_tracer.h"
 #include "voxelize/gpu_grid.h"
 #include "voxelize/sparse_octree.h"
+#include "voxelize/value_textures.h"
 
 namespace vgi {
 
@@ -37,7 +38,10 @@ ConeRadiance coneRadianceOf(const std::string& name) {
 }
 
 nlohmann::json ConeVolumeNeed::key() const {
-  return {{"grid", grid.key()}, {"radiance", coneRadianceName(radiance)}, {"anisotropic", anisotropic}};
+  nlohmann::json k = {
+      {"grid", grid.key()}, {"radiance", coneRadianceName(radiance)}, {"anisotropic", anisotropic}};
+  if (directional) k["directional"] = true;  // (absent otherwise: the keys of earlier caches stand)
+  return k;
 }
 
 nlohmann::json ConeVolumeNeed::settings() const {
@@ -81,7 +85,8 @@ void ConeVolume::allocate(SceneResources& res) {
   own_ = std::make_unique<ValueTextures>(box, std::vector<std::string>{"radiance"},
                                          need_.anisotropic ? ValueMips::Anisotropic : ValueMips::Isotropic);
   volume_ = own_.get();
-  sums_.allocate(box.cellCount());
+  sums_.allocate(box.cellCount(), need_.directional);
+  if (need_.directional) direction_ = makeGridTexture3D(box.resolution, 1, GL_RGBA8_SNORM, true);
 }
 
 void ConeVolume::fill(SceneResources& res, Profiler& prof) {
@@ -90,31 +95,47 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   if (injectsRadiance(need_.radiance))
     sums_.inject(res, res.get<GridBox>(need_.grid), need_.radiance, *need_.lightMaps, need_.bias,
                  need_.normalOffset, nullptr, prof);
+  const unsigned words = res.get<GlPyramid>(need_.pyramid()).words();
+  if (direction_) {
+    auto s = prof.scope("vct_direction_resolve");
+    const unsigned prog = shaders.program({"illum/vct/direction_resolve.comp.glsl"});
+    glUseProgram(prog);
+    const glm::uvec3 r = own_->box().resolution;
+    shaders.setUniform(prog, "uResolution", glm::uvec4(r, 0u));
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_DIRECTION, sums_.directions());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_PYRAMID, words);
+    glBindImageTexture(IMAGE_VALUE_DIRECTION, direction_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8_SNORM);
+    glDispatchCompute((r.x + 3) / 4, (r.y + 3) / 4, (r.z + 3) / 4);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
   ValueSumBuffers b;
   b.counts = sums_.counts();
   b.sums[3] = sums_.sums();
   b.radianceMax = sums_.radianceMax();
-  own_->resolve(b, shaders, prof, res.get<GlPyramid>(need_.pyramid()).words());
+  own_->resolve(b, shaders, prof, words, direction_.get());
 }
 
-void InjectionSums::allocate(uint64_t slots) {
+void InjectionSums::allocate(uint64_t slots, bool directional) {
   slots_ = std::max<uint64_t>(slots, 1);
-  checkGpuAllocation(bytes(), "the radiance injection's sums (" + std::to_string(slots_) + " slots)");
+  checkGpuAllocation(double(slots_) * (directional ? 36.0 : 20.0),
+                     "the radiance injection's sums (" + std::to_string(slots_) + " slots)");
   counts_ = makeBuffer(slots_ * 4);
   sums_ = makeBuffer(slots_ * 16);
   max_ = makeBuffer(4);
+  directions_ = directional ? makeBuffer(slots_ * 16) : GlBuffer();
   const uint32_t zero = 0;
-  glClearNamedBufferData(counts_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glClearNamedBufferData(sums_.get(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  for (unsigned b : {counts_.get(), sums_.get(), directions_.get()})
+    if (b) glClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
 
 float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadiance radiance,
                             const LightMapNeed& mapsNeed, float bias, float normalOffset,
                             const SparseVoxelOctree* octree, Profiler& prof) {
-  const unsigned counts = counts_.get(), sums = sums_.get(), max = max_.get();
+  const unsigned counts = counts_.get(), sums = sums_.get(), max = max_.get(), directions = directions_.get();
   const uint32_t zero = 0;
-  glClearNamedBufferData(counts, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glClearNamedBufferData(sums, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  for (unsigned b : {counts, sums, directions})
+    if (b) glClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   const bool texels = radiance == ConeRadiance::Texels;
   ShaderLibrary& shaders = res.shaders();
   const GpuScene& gpu = res.get<GpuScene>();
@@ -126,6 +147,10 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
   ShaderDefines defs;
   if (!texels) defs["CONSERVATIVE_VALUES"] = "1";
   if (octree) defs["INJECT_SVO"] = "1";
+  if (directions) {
+    if (texels || octree) fail("internal: directional injection is the dense volume's, radiance=inject");
+    defs["INJECT_DIRECTIONAL"] = "1";
+  }
   const unsigned prog = shaders.program(files, defs);
   defs["INJECT_MAX"] = "1";
   const unsigned maxProg = shaders.program(files, defs);
@@ -138,6 +163,8 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, max);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, counts);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, sums);
+      if (directions && p == prog)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_DIRECTION, directions);
     };
     if (texels) {
       const int r = maps.resolution();
@@ -185,6 +212,8 @@ nlohmann::json ConeVolume::stats() {
     j["bytes"] = j["bytes"].get<double>() + sums_.bytes();
   }
   j["radiance_source"] = coneRadianceName(need_.radiance);
+  j["directional"] = need_.directional;
+  if (direction_) j["bytes"] = j["bytes"].get<double>() + double(own_->box().cellCount()) * 4.0;
   if (injectsRadiance(need_.radiance)) j["radiance_max"] = sums_.radianceMax();
   return j;
 }
@@ -201,6 +230,7 @@ void bindConeVolume(const ValueTextures& t, ShaderLibrary& shaders, unsigned pro
 
 void ConeVolume::bind(ShaderLibrary& shaders, unsigned prog, float step) const {
   bindConeVolume(*volume_, shaders, prog, step);
+  if (direction_) glBindTextureUnit(TEXUNIT_VALUE_DIRECTION, direction_.get());
 }
 
 ResourceKind coneVolumeKind() {

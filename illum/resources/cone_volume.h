@@ -14,6 +14,13 @@
 //   atlas   the atlas voxelizer's radiance channel (VGI §3): the value grids
 //           are the volume (nothing of its own is allocated);
 //   none    opacity only (vct_ao), from the binary grid.
+// `directional` (inject only; ours): the injection also sums the direction
+// each (triangle, cell) pair's light leaves in, resolved into a level-0
+// texture of D per cell (TEXUNIT_VALUE_DIRECTION; shared/value_grid.glsl:
+// directionalFacing), through which the anisotropic chain's first level and
+// cones.glsl's level-0 samples (VCT_DIRECTIONAL) see a cell's radiance from
+// the side they come from: a wall voxel lit on its outer face no longer glows
+// into the room or box behind it (docs/BENCHMARKS.md, "Leaks: vct").
 #pragma once
 #include <glm/glm.hpp>
 #include <map>
@@ -54,11 +61,12 @@ inline bool injectsRadiance(ConeRadiance r) { return r == ConeRadiance::Inject |
 // The fixed-point sums vct's radiance injection writes per slot — a cell of
 // the dense volume (x fastest) or a leaf of the sparse octree — as
 // shared/value_grid.glsl defines them: a count (4 bytes) and rgb sums (16),
-// with the word of the first pass' maximum, the sums' fixed-point range.
+// with the word of the first pass' maximum, the sums' fixed-point range;
+// `directional`: also the direction sums (16 bytes).
 class InjectionSums {
  public:
   // Buffers for `slots` slots, zero (checked against the GL memory budget).
-  void allocate(uint64_t slots);
+  void allocate(uint64_t slots, bool directional = false);
   // Clears the sums and injects into them (radiance inject or texels; `octree`:
   // the slots are its leaves, cells outside it left out); returns the range.
   //   inject  the light maps' shadow-tested diffuse light of every (triangle,
@@ -70,11 +78,12 @@ class InjectionSums {
                float bias, float normalOffset, const SparseVoxelOctree* octree, Profiler& profiler);
   unsigned counts() const { return counts_.get(); }
   unsigned sums() const { return sums_.get(); }
+  unsigned directions() const { return directions_.get(); }  // 0 unless directional
   float radianceMax() const { return radianceMax_; }
-  double bytes() const { return double(slots_) * 20.0; }
+  double bytes() const { return double(slots_) * (directions_ ? 36.0 : 20.0); }
 
  private:
-  GlBuffer counts_, sums_, max_;
+  GlBuffer counts_, sums_, max_, directions_;
   uint64_t slots_ = 0;
   float radianceMax_ = 1.0f;
 };
@@ -85,9 +94,10 @@ struct ConeVolumeNeed {
   BinaryGridNeed grid;               // cubic cells; with radiance=atlas its values hold "radiance"
   ConeRadiance radiance = ConeRadiance::Inject;
   bool anisotropic = true;
+  bool directional = false;                // inject: the level-0 direction of the leaving light
   std::optional<LightMapNeed> lightMaps;   // inject, atlas: the direct light's maps
   float bias = 1.0f, normalOffset = 0.0f;  // inject: the maps' shadow test (texels, voxels)
-  nlohmann::json key() const;              // grid, radiance, anisotropic: what is allocated
+  nlohmann::json key() const;              // grid, radiance, anisotropic, directional: what is allocated
   nlohmann::json settings() const;         // the light maps and their shadow test: what injection reads
   OrMipPyramidNeed pyramid() const { return {grid}; }
   ValueGridNeed valueGrids() const;  // radiance=atlas: the volume
@@ -112,7 +122,8 @@ class ConeVolume : public Resource, public ConeSource {
   std::string filledFor_;                  // the settings of the last fill (an adopted volume may get others)
   const ValueTextures* volume_ = nullptr;  // own_, or the value grids' (radiance=atlas)
   std::unique_ptr<ValueTextures> own_;
-  InjectionSums sums_;  // also with radiance=none: the resolve reads zero counts
+  InjectionSums sums_;   // also with radiance=none: the resolve reads zero counts
+  GlTexture direction_;  // directional: D per cell (RGBA8_SNORM, level 0)
   float voxel_ = 0.0f;
 };
 

@@ -38,6 +38,7 @@
 #define BINDING_SVO_COORDS 27      // SSBO uint[]: per node its packed cell (svoPackCell)
 #define BINDING_SVO_FRAGMENTS 28   // SSBO uint[]: the octree's fragments (packed cells)
 #define BINDING_GATHER_FIXUP 29    // SSBO the gather kit's fix-up list (illum/gather/gather.glsl: GatherFixup)
+#define BINDING_VALUE_DIRECTION 30  // SSBO vct's directional injection: per cell the leaving direction's sums (illum/vct/inject_sums.glsl)
 
 // ---- uniform buffers (std140 blocks of params structs: illum/framework/compute_pass.h)
 #define UBO_PASS 0         // a compute pass's own parameters: `uniform Pass { T p; }`
@@ -73,6 +74,7 @@
 #define TEXUNIT_ATLAS_RADIANCE 29           // atlas voxelizer: radiance (multi-valued grids)
 #define TEXUNIT_VPL_SHADOW 30               // sampler2D: the VPL shadow-map atlas (avg; illum/vpl/vpl_shadow.glsl)
 #define TEXUNIT_GATHER_FIXUP 31             // sampler2D RGBA32F: the gather kit's full-rate fix-ups (w = 1 where made)
+#define TEXUNIT_VALUE_DIRECTION 32          // sampler3D RGBA8_SNORM: vct's level-0 direction of the leaving light (illum/resources/cone_volume.h)
 
 // ---- images
 #define IMAGE_OUTPUT 0                 // a pass's output
@@ -94,3 +96,4 @@
 #define IMAGE_VALUE_GLOSSY 4
 #define IMAGE_VALUE_COUNT 5
 #define IMAGE_VALUE_RADIANCE 6
+#define IMAGE_VALUE_DIRECTION 7        // illum/vct/direction_resolve.comp: vct's level-0 direction

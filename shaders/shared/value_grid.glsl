@@ -113,6 +113,36 @@ SHARED_FN vec4 anisoReduce(vec4 c[8], uint face) {
   return sum * 0.25f;
 }
 
+// Directional level-0 radiance (vct's `directional`; ours): per cell D =
+// Σ (ℓ⁺ − ℓ⁻) n / Σ (ℓ⁺ + ℓ⁻) over its (triangle, cell) pairs, ℓ± the
+// luminance (mean of rgb) of the light leaving the triangle's side ±n, so
+// |D| ≤ 1: a wall lit on one side only has D = its lit side's normal, one lit
+// alike on both sides D = 0. A cell's radiance seen from direction w (unit,
+// towards the viewer) is its mean times min(1, 1 + w·D): unchanged from the
+// side D points to and edge-on, 1 − |D| of it straight from behind, so a wall
+// voxel whose one face is lit does not glow into the room behind it (the
+// cosine lobe (1 + w·D) / (1 + |D|) halved every wall seen edge-on:
+// docs/BENCHMARKS.md, "Leaks: vct").
+// The sums are fixed point (DIRECTION_FIXED_ONE per unit of radiance / the
+// pass' maximum) in 32-bit words: xyz signed (two's complement), w unsigned.
+const float DIRECTION_FIXED_ONE = 65535.0f;
+SHARED_FN float directionalFacing(vec3 towardsViewer, vec3 D) {
+  return min(1.0f + dot(towardsViewer, D), 1.0f);
+}
+// D from a cell's sums (0 where nothing was lit).
+SHARED_FN vec3 decodeDirection(uvec4 sums) {
+  if (sums.w == 0u) return vec3(0.0f);
+  vec3 d = vec3(float(int(sums.x)), float(int(sums.y)), float(int(sums.z))) / float(sums.w);
+  float len = length(d);
+  return len > 1.0f ? d / len : d;  // rounding of the fixed point
+}
+// The unit direction a cone travels along to read face f (f = 2·axis, +1 negative).
+SHARED_FN vec3 anisoFaceTravel(uint face) {
+  vec3 t = vec3(0.0f);
+  t[face >> 1u] = (face & 1u) == 0u ? 1.0f : -1.0f;
+  return t;
+}
+
 // Looking up an anisotropic chain along unit direction d: the three faces
 // facing d (anisoFaces) weighted by d² (anisoWeights, summing to 1).
 SHARED_FN uvec3 anisoFaces(vec3 d) {

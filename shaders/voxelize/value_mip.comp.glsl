@@ -6,12 +6,19 @@
 //                 children. Its level 0 (the grid's level 1) reads the
 //                 channel's level-0 texture (rgb) with the occupancy as alpha
 //                 (uFromValues = 1); later levels read the face's own level L−1.
+//   DIRECTIONAL   (with ANISOTROPIC) that first level sees each cell's radiance
+//                 from the side the face's cones come from: times
+//                 directionalFacing(−travel, D), D the cell's direction of
+//                 leaving light (vct's `directional`, illum/vct/direction_resolve.comp).
 #include "shared/value_grid.glsl"
 #include "shared/bindings.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler3D uInput;
 layout(binding = TEXUNIT_PASS_INPUT2) uniform sampler3D uOccupancy;
 layout(OUTPUT_FORMAT, binding = IMAGE_OUTPUT) uniform writeonly image3D oLevel;
+#ifdef DIRECTIONAL
+layout(binding = TEXUNIT_VALUE_DIRECTION) uniform sampler3D uDirection;
+#endif
 uniform int uInputLevel;
 uniform int uFromValues;
 uniform uint uFace;
@@ -20,7 +27,12 @@ vec4 child(ivec3 p) {
   if (any(greaterThanEqual(p, textureSize(uInput, uInputLevel)))) return vec4(0.0f);
   vec4 v = texelFetch(uInput, p, uInputLevel);
 #ifdef ANISOTROPIC
-  if (uFromValues != 0) v = vec4(v.xyz, texelFetch(uOccupancy, p, 0).x);
+  if (uFromValues != 0) {
+#ifdef DIRECTIONAL
+    v.xyz *= directionalFacing(-anisoFaceTravel(uFace), texelFetch(uDirection, p, 0).xyz);
+#endif
+    v = vec4(v.xyz, texelFetch(uOccupancy, p, 0).x);
+  }
 #endif
   return v;
 }

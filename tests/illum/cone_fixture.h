@@ -34,9 +34,16 @@ struct VolumeFixture {
   Profiler prof{true};
   GridBox box;
   std::unique_ptr<ValueTextures> tex;
+  GlTexture direction;  // with directions: D per cell (RGBA8_SNORM)
   VolumeFixture(const GridBox& b, ValueMips mips, const BinaryGrid& grid, const std::vector<uint32_t>& counts,
-                const std::vector<uint32_t>& sums, float radianceMax)
+                const std::vector<uint32_t>& sums, float radianceMax,
+                const std::vector<glm::vec4>* directions = nullptr)
       : box(b) {
+    if (directions) {  // the level-0 direction texture, as vct's direction_resolve.comp writes it
+      direction = makeGridTexture3D(box.resolution, 1, GL_RGBA8_SNORM, true);
+      glTextureSubImage3D(direction.get(), 0, 0, 0, 0, GLsizei(box.resolution.x), GLsizei(box.resolution.y),
+                          GLsizei(box.resolution.z), GL_RGBA, GL_FLOAT, directions->data());
+    }
     GlPyramid pyramid(box);
     pyramid.build(grid, shaders);
     GlBuffer c = makeBuffer(counts.size() * 4), s = makeBuffer(sums.size() * 4);
@@ -47,7 +54,7 @@ struct VolumeFixture {
     v.counts = c.get();
     v.sums[shared::VALUE_CHANNEL_RADIANCE] = s.get();
     v.radianceMax = radianceMax;
-    tex->resolve(v, shaders, prof, pyramid.words());
+    tex->resolve(v, shaders, prof, pyramid.words(), direction.get());
     glFinish();
   }
 };

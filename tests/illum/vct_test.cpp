@@ -13,6 +13,7 @@
 
 #include "cone_fixture.h"
 #include "core/gl_context.h"
+#include "core/image_metrics.h"
 #include "core/profiler.h"
 #include "core/shader_library.h"
 #include "illum/kits/cone_kit.h"
@@ -84,6 +85,62 @@ TEST(ConeVolume, PreIntegrationOnTheGpuEqualsTheCppBuilders) {
       }
     EXPECT_EQ(v.gl->errorCount(), 0);
   }
+}
+
+// vct's `directional`: with a level-0 direction texture D the anisotropic
+// chain's first level sees each cell's radiance from the side the face's cones
+// come from — the C++ builder on level 0 with every cell's rgb times
+// directionalFacing(−travel, D) (GPU == CPU up to a half-float step); the
+// levels above and the isotropic chain are built as before.
+TEST(ConeVolume, DirectionalFirstLevelEqualsTheCppBuilder) {
+  const GridBox box = unitBox({32, 16, 128});
+  BinaryGrid grid(box);
+  const size_t cells = box.cellCount();
+  std::vector<uint32_t> counts(cells, 0), sums(cells * 4, 0);
+  std::vector<glm::vec4> directions(cells, glm::vec4(0.0f));
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const float radianceMax = 2.0f;
+  for (size_t i = 0; i < cells; ++i) {
+    grid.set(uint32_t(i % box.resolution.x), uint32_t(i / box.resolution.x % box.resolution.y),
+             uint32_t(i / (size_t(box.resolution.x) * box.resolution.y)));
+    counts[i] = 1 + rng() % 3;
+    for (uint32_t k = 0; k < 3; ++k)
+      sums[i * 4 + k] = counts[i] * shared::toFixedRadiance(float(rng() % 1000) / 500.0f, radianceMax);
+    glm::vec3 d(u(rng), u(rng), u(rng));
+    if (glm::length(d) > 1.0f) d = glm::normalize(d);
+    directions[i] =
+        glm::vec4(rng() % 4 == 0 ? glm::vec3(0.0f) : d, 0.0f);  // some cells lit alike on both sides
+  }
+  std::vector<glm::vec4> plainLevel0, plainLevel1[6];
+  {
+    VolumeFixture plain(box, ValueMips::Anisotropic, grid, counts, sums, radianceMax);
+    plainLevel0 = plain.tex->read("radiance", 0);
+    for (int f = 0; f < 6; ++f) plainLevel1[f] = plain.tex->readAniso("radiance", f, 1);
+  }
+  VolumeFixture v(box, ValueMips::Anisotropic, grid, counts, sums, radianceMax, &directions);
+  std::vector<glm::vec4> stored(cells);  // D as the texture holds it (8-bit signed normalized)
+  glGetTextureImage(v.direction.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(cells * sizeof(glm::vec4)),
+                    stored.data());
+  const std::vector<glm::vec4> level0 = v.tex->read("radiance", 0);
+  compareHalf(level0, plainLevel0, "level 0 is not directional");
+  compareHalf(v.tex->read("radiance", 1), isoMipLevel(level0, v.tex->levelSize(0)), "isotropic level 1");
+  double changed = 0.0;
+  for (uint32_t f = 0; f < 6; ++f) {
+    std::vector<glm::vec4> seen = level0;
+    for (size_t i = 0; i < cells; ++i)
+      seen[i] = glm::vec4(
+          glm::vec3(seen[i]) * shared::directionalFacing(-shared::anisoFaceTravel(f), glm::vec3(stored[i])),
+          seen[i].w);
+    const std::vector<glm::vec4> l1 = v.tex->readAniso("radiance", int(f), 1);
+    compareHalf(l1, anisoMipLevel(seen, v.tex->levelSize(0), f),
+                "directional level 1 face " + std::to_string(f));
+    compareHalf(v.tex->readAniso("radiance", int(f), 2), anisoMipLevel(l1, v.tex->levelSize(1), f),
+                "directional level 2 face " + std::to_string(f));
+    for (size_t i = 0; i < l1.size(); ++i) changed += std::abs(double(plainLevel1[f][i].x) - double(l1[i].x));
+  }
+  EXPECT_GT(changed, 1.0) << "the direction changed the first level";
+  EXPECT_EQ(v.gl->errorCount(), 0);
 }
 
 // One lit opaque cell (radiance L) in an empty grid: in the anisotropic chain
@@ -221,6 +278,33 @@ TEST(Vct, BadParametersAreRefused) {
   refused("vct_ao", {"radiance=atlas"}, {"radiance"});
   refused("vct", {"face_weights=cubed"}, {"face_weights", "cubed"});
   refused("vct", {"step=0"}, {"step", "0"});
+  refused("vct", {"directional=true", "volume=svo"}, {"directional", "volume=dense", "svo"});
+  refused("vct", {"directional=true", "radiance=texels"}, {"directional", "radiance=inject", "texels"});
+  refused("vct", {"directional=true", "anisotropic=false"}, {"directional", "anisotropic=true"});
+}
+
+// A sealed hollow box whose walls are half a voxel thick, lit from outside
+// (scenes/leak-closed/): the exact image is 0 inside. The walls' voxels hold
+// the outer faces' light, and without `directional` they glow into the box
+// from their unlit side (docs/BENCHMARKS.md, "Leaks: vct"); with it the
+// level-0 radiance and the anisotropic chain's first level see a voxel from
+// the cone's side, and the leak falls by half or more while the lit room's
+// light stays within a few per cent.
+TEST(Vct, DirectionalRadianceKeepsTheWallsFromGlowingIntoTheBox) {
+  const std::string scene = std::string(VGI_TEST_DATA) + "/../../scenes/leak-closed/closed-0.5v.json";
+  const RenderOutput exact =
+      test::render(scene, "reference", {"integrator=path", "maxdepth=2"}, 128, 64, {"indirect"});
+  const RenderOutput plain = test::render(scene, "vct", {}, 128, 4, {"indirect"});
+  const RenderOutput directional = test::render(scene, "vct", {"directional=true"}, 128, 4, {"indirect"});
+  const ImageDiff before = compareImages(plain.result.aovs.at("indirect"), exact.result.aovs.at("indirect"));
+  const ImageDiff after =
+      compareImages(directional.result.aovs.at("indirect"), exact.result.aovs.at("indirect"));
+  EXPECT_GT(before.darkFraction, 0.2) << "the box's inside is dark in the exact image";
+  EXPECT_GT(before.leak, 0.04) << "without it the walls glow inwards";
+  EXPECT_LT(after.leak, 0.7 * before.leak) << "with it they glow outwards only";
+  EXPECT_LT(after.relMse, before.relMse);
+  for (int c = 0; c < 3; ++c) EXPECT_GT(after.energyRgb[c], 0.85 * before.energyRgb[c]) << c;
+  EXPECT_EQ(directional.stats["extra"]["volume"]["directional"], true);
 }
 
 // The constellations' weights are the cosine-weighted hemisphere's shares:

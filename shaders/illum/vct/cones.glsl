@@ -28,6 +28,10 @@
 // the receiver's own voxels never enter its cones (without it an open floor
 // occludes itself: AO 0.56 instead of 1 with the anisotropic chain).
 // guardSlope < 0: no cap (tests).
+// Directional level 0 (ours; VCT_DIRECTIONAL, the dense volume): a level-0
+// sample's radiance is seen from the cone's side, times directionalFacing(−d,
+// D) (shared/value_grid.glsl), D the cells' direction of leaving light; the
+// anisotropic chain's first level was built through the same weights.
 // Empty-space skipping (Dinse 2015 Alg. 1): where a sample is empty, the
 // largest empty parent texel of the isotropic chain around the sample is left
 // in one jump — samples that would have blended in a non-empty neighbour
@@ -49,6 +53,10 @@
 uniform float uVoxelSize;  // world size of a level-0 cell
 uniform float uMaxLod;     // the chains' last level
 uniform float uConeStep;   // step = uConeStep × the cone's diameter
+#ifdef VCT_DIRECTIONAL
+// The level-0 direction of each cell's leaving light (`directional`; 0 where empty).
+layout(binding = TEXUNIT_VALUE_DIRECTION) uniform sampler3D coneDirection;
+#endif
 
 #ifdef VCT_ABS_WEIGHTS
 vec3 coneFaceWeights(vec3 d) { return abs(d); }  // the thesis' weights: Σ up to √3, so an oblique wall stays opaque
@@ -76,6 +84,10 @@ vec4 coneSample(vec3 q, vec3 d, float lod) {
 #ifdef VCT_ANISOTROPIC
   // Level 0 itself (a fractional lod would blend the isotropic level 1 in too).
   vec4 s0 = textureLod(valueRadiance, uvw, 0.0f);
+#ifdef VCT_DIRECTIONAL
+  // Seen from the cone's side: the blended D over the occupancy it blends.
+  if (s0.w > 0.0f) s0.xyz *= directionalFacing(-d, textureLod(coneDirection, uvw, 0.0f).xyz / s0.w);
+#endif
   vec3 w = coneFaceWeights(d);
   if (lod <= 0.0f || uMaxLod < 1.0f) return s0;
   if (lod < 1.0f) return mix(s0, valueAniso(uvw, d, 1.0f, w), lod);

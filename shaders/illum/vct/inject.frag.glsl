@@ -9,6 +9,8 @@
 // multi-valued grid's fixed-point radiance sums and counts
 // (shared/value_grid.glsl), so voxelize/value_textures resolves and
 // pre-integrates them like the atlas voxelizer's radiance channel.
+// INJECT_DIRECTIONAL: also the direction it leaves in (each side's light
+// along its side's normal; inject_sums.glsl: injectDirection).
 // INJECT_MAX: the first pass, only the largest radiance (float bits, atomicMax:
 // the fixed-point range of the second). INJECT_SVO: the sums are the sparse
 // octree's leaves' (voxelize/sparse_octree.h; a cell's slot found by
@@ -58,11 +60,15 @@ void visitCell(uvec3 c) {
   diffuse.ks = vec3(0.0f);
   diffuse.exponent = 1.0f;
   vec3 n = gWorldNormal;
-  vec3 L = vec3(0.0f);
-  if (dot(n, n) > 0.0f)
-    L = lightMapsDirect(diffuse, p, n, n, n, uShadowBias, uNormalOffset) +
-        lightMapsDirect(diffuse, p, -n, -n, -n, uShadowBias, uNormalOffset);
-  injectAdd(slot, L);
+  vec3 Lfront = vec3(0.0f), Lback = vec3(0.0f);
+  if (dot(n, n) > 0.0f) {
+    Lfront = lightMapsDirect(diffuse, p, n, n, n, uShadowBias, uNormalOffset);
+    Lback = lightMapsDirect(diffuse, p, -n, -n, -n, uShadowBias, uNormalOffset);
+  }
+  injectAdd(slot, Lfront + Lback);
+#if defined(INJECT_DIRECTIONAL) && !defined(INJECT_MAX)
+  injectDirection(slot, n, Lfront, Lback);
+#endif
 }
 
 void main() { visitTriangleCells(); }

@@ -3,7 +3,9 @@
 // defines them: a count and fixed-point rgb sums per slot — a cell of the
 // dense volume (x fastest) or, INJECT_SVO, a leaf of the sparse octree.
 // INJECT_MAX: the first pass, which only takes the largest radiance (the
-// fixed-point range of the second). Needs voxelize/grid_uniforms.glsl's uResolution.
+// fixed-point range of the second). INJECT_DIRECTIONAL: also the sums of the
+// direction the light leaves in (shared/value_grid.glsl: decodeDirection), four
+// words per slot. Needs voxelize/grid_uniforms.glsl's uResolution.
 #include "shared/value_grid.glsl"
 #ifdef INJECT_SVO
 #include "shared/sparse_octree_lookup.glsl"
@@ -14,6 +16,9 @@ layout(std430, binding = BINDING_VALUE_RADIANCE_MAX) buffer RadianceMax { uint r
 layout(std430, binding = BINDING_VALUE_COUNTS) buffer Counts { uint counts[]; };
 layout(std430, binding = BINDING_VALUE_RADIANCE) buffer RadianceSums { uint radianceSums[]; };
 uniform float uRadianceMax;
+#ifdef INJECT_DIRECTIONAL
+layout(std430, binding = BINDING_VALUE_DIRECTION) buffer DirectionSums { uint directionSums[]; };
+#endif
 #endif
 
 const uint INJECT_NO_SLOT = 0xffffffffu;
@@ -39,3 +44,16 @@ void injectAdd(uint slot, vec3 L) {
   for (uint k = 0u; k < 3u; ++k) atomicAdd(radianceSums[4u * slot + k], toFixedRadiance(L[k], uRadianceMax));
 #endif
 }
+
+#if defined(INJECT_DIRECTIONAL) && !defined(INJECT_MAX)
+// Adds the light leaving a surface of normal n: Lfront along n, Lback along −n.
+void injectDirection(uint slot, vec3 n, vec3 Lfront, vec3 Lback) {
+  float k = DIRECTION_FIXED_ONE / (3.0f * uRadianceMax);
+  float front = (Lfront.x + Lfront.y + Lfront.z) * k, back = (Lback.x + Lback.y + Lback.z) * k;
+  if (front + back <= 0.0f) return;
+  ivec3 d = ivec3(round((front - back) * n));
+  for (uint c = 0u; c < 3u; ++c)
+    if (d[c] != 0) atomicAdd(directionSums[4u * slot + c], uint(d[c]));
+  atomicAdd(directionSums[4u * slot + 3u], uint(round(front + back)));
+}
+#endif
