@@ -73,3 +73,5 @@ row $O reference_gl --set integrator=path --set emitter_sampling=light
 row $C reference_gl --set integrator=nearfield
 row $C reference_gl --set integrator=ao
 row $C reference_gl --set integrator=direct
+row $C vct --aov indirect --set directional=none
+row $C vct --aov indirect --set directional=level1 --set blur_visibility=true --set fixup=true --set max_level=3

@@ -65,17 +65,24 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
                             "six-direction anisotropic mip chain (front-to-back per axis direction, VCT "
                             "thesis 3.2); false: isotropic 2x2x2 means");
   if (withRadiance) {
-    s.directional = p.getBool(
-        "directional", false,
-        "level-0 radiance seen from the cone's side: each voxel keeps the direction its injected light "
-        "leaves in, so a wall voxel lit on one face does not glow from the other (ours; radiance=inject, "
-        "volume=dense, anisotropic)");
+    // level0 where it applies: lower error on Sibenik, the closed sphere's bounce unchanged; level1
+    // also halves the leak through walls at 5-20 % of the bounce (docs/BENCHMARKS.md, "Leaks: vct").
     const char* why = s.radiance != ConeRadiance::Inject ? "radiance=inject"
                       : svo                              ? "volume=dense"
                       : !s.anisotropic                   ? "anisotropic=true"
                                                          : nullptr;
+    const std::string d = p.getString(
+        "directional", why ? "none" : "level0",
+        "radiance seen from the cone's side: each voxel keeps the direction its injected light leaves in, "
+        "so a wall voxel lit on one face does not glow from the other (ours): none, level0 (the cones' "
+        "level-0 samples) or level1 (and the anisotropic chain's first level: half the leak through "
+        "walls, less light on curved and oblique surfaces); needs radiance=inject, volume=dense, "
+        "anisotropic (level0 there by default)",
+        {"none", "level0", "level1"});
+    s.directional = d != "none";
+    s.directionalChain = d == "level1";
     if (s.directional && why)
-      fail("parameter 'directional': true needs ", why, " (radiance=", coneRadianceName(s.radiance),
+      fail("parameter 'directional': ", d, " needs ", why, " (radiance=", coneRadianceName(s.radiance),
            ", volume=", svo ? "svo" : "dense", ", anisotropic=", s.anisotropic ? "true" : "false", ")");
   }
   // directional: its sums 16 and its texture 4.
@@ -92,6 +99,11 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
                   {"abs", "squared"}) == "abs";
   s.step =
       p.getFloat("step", stepDefault, "cone march step, in cone diameters (at least a voxel)", 0.05f, 8.0f);
+  s.maxLevel = p.getInt("max_level", -1,
+                        "the highest mip level a cone samples, the step following the footprint sampled "
+                        "(coarse texels average both sides of a wall: a cap trades light leaks for steps; "
+                        "-1: the chain's last)",
+                        -1, 16);
   readShadowParams(p, s.shadow);
   return s;
 }
@@ -103,6 +115,7 @@ ConeVolumeNeed ConeVolumeSettings::need() const {
   n.radiance = radiance;
   n.anisotropic = anisotropic;
   n.directional = directional;
+  n.directionalChain = directionalChain;
   if (radiance != ConeRadiance::None)
     n.lightMaps = LightMapNeed{shadow.resolution, radiance == ConeRadiance::Texels};
   if (injectsRadiance(radiance)) {
@@ -137,6 +150,7 @@ void ConeVolumeSettings::addDefines(ShaderDefines& defs) const {
   if (volume == Storage::Svo) defs["CONE_SVO"] = "1";
   if (anisotropic) defs["VCT_ANISOTROPIC"] = "1";
   if (directional) defs["VCT_DIRECTIONAL"] = "1";
+  if (maxLevel >= 0) defs["VCT_MAX_LEVEL"] = std::to_string(maxLevel);
   if (absWeights) defs["VCT_ABS_WEIGHTS"] = "1";
 }
 

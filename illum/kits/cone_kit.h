@@ -25,12 +25,14 @@ struct ConeVolumeSettings {
   ConeRadiance radiance = ConeRadiance::Inject;
   enum class Storage { Dense, Svo } volume = Storage::Dense;  // dense (cone_volume) | svo (sparse_octree)
   bool anisotropic = true;
-  bool directional = false;  // level-0 radiance seen from the cone's side (ConeVolumeNeed::directional)
-  bool dilate = true;        // svo: allocate the nodes a neighbour's brick stencil needs
-  int updateEvery = 1;       // svo: rebuild the tree at every k-th changed grid
-  bool absWeights = true;    // the faces mixed by |d| (the thesis) or d²
-  float step = 1.0f;         // the march's step, in cone diameters
-  ShadowParams shadow;       // the light maps' (injection and direct light)
+  bool directional = false;       // level-0 radiance seen from the cone's side (ConeVolumeNeed::directional)
+  bool directionalChain = false;  // … in the anisotropic chain's first level too
+  bool dilate = true;             // svo: allocate the nodes a neighbour's brick stencil needs
+  int updateEvery = 1;            // svo: rebuild the tree at every k-th changed grid
+  bool absWeights = true;         // the faces mixed by |d| (the thesis) or d²
+  float step = 1.0f;              // the march's step, in cone diameters
+  int maxLevel = -1;              // the highest mip level a cone samples (-1: the chain's last)
+  ShadowParams shadow;            // the light maps' (injection and direct light)
   // The dense volume these settings build (radiance none: no light maps).
   ConeVolumeNeed need() const;
   // The sparse octree they build (volume=svo).
@@ -41,7 +43,7 @@ struct ConeVolumeSettings {
   void addDefines(std::map<std::string, std::string>& defines) const;
 };
 // Reads voxels, voxelizer, volume, dilate, update_every, anisotropic,
-// face_weights, step and (withRadiance) radiance and directional.
+// face_weights, step, max_level and (withRadiance) radiance and directional.
 ConeVolumeSettings readConeVolumeParams(ParamSet& params, bool withRadiance, bool anisotropicDefault,
                                         bool absWeightsDefault, float stepDefault);
 

@@ -21,7 +21,10 @@
 //      with the falloff λ; soft shadows by a cone toward each light.
 // Deviations, stated: the opacity correction for the step length (Crassin et
 // al. §4.2; the thesis' Algorithm 1 has none, which makes the result depend on
-// the step); cubic cells; a receiver guard on the mip level (cones.glsl); the
+// the step); cubic cells; a receiver guard on the mip level (cones.glsl);
+// level-0 radiance seen from the cone's side (`directional`, ours; level0 by
+// default, docs/BENCHMARKS.md "Leaks: vct"); the gather kit's wall remedies
+// and a level cap as parameters for leak studies (off by default); the
 // constellation turns per interleave set and per sample, so `vgi render --spp
 // N` converges over azimuths. The faces are mixed by |d| as the thesis does
 // (`face_weights=squared`: by d², measured worse).
@@ -48,10 +51,12 @@
 #include "illum/kits/direct_pass.h"
 #include "illum/kits/gather_kit.h"
 #include "illum/kits/shared_params.h"
+#include "illum/kits/tracer_kit.h"
 #include "illum/resources/gpu_scene.h"
 #include "illum/resources/light_maps.h"
 #include "shaders/illum/vct/params.glsl"
 #include "shaders/shared/bindings.glsl"
+#include "traverse/gl_ray_tracer.h"
 
 namespace vgi {
 
@@ -95,6 +100,9 @@ class VctMethod : public Method {
         "shadow cones end this many cone widths (at least voxel diagonals) before the light", 0.0f, 100.0f);
     env_ = readEnv(p);
     gather_ = readGatherParams(p, "diffuse cone", true, false, 2);
+    // The kit's wall remedies (nearfield's): the edge mask traces the cone volume's grid
+    // (hierarchical, through its pyramid); the fix-up traces the cones again at full rate.
+    readGatherWallParams(p, gather_, false, false);
     temporal_ = readTemporal(p);
     constellation_ = ringConstellation(true, cones_ - 1, glm::degrees(std::atan(2.0f)));
   }
@@ -108,18 +116,26 @@ class VctMethod : public Method {
     // The direct light (radiance=texels: the same maps, reflective, inject the volume too).
     n.add(LightMapNeed{vol_.shadow.resolution, vol_.radiance == ConeRadiance::Texels});
     vol_.addNeed(n);
+    if (gather_.visibility) addTracerNeeds(n, vol_.need().grid, kWallTracer);
     return n;
   }
   void prepareFrame(Frame& f) override {
     ShaderLibrary& shaders = f.shaders();
-    kit_.prepare(f, gather_);
+    const float diag = f.resources.get<GridBox>().voxelDiagonal();
+    ShaderDefines tracerDefs;
+    addTracerDefine(tracerDefs, kWallTracer);
+    kit_.prepare(f, gather_, tracerDefs, std::max(offset_, 1.0f) * diag);
     direct_ = std::make_unique<DirectPass>(shaders, f.resources.get<GpuScene>(), vol_.shadow.bias,
                                            vol_.shadow.normalOffset);
     ShaderDefines defs;
     vol_.addDefines(defs);
     diffusePass_.create(f, {"illum/vct/diffuse.comp.glsl"}, defs, {gpuSceneInput, gbufferInput});
     shade_.create(f, {"illum/vct/shade.comp.glsl"}, defs, {gpuSceneInput, lightMapsInput, gbufferInput});
-    const float diag = f.resources.get<GridBox>().voxelDiagonal();
+    if (gather_.fixup) {
+      ShaderDefines fixupDefs = defs;
+      fixupDefs["GATHER_FIXUP"] = "1";
+      diffuseFixup_.create(f, {"illum/vct/diffuse.comp.glsl"}, fixupDefs, {gpuSceneInput, gbufferInput});
+    }
     GatherKit::checkPass(diffusePass_);
     shared::VctDiffuseParams& d = diffusePass_.params();
     VGI_CHECK(constellation_.size() <= std::size(d.cones));
@@ -172,8 +188,14 @@ class VctMethod : public Method {
       glBindImageTexture(IMAGE_OUTPUT2, aoLow_, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
       kit_.dispatchGather(cones_, kConesPerDispatch);
     }
-    kit_.resolve(f);
-    if (ao_ && f.wants("ao")) kit_.resolveValue(f, aoLow_, aoFull_, "ao");
+    const auto tracer = [&](unsigned program) { bindTracer(f.resources, shaders, program); };
+    kit_.resolve(f, tracer, [&] {
+      diffuseFixup_.params() = diffusePass_.params();
+      diffuseFixup_.use(f);
+      volume.bind(shaders, diffuseFixup_.program(), vol_.step);
+      kit_.dispatchFixup(cones_, kConesPerDispatch);
+    });
+    if (ao_ && f.wants("ao")) kit_.resolveValue(f, aoLow_, aoFull_, "ao", tracer);
     {
       auto s = f.profiler.scope("cones_full");
       shade_.params().cameraPosition = glm::vec4(f.camera.position, 1.0f);
@@ -199,6 +221,7 @@ class VctMethod : public Method {
     nlohmann::json cones = nlohmann::json::array();
     for (auto& c : constellation_) cones.push_back({c.x, c.y, c.z, c.w});
     f.extra["diffuse_constellation"] = cones;  // tangent-space axes, w the cosine share
+    kit_.stats(f);
   }
 
   TemporalSettings temporal() const override { return temporal_; }
@@ -206,6 +229,7 @@ class VctMethod : public Method {
  private:
   TemporalSettings temporal_;
   static constexpr int kConesPerDispatch = 16;
+  static constexpr const char* kWallTracer = "hierarchical";  // blur_visibility's traces
   ConeVolumeSettings vol_;
   int cones_ = 6;
   float aperture_ = 60, maxDistance_ = 1, offset_ = 1, aoRadius_ = 1, falloff_ = 0, shadowAperture_ = 3,
@@ -217,6 +241,7 @@ class VctMethod : public Method {
   GatherKit kit_;
   std::unique_ptr<DirectPass> direct_;
   ComputePass<shared::VctDiffuseParams> diffusePass_;
+  ComputePass<shared::VctDiffuseParams> diffuseFixup_;  // gather.fixup: the same, at listed pixels
   ComputePass<shared::VctShadeParams> shade_;
   unsigned aoLow_ = 0, aoFull_ = 0;
 };

@@ -40,7 +40,8 @@ ConeRadiance coneRadianceOf(const std::string& name) {
 nlohmann::json ConeVolumeNeed::key() const {
   nlohmann::json k = {
       {"grid", grid.key()}, {"radiance", coneRadianceName(radiance)}, {"anisotropic", anisotropic}};
-  if (directional) k["directional"] = true;  // (absent otherwise: the keys of earlier caches stand)
+  if (directional)
+    k["directional"] = directionalChain ? "level1" : "level0";  // (absent when none: earlier keys stand)
   return k;
 }
 
@@ -113,7 +114,7 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   b.counts = sums_.counts();
   b.sums[3] = sums_.sums();
   b.radianceMax = sums_.radianceMax();
-  own_->resolve(b, shaders, prof, words, direction_.get());
+  own_->resolve(b, shaders, prof, words, need_.directionalChain ? direction_.get() : 0u);
 }
 
 void InjectionSums::allocate(uint64_t slots, bool directional) {
@@ -212,7 +213,7 @@ nlohmann::json ConeVolume::stats() {
     j["bytes"] = j["bytes"].get<double>() + sums_.bytes();
   }
   j["radiance_source"] = coneRadianceName(need_.radiance);
-  j["directional"] = need_.directional;
+  j["directional"] = !need_.directional ? "none" : need_.directionalChain ? "level1" : "level0";
   if (direction_) j["bytes"] = j["bytes"].get<double>() + double(own_->box().cellCount()) * 4.0;
   if (injectsRadiance(need_.radiance)) j["radiance_max"] = sums_.radianceMax();
   return j;

@@ -17,10 +17,11 @@
 // `directional` (inject only; ours): the injection also sums the direction
 // each (triangle, cell) pair's light leaves in, resolved into a level-0
 // texture of D per cell (TEXUNIT_VALUE_DIRECTION; shared/value_grid.glsl:
-// directionalFacing), through which the anisotropic chain's first level and
-// cones.glsl's level-0 samples (VCT_DIRECTIONAL) see a cell's radiance from
-// the side they come from: a wall voxel lit on its outer face no longer glows
-// into the room or box behind it (docs/BENCHMARKS.md, "Leaks: vct").
+// directionalFacing), through which cones.glsl's level-0 samples
+// (VCT_DIRECTIONAL) and, `directionalChain`, the anisotropic chain's first
+// level see a cell's radiance from the side they come from: a wall voxel lit
+// on its outer face no longer glows into the room or box behind it
+// (docs/BENCHMARKS.md, "Leaks: vct").
 #pragma once
 #include <glm/glm.hpp>
 #include <map>
@@ -94,10 +95,12 @@ struct ConeVolumeNeed {
   BinaryGridNeed grid;               // cubic cells; with radiance=atlas its values hold "radiance"
   ConeRadiance radiance = ConeRadiance::Inject;
   bool anisotropic = true;
-  bool directional = false;                // inject: the level-0 direction of the leaving light
+  bool directional = false;       // inject: the level-0 direction of the leaving light, for level-0 samples
+  bool directionalChain = false;  // … and the anisotropic chain's first level
   std::optional<LightMapNeed> lightMaps;   // inject, atlas: the direct light's maps
   float bias = 1.0f, normalOffset = 0.0f;  // inject: the maps' shadow test (texels, voxels)
   nlohmann::json key() const;              // grid, radiance, anisotropic, directional: what is allocated
+                                           // and built
   nlohmann::json settings() const;         // the light maps and their shadow test: what injection reads
   OrMipPyramidNeed pyramid() const { return {grid}; }
   ValueGridNeed valueGrids() const;  // radiance=atlas: the volume

@@ -28,6 +28,9 @@
 // the receiver's own voxels never enter its cones (without it an open floor
 // occludes itself: AO 0.56 instead of 1 with the anisotropic chain).
 // guardSlope < 0: no cap (tests).
+// Level cap (`max_level`, VCT_MAX_LEVEL): no sample above that level, the
+// step shrinking to the footprint sampled (a capped level with the cone's own
+// step would step over walls); a coarse texel averages both sides of a wall.
 // Directional level 0 (ours; VCT_DIRECTIONAL, the dense volume): a level-0
 // sample's radiance is seen from the cone's side, times directionalFacing(−d,
 // D) (shared/value_grid.glsl), D the cells' direction of leaving light; the
@@ -201,6 +204,12 @@ ConeResult traceCone(vec3 apex, vec3 d, float tanHalf, float maxDist, float aoRa
     float diameter = max(2.0f * t * tanHalf, uVoxelSize);
     float lod = min(log2(diameter / uVoxelSize), uMaxLod);
     float step = min(uConeStep * diameter, maxDist - t);
+#ifdef VCT_MAX_LEVEL
+    if (lod > float(VCT_MAX_LEVEL)) {  // `max_level`: and the step follows the footprint sampled
+      lod = float(VCT_MAX_LEVEL);
+      step = min(uConeStep * uVoxelSize * exp2(lod), maxDist - t);
+    }
+#endif
     if (guardSlope >= 0.0f) {
       float h = guardHeight + (t + 0.5f * step) * guardSlope;
       float cap = max(floor(log2(max(h - uVoxelSize, 1e-30f) / (1.5f * uVoxelSize))), 0.0f);

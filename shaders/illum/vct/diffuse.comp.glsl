@@ -6,6 +6,8 @@
 // E = Σ w_k L_k (L_r = ρ E: the kit's composite multiplies the albedo in),
 // the second output the AO Σ w_k (1 − occlusion_k) within aoRadius.
 // Cones gather.batchFirst … gather.batchEnd − 1 of the dispatch (the kit's batching).
+// GATHER_FIXUP (the kit's `fixup`): the same cones at listed image pixels, the
+// indirect light only (the AO keeps its upsampling there).
 #include "shared/constants.glsl"
 #include "shared/sampling.glsl"
 #include "shared/brdf.glsl"
@@ -40,5 +42,7 @@ void gatherPixel(ivec2 q, vec3 p, vec3 n) {
     ao += pass.cones[k].w * (1.0f - c.occlusion);
   }
   imageStore(uIndirect, q, vec4(gatheredBefore(uIndirect, q).xyz + pass.diffuse * E, 1.0f));
-  imageStore(uAoLow, q, vec4(vec3(gatheredBefore(uAoLow, q).x + ao), 1.0f));
+#ifndef GATHER_FIXUP
+  imageStore(uAoLow, q, vec4(vec3(gatheredBefore(uAoLow, q).x + ao), 1.0f));  // (fixed-up pixels: the AO's upsampling)
+#endif
 }
