@@ -268,6 +268,8 @@ bool SampleSession::addSample() {
     if (res_.needs().gbuffer) {
       auto s = prof_.scope("gbuffer");
       targets_.gbuffer()->render(res_.get<GpuScene>(), frame_.camera);
+      // Sample 0 is at the pixel centres: the temporal filter keeps its surfaces (filter draws none).
+      if (k == 0 && temporalApplies()) targets_.temporal(*shaders_).keepSurfaces(*targets_.gbuffer());
     }
   }
   res_.beginSample(k, req_.seed, prof_);
@@ -311,9 +313,13 @@ RenderResult SampleSession::sofar() const {
   return r;
 }
 
+bool SampleSession::temporalApplies() const {
+  return method_.temporal().on && req_.temporal && shaders_ && targets_.gbuffer();
+}
+
 bool SampleSession::filter(float currentFrames) {
   const TemporalSettings temporal = method_.temporal();
-  if (!temporal.on || !req_.temporal || !shaders_ || !targets_.gbuffer() || done_ == 0) return false;
+  if (!temporalApplies() || done_ == 0) return false;
   if (filteredBefore_ && currentFrames * temporal.alpha >= 1.0f) return false;  // the mean itself
   auto s = prof_.scope("temporal");
   const Camera cam = req_.scene->cameraAt(req_.time);
@@ -321,9 +327,11 @@ bool SampleSession::filter(float currentFrames) {
   // The surfaces at the pixels' centres (sample 0's camera), the same in every frame where nothing
   // moves: a jittered G-buffer's edge pixels would see another surface from frame to frame.
   const FrameCamera centre = camera(0);
-  if (req_.firstSample + done_ - 1 != 0) targets_.gbuffer()->render(res_.get<GpuScene>(), centre);
-  targets_.temporal(*shaders_).resolve(*targets_.glFilm(), *targets_.gbuffer(), done_, centre, pixelSize,
-                                       temporal, req_.frame > 0, !filteredBefore_, currentFrames);
+  // (Kept at sample 0 when this frame drew it; else drawn here.)
+  TemporalFilter& tf = targets_.temporal(*shaders_);
+  if (!tf.hasSurfaces(!filteredBefore_)) targets_.gbuffer()->render(res_.get<GpuScene>(), centre);
+  tf.resolve(*targets_.glFilm(), *targets_.gbuffer(), done_, centre, pixelSize, temporal, req_.frame > 0,
+             !filteredBefore_, currentFrames);
   filteredBefore_ = filtered_ = true;
   return true;
 }

@@ -180,6 +180,8 @@ class SampleSession {
   // once a refining call would give the mean itself (samples ≥ 1/alpha: read() is the mean).
   bool filter(float currentFrames);
   bool filtered() const { return filtered_; }
+  // The method's temporal filter runs on this session's frames (on, an animation's or the viewer's, GL).
+  bool temporalApplies() const;
   // The result with the samples so far: images, stats, `built`, `samplePasses`. A frame of an
   // animation is filtered first (filter(1), unless the session filtered already).
   RenderResult finish();

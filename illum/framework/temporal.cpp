@@ -40,13 +40,12 @@ void TemporalFilter::resolve(const GlFilm& film, const GBuffer& gbuffer, int sam
                              bool hasHistory, bool newFrame, float currentFrames) {
   VGI_CHECK(samples > 0 && currentFrames > 0.0f && gbuffer.width() == w_ && gbuffer.height() == h_);
   if (newFrame) {
+    // This frame's surfaces, for this resolve and the next frame's: kept at its sample 0, or the
+    // G-buffer's now (rasterized: ordered before the copy).
+    if (!kept_) copySurfaces(gbuffer, 1 - out_);
+    kept_ = false;
     history_ = out_;
     out_ = 1 - history_;
-    // This frame's surfaces (rasterized: ordered before the copy), for the next frame.
-    glCopyImageSubData(gbuffer.texture(0), GL_TEXTURE_2D, 0, 0, 0, 0, position_[out_].get(), GL_TEXTURE_2D, 0,
-                       0, 0, 0, w_, h_, 1);
-    glCopyImageSubData(gbuffer.texture(1), GL_TEXTURE_2D, 0, 0, 0, 0, normal_[out_].get(), GL_TEXTURE_2D, 0,
-                       0, 0, 0, w_, h_, 1);
     viewProj_[out_] = camera.viewProj;
   }
   static_assert(sizeof(shared::TemporalParams) % 16 == 0, "std140: padded to 16 bytes");
@@ -67,7 +66,9 @@ void TemporalFilter::resolve(const GlFilm& film, const GBuffer& gbuffer, int sam
   params_->upload(&p);
   glUseProgram(prog_);
   params_->bind(UBO_PASS);
-  gbuffer.bind();
+  // The current surfaces are this frame's copy (the G-buffer may hold a later, jittered sample's).
+  glBindTextureUnit(TEXUNIT_GBUFFER_POSITION, position_[out_].get());
+  glBindTextureUnit(TEXUNIT_GBUFFER_NORMAL, normal_[out_].get());
   glBindTextureUnit(TEXUNIT_PASS_INPUT, position_[history_].get());
   glBindTextureUnit(TEXUNIT_PASS_INPUT2, normal_[history_].get());
   for (auto& [name, c] : channels_) {
@@ -81,6 +82,19 @@ void TemporalFilter::resolve(const GlFilm& film, const GBuffer& gbuffer, int sam
   // frame's G-buffer copy (a transfer): each after these dispatches.
   glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                   GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
+void TemporalFilter::copySurfaces(const GBuffer& gbuffer, int slot) {
+  VGI_CHECK(gbuffer.width() == w_ && gbuffer.height() == h_);
+  glCopyImageSubData(gbuffer.texture(0), GL_TEXTURE_2D, 0, 0, 0, 0, position_[slot].get(), GL_TEXTURE_2D, 0,
+                     0, 0, 0, w_, h_, 1);
+  glCopyImageSubData(gbuffer.texture(1), GL_TEXTURE_2D, 0, 0, 0, 0, normal_[slot].get(), GL_TEXTURE_2D, 0, 0,
+                     0, 0, w_, h_, 1);
+}
+
+void TemporalFilter::keepSurfaces(const GBuffer& gbuffer) {
+  copySurfaces(gbuffer, 1 - out_);
+  kept_ = true;
 }
 
 Image TemporalFilter::read(const std::string& channel) const {

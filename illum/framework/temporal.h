@@ -36,6 +36,12 @@ class TemporalFilter {
   void resolve(const GlFilm& film, const GBuffer& gbuffer, int samples, const FrameCamera& camera,
                float pixelSize, const TemporalSettings& settings, bool hasHistory, bool newFrame,
                float currentFrames);
+  // The G-buffer as drawn now (at the pixel centres: a frame's sample 0) is the next new frame's
+  // surfaces: its resolve reads them instead of the G-buffer, which need not be drawn again.
+  void keepSurfaces(const GBuffer& gbuffer);
+  // Whether a resolve of a new frame (newFrame) or of the same frame again has its surfaces without
+  // the G-buffer (keepSurfaces since the last new frame; the same frame's were kept by its first).
+  bool hasSurfaces(bool newFrame) const { return !newFrame || kept_; }
   // The last resolve's image of `channel` (rows top-down).
   Image read(const std::string& channel) const;
   // Per frame of the two (the history, the one being filtered): an RGBA32F image per channel, the
@@ -51,8 +57,10 @@ class TemporalFilter {
   // Frame slot `out_` is being filtered, `history_` holds the frame before: its images, the G-buffer
   // surfaces at its pixel centres, its camera.
   int out_ = 0, history_ = 1;
+  bool kept_ = false;  // slot 1 − out_ holds the next new frame's surfaces (keepSurfaces)
   GlTexture position_[2], normal_[2];
   glm::mat4 viewProj_[2] = {glm::mat4(1.0f), glm::mat4(1.0f)};
+  void copySurfaces(const GBuffer& gbuffer, int slot);  // its position and normal into slot `slot`
   unsigned prog_ = 0;
   // Its shared::TemporalParams (shaders/illum/temporal/params.glsl, read by the .cpp only: an installed
   // header includes no shader but shaders/shared/).
