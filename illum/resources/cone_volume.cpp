@@ -92,10 +92,13 @@ void ConeVolume::allocate(SceneResources& res) {
 
 void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   ShaderLibrary& shaders = res.shaders();
+  // A fill after the first (an animation's frame, a moved light, a sample's area lights) tries the
+  // last fill's range: no pass for the maximum where it is the same (the sums are a fresh fill's).
+  const bool again = !filledFor_.empty();
   filledFor_ = need_.settings().dump();
   if (injectsRadiance(need_.radiance))
     sums_.inject(res, res.get<GridBox>(need_.grid), need_.radiance, *need_.lightMaps, need_.bias,
-                 need_.normalOffset, nullptr, prof);
+                 need_.normalOffset, nullptr, prof, again ? sums_.radianceMax() : 0.0f);
   const unsigned words = res.get<GlPyramid>(need_.pyramid()).words();
   if (direction_) {
     auto s = prof.scope("vct_direction_resolve");
@@ -132,7 +135,7 @@ void InjectionSums::allocate(uint64_t slots, bool directional) {
 
 float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadiance radiance,
                             const LightMapNeed& mapsNeed, float bias, float normalOffset,
-                            const SparseVoxelOctree* octree, Profiler& prof) {
+                            const SparseVoxelOctree* octree, Profiler& prof, float reuseRange) {
   const unsigned counts = counts_.get(), sums = sums_.get(), max = max_.get(), directions = directions_.get();
   const uint32_t zero = 0;
   for (unsigned b : {counts, sums, directions})
@@ -153,18 +156,21 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
     defs["INJECT_DIRECTIONAL"] = "1";
   }
   const unsigned prog = shaders.program(files, defs);
+  ShaderDefines checkDefs = defs;
+  checkDefs["INJECT_CHECK_RANGE"] = "1";
+  const unsigned checkProg = shaders.program(files, checkDefs);
   defs["INJECT_MAX"] = "1";
   const unsigned maxProg = shaders.program(files, defs);
   auto run = [&](unsigned p) {
     setGridUniforms(shaders, p, box);
-    if (octree && p == prog) octree->bind(shaders, p);
+    if (octree && p != maxProg) octree->bind(shaders, p);
     auto bindAll = [&] {
       glUseProgram(p);
       maps.bind();
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, max);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, counts);
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, sums);
-      if (directions && p == prog)
+      if (directions && p != maxProg)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_DIRECTION, directions);
     };
     if (texels) {
@@ -185,17 +191,42 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   };
+  // The largest radiance of any (triangle, cell) pair or texel the last pass saw (1 where none: unlit,
+  // the sums stay 0).
+  auto passMax = [&] {
+    uint32_t bits = 0;
+    float m = 0.0f;
+    glGetNamedBufferSubData(max, 0, 4, &bits);
+    std::memcpy(&m, &bits, 4);
+    return m > 0.0f && std::isfinite(m) ? m : 1.0f;
+  };
+  glClearNamedBufferData(max, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  if (reuseRange > 0.0f) {
+    {
+      auto s = prof.scope("vct_inject");
+      shaders.setUniform(checkProg, "uRadianceMax", reuseRange);
+      run(checkProg);
+    }
+    const float m = passMax();
+    if (m == reuseRange) {  // this fill's own maximum: the sums a fresh fill makes
+      radianceMax_ = m;
+      return m;
+    }
+    // Another maximum (clamped, or a coarser range than a fresh fill's): the sums again with it.
+    for (unsigned b : {counts, sums, directions})
+      if (b) glClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    auto s = prof.scope("vct_inject_again");
+    shaders.setUniform(prog, "uRadianceMax", m);
+    run(prog);
+    radianceMax_ = m;
+    return m;
+  }
   float radianceMax = 1.0f;
   {
     // Pass 1: the largest radiance of any (triangle, cell) pair or texel: the fixed-point range.
     auto s = prof.scope("vct_inject_max");
-    const uint32_t zero = 0;
-    glClearNamedBufferData(max, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     run(maxProg);
-    uint32_t bits = 0;
-    glGetNamedBufferSubData(max, 0, 4, &bits);
-    std::memcpy(&radianceMax, &bits, 4);
-    if (!(radianceMax > 0.0f) || !std::isfinite(radianceMax)) radianceMax = 1.0f;  // unlit: sums stay 0
+    radianceMax = passMax();
   }
   auto s = prof.scope("vct_inject");
   shaders.setUniform(prog, "uRadianceMax", radianceMax);

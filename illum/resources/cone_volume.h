@@ -75,8 +75,12 @@ class InjectionSums {
   //           (shaders/illum/vct/inject.frag);
   //   texels  the 2013 article's: each reflective-shadow-map texel into the
   //           cell its surface point falls in (inject_texels.comp; `maps` reflective).
+  // reuseRange > 0 (a frame of an animation: the last fill's range): no pass for the maximum — the
+  // sums' pass with that range takes it too, and only where it differs are the sums injected again
+  // with it. Either way the range is this fill's own maximum: the sums a fresh fill makes, bit for bit.
   float inject(SceneResources& res, const GridBox& box, ConeRadiance radiance, const LightMapNeed& maps,
-               float bias, float normalOffset, const SparseVoxelOctree* octree, Profiler& profiler);
+               float bias, float normalOffset, const SparseVoxelOctree* octree, Profiler& profiler,
+               float reuseRange = 0.0f);
   unsigned counts() const { return counts_.get(); }
   unsigned sums() const { return sums_.get(); }
   unsigned directions() const { return directions_.get(); }  // 0 unless directional

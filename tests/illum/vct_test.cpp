@@ -8,6 +8,7 @@
 #include <glad/gl.h>
 
 #include <cmath>
+#include <fstream>
 #include <glm/gtc/packing.hpp>
 #include <random>
 
@@ -17,6 +18,7 @@
 #include "core/profiler.h"
 #include "core/shader_library.h"
 #include "illum/kits/cone_kit.h"
+#include "illum/run/render_job.h"
 #include "render_util.h"
 #include "shaders/shared/bindings.glsl"
 #include "shaders/shared/value_grid.glsl"
@@ -329,6 +331,47 @@ TEST(Vct, LeakStudySettingsKeepTheLightInItsRoom) {
   EXPECT_LT(after.relMse, before.relMse);
   EXPECT_GT(study.stats["timings_ms"].value("fixup", 0.0), 0.0) << "the fix-up ran";
   EXPECT_GT(study.stats["timings_ms"].value("gather_edges", 0.0), 0.0) << "the edge mask ran";
+}
+
+// A frame of an animation fills the cone volume again without the pass for its fixed-point range: the
+// sums' pass takes the maximum with the last fill's range, and injects again only where it differs
+// (ConeVolume, InjectionSums::inject). Either way every frame equals a still at its time bit for bit:
+// a light approaching the box (relit; its range grows: injected again) and the bunny turning on the
+// floor (the range stays: one pass).
+TEST(Vct, AnimationFramesEqualStillsWithoutTheRangePass) {
+  const std::string lightScene = testing::TempDir() + "/vct_moving_light.json";
+  std::ofstream(lightScene) << R"({"meshes": [{"path": "builtin:cornell"}], "lights": [{"type": "point",
+      "position": [0.3, 0.4, 0.3], "intensity": 0.05, "keyframes": [
+        {"time": 0, "position": [0.0, 0.0, 0.0]}, {"time": 1, "position": [0.3, 0.3, 0.3]}]}]})";
+  const std::string bunny = std::string(VGI_TEST_DATA) + "/../../scenes/cornell-bunny.json";
+  for (const std::string& scene : {lightScene, bunny}) {
+    const bool light = scene == lightScene;
+    RenderOptions o;
+    o.scene = scene;
+    o.method = "vct";
+    o.set = {"temporal=false"};
+    o.width = o.height = 32;
+    o.spp = 1;
+    o.progress = false;
+    RenderOptions anim = o;
+    anim.frames = 3;
+    anim.timeStep = light ? 0.5f : 0.25f;
+    std::vector<Image> frames;
+    const RenderOutput last =
+        runRender(anim, [&](int, const RenderOutput& out) { frames.push_back(out.result.image); });
+    ASSERT_EQ(frames.size(), 3u) << scene;
+    const nlohmann::json& stats = last.stats["frames"];
+    for (int f = 0; f < 3; ++f) {
+      RenderOptions still = o;
+      still.time = anim.timeStep * float(f);
+      EXPECT_EQ(runRender(still).result.image.pixels, frames[size_t(f)].pixels) << scene << " frame " << f;
+      const nlohmann::json& t = stats[size_t(f)]["timings_ms"];
+      EXPECT_EQ(t.contains("vct_inject_max"), f == 0) << scene << " frame " << f << ": " << t.dump();
+      if (f > 0)
+        EXPECT_EQ(t.contains("vct_inject_again"), light) << scene << " frame " << f << ": " << t.dump();
+    }
+    EXPECT_GT(compareImages(frames[0], frames[2]).relMae, 0.001) << scene << ": it moved";
+  }
 }
 
 // The constellations' weights are the cosine-weighted hemisphere's shares:

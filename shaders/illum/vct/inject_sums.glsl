@@ -5,14 +5,17 @@
 // INJECT_MAX: the first pass, which only takes the largest radiance (the
 // fixed-point range of the second). INJECT_DIRECTIONAL: also the sums of the
 // direction the light leaves in (shared/value_grid.glsl: decodeDirection), four
-// words per slot. Needs voxelize/grid_uniforms.glsl's uResolution.
+// words per slot. INJECT_CHECK_RANGE: the sums' pass with a range given (the
+// last fill's) also takes the largest radiance, which the caller checks
+// against it. Needs voxelize/grid_uniforms.glsl's uResolution.
 #include "shared/value_grid.glsl"
 #ifdef INJECT_SVO
 #include "shared/sparse_octree_lookup.glsl"
 #endif
-#ifdef INJECT_MAX
+#if defined(INJECT_MAX) || defined(INJECT_CHECK_RANGE)
 layout(std430, binding = BINDING_VALUE_RADIANCE_MAX) buffer RadianceMax { uint radianceMaxBits; };
-#else
+#endif
+#ifndef INJECT_MAX
 layout(std430, binding = BINDING_VALUE_COUNTS) buffer Counts { uint counts[]; };
 layout(std430, binding = BINDING_VALUE_RADIANCE) buffer RadianceSums { uint radianceSums[]; };
 uniform float uRadianceMax;
@@ -35,13 +38,25 @@ uint injectSlot(uvec3 c) {
 #endif
 }
 
+#if defined(INJECT_MAX) || defined(INJECT_CHECK_RANGE)
+// The largest component of L into the pass' maximum. The word is read first and the atomic taken
+// only when L is larger (one word for every fragment: the atomics contend); a stale read is smaller.
+void injectMax(vec3 L) {
+  uint bits = floatBitsToUint(max(L.x, max(L.y, L.z)));  // non-negative floats order as their bits
+  if (bits > radianceMaxBits) atomicMax(radianceMaxBits, bits);
+}
+#endif
+
 // Adds radiance L to slot `slot` (the max pass: to the maximum).
 void injectAdd(uint slot, vec3 L) {
 #ifdef INJECT_MAX
-  atomicMax(radianceMaxBits, floatBitsToUint(max(L.x, max(L.y, L.z))));
+  injectMax(L);
 #else
   atomicAdd(counts[slot], 1u);
   for (uint k = 0u; k < 3u; ++k) atomicAdd(radianceSums[4u * slot + k], toFixedRadiance(L[k], uRadianceMax));
+#ifdef INJECT_CHECK_RANGE
+  injectMax(L);  // was the range given this pass' maximum?
+#endif
 #endif
 }
 
