@@ -171,22 +171,44 @@ bool sameFace(const shared::LightFace& a, const shared::LightFace& b) {
 }
 }  // namespace
 
+// The texels of a `res`² face that box b can cover (x, y, width, height; one texel of margin), or a
+// zero width where a corner lies behind the eye (its projection is unbounded: the whole face).
+glm::ivec4 projectedRect(const glm::mat4& viewProj, const Bounds& b, int res) {
+  glm::vec2 lo(1e30f), hi(-1e30f);
+  for (int i = 0; i < 8; ++i) {
+    const glm::vec4 c =
+        viewProj * glm::vec4(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z, 1.0f);
+    if (!(c.w > 1e-6f)) return glm::ivec4(0);
+    const glm::vec2 t = (glm::vec2(c) / c.w * 0.5f + 0.5f) * float(res);
+    lo = glm::min(lo, t);
+    hi = glm::max(hi, t);
+  }
+  const glm::ivec2 a = glm::clamp(glm::ivec2(glm::floor(lo)) - 1, glm::ivec2(0), glm::ivec2(res)),
+                   z = glm::clamp(glm::ivec2(glm::ceil(hi)) + 1, glm::ivec2(0), glm::ivec2(res));
+  return glm::ivec4(a, glm::max(z - a, glm::ivec2(1)));
+}
+
 int LightMaps::renderChanged(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler,
                              const Bounds& moved) {
   std::vector<bool> faces(layout_.faces.size(), true);
+  std::vector<glm::ivec4> rects(layout_.faces.size(), glm::ivec4(0));
   if (drawnLayout_.faces.size() == layout_.faces.size())
-    for (size_t f = 0; f < faces.size(); ++f)
-      faces[f] = !sameFace(layout_.faces[f], drawnLayout_.faces[f]) ||
-                 layout_.drawn[f] != drawnLayout_.drawn[f] ||
-                 (layout_.drawn[f] && !moved.empty() && !outsideFrustum(layout_.faces[f].viewProj, moved));
-  return draw(gpu, shaders, profiler, faces);
+    for (size_t f = 0; f < faces.size(); ++f) {
+      const bool same =
+          sameFace(layout_.faces[f], drawnLayout_.faces[f]) && layout_.drawn[f] == drawnLayout_.drawn[f];
+      faces[f] =
+          !same || (layout_.drawn[f] && !moved.empty() && !outsideFrustum(layout_.faces[f].viewProj, moved));
+      if (same && faces[f]) rects[f] = projectedRect(layout_.faces[f].viewProj, moved, resolution_);
+    }
+  return draw(gpu, shaders, profiler, faces, rects);
 }
 
 int LightMaps::draw(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler,
-                    const std::vector<bool>& faces) {
+                    const std::vector<bool>& faces, const std::vector<glm::ivec4>& rects) {
   // (A face outside a spot's cone is only cleared: it counts when a drawn face does not.)
   int cleared = 0;
   redrawn_ = 0;
+  scissored_ = 0;
   for (size_t f = 0; f < faces.size(); ++f) {
     cleared += faces[f] ? 1 : 0;
     redrawn_ += faces[f] && layout_.drawn[f] ? 1 : 0;
@@ -217,6 +239,15 @@ int LightMaps::draw(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profi
         glNamedFramebufferTextureLayer(fbo_, GL_COLOR_ATTACHMENT0 + c, textures_[c], 0, f);
       if (f == r.x && glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         fail("light maps: the framebuffer is incomplete on this GL");
+      // Clears and draws within the face's rectangle (scissored), or all of it.
+      const glm::ivec4 rect = size_t(f) < rects.size() ? rects[size_t(f)] : glm::ivec4(0);
+      if (rect.z > 0) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(rect.x, rect.y, rect.z, rect.w);
+        ++scissored_;
+      } else {
+        glDisable(GL_SCISSOR_TEST);
+      }
       glClearBufferfv(GL_COLOR, 0, farv);
       for (int c = 1; c < channels; ++c) glClearBufferfv(GL_COLOR, c, zero);
       if (!layout_.drawn[size_t(f)]) continue;
@@ -228,6 +259,7 @@ int LightMaps::draw(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profi
       gpu.draw();
     }
   }
+  glDisable(GL_SCISSOR_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return cleared;
 }
@@ -284,7 +316,7 @@ nlohmann::json LightMaps::describe() const {
   for (bool d : layout_.drawn) drawn += d ? 1 : 0;
   return {{"faces", faceCount()},  {"faces_drawn", drawn},      {"cube", cube},
           {"single_face", single}, {"resolution", resolution_}, {"reflective", reflective_},
-          {"bytes", bytes_},       {"faces_redrawn", redrawn_}};
+          {"bytes", bytes_},       {"faces_redrawn", redrawn_}, {"faces_scissored", scissored_}};
 }
 
 namespace {

@@ -46,8 +46,10 @@ class LightMaps {
   void render(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler);
   // The same for the faces that can have changed since they were drawn: a face whose layout (light,
   // frustum) differs, or whose frustum meets `moved` (what moved since: the dynamic meshes' bounds
-  // before and after; the rest of the scene stands). Returns how many faces it cleared (and, inside a
-  // spot's cone, drew) again: 0 = the maps are as they were.
+  // before and after; the rest of the scene stands) — a face whose layout stayed only within the
+  // rectangle `moved` projects to (scissored: the texels outside it see the same static scene).
+  // Returns how many faces it cleared (and, inside a spot's cone, drew) again: 0 = the maps are as
+  // they were.
   int renderChanged(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler, const Bounds& moved);
   // New positions and directions for lights of the same types as before (a
   // sample's emitter point, SceneResources::beginSample): the face layout is
@@ -75,10 +77,14 @@ class LightMaps {
 
  private:
   void uploadLayout();
-  int draw(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler, const std::vector<bool>& faces);
+  // Draws the faces marked, each within its rectangle of `rects` (x, y, width, height in texels; none
+  // or a zero width: the whole face).
+  int draw(const GpuScene& gpu, ShaderLibrary& shaders, Profiler& profiler, const std::vector<bool>& faces,
+           const std::vector<glm::ivec4>& rects = {});
   LightFaceLayout layout_;
   LightFaceLayout drawnLayout_;  // the layout each face was last drawn with
   int redrawn_ = 0;              // drawn faces the last render drew again (the stats' faces_redrawn)
+  int scissored_ = 0;            // … of them within a rectangle only (faces_scissored)
   int resolution_;
   bool reflective_;
   double bytes_ = 0;  // the textures and the depth buffer, as allocated

@@ -275,6 +275,9 @@ TEST(NearField, AnimationFramesEqualStillsAtTheirTimes) {
   EXPECT_EQ(maps0["faces_redrawn"], maps0["faces_drawn"]) << maps0.dump();
   EXPECT_GE(maps1["faces_redrawn"].get<int>(), 1) << maps1.dump();
   EXPECT_LT(maps1["faces_redrawn"].get<int>(), maps1["faces_drawn"].get<int>()) << maps1.dump();
+  // … each within the rectangle the cube's bounds (before and after) project to; frame 0 whole.
+  EXPECT_EQ(maps1["faces_scissored"], maps1["faces_redrawn"]) << maps1.dump();
+  EXPECT_EQ(maps0["faces_scissored"], 0) << maps0.dump();
   EXPECT_EQ(a.last.stats["frames_completed"], 3);
   EXPECT_EQ(a.last.stats["gl_errors"], 0);
 }
