@@ -118,7 +118,8 @@ unsigned ValueTextures::textureOf(const std::string& channel) const {
 }
 
 void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders, Profiler& prof,
-                            unsigned occupancyWords, unsigned radianceDirection) {
+                            unsigned occupancyWords, unsigned radianceDirection,
+                            const std::optional<CellRange>& cells) {
   {
     auto s = prof.scope("value_resolve");
     ShaderDefines defs;
@@ -132,6 +133,10 @@ void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders,
     glUseProgram(prog);
     const glm::uvec3 r = box_.resolution;
     shaders.setUniform(prog, "uResolution", glm::uvec4(r, 0u));
+    const CellRange range =
+        cells ? CellRange{glm::min(cells->lo, r), glm::min(cells->hi, r)} : CellRange{{}, r};
+    shaders.setUniform(prog, "uFirstCell", range.lo);
+    shaders.setUniform(prog, "uEndCell", range.hi);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, sums.counts);
     if (occupancyWords) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_PYRAMID, occupancyWords);
@@ -149,7 +154,8 @@ void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders,
           sums.sums[k]);
       glBindImageTexture(images[k], channel_[k].get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, kChannelFormat[k]);
     }
-    dispatch3D(r);
+    if (range.count() > 0) dispatch3D(glm::max(range.hi, range.lo) - range.lo);
+    resolvedCells_ = range.count();
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                     GL_TEXTURE_UPDATE_BARRIER_BIT);
   }
@@ -254,11 +260,8 @@ std::vector<uint32_t> ValueTextures::readCounts() const {
 nlohmann::json ValueTextures::describe() const {
   nlohmann::json formats = {{"count", "r32ui"}, {"occupancy", "r8"}};
   for (auto& ch : channels_) formats[ch] = formatName(kChannelFormat[valueChannelIndex(ch)]);
-  return {{"channels", channels_},
-          {"formats", formats},
-          {"mips", valueMipsName(mips_)},
-          {"levels", levels_},
-          {"bytes", bytes_}};
+  return {{"channels", channels_}, {"formats", formats}, {"mips", valueMipsName(mips_)},
+          {"levels", levels_},     {"bytes", bytes_},    {"resolved_cells", resolvedCells_}};
 }
 
 }  // namespace vgi

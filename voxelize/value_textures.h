@@ -28,6 +28,7 @@
 #pragma once
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,15 @@ class Profiler;
 class ShaderLibrary;
 
 enum class ValueMips { None, Isotropic, Anisotropic };
+
+// A box of a grid's cells, [lo, hi) per axis.
+struct CellRange {
+  glm::uvec3 lo{0u}, hi{0u};
+  uint64_t count() const {
+    const glm::uvec3 s = glm::max(hi, lo) - lo;
+    return uint64_t(s.x) * s.y * s.z;
+  }
+};
 const char* valueMipsName(ValueMips m);
 
 // The GL buffers of a multi-valued insertion (AtlasVoxelizer::valueBuffers()).
@@ -63,8 +73,11 @@ class ValueTextures {
   // texture of the direction each cell's radiance leaves in (vct's
   // `directional`: illum/resources/cone_volume.h), which the radiance's
   // anisotropic chain then reads its first level through (value_mip.comp, DIRECTIONAL).
+  // cells: level 0 is resolved within [lo, hi) only (the sums changed nowhere else; the mips are
+  // built whole from it); none: everywhere.
   void resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders, Profiler& profiler,
-               unsigned occupancyWords = 0, unsigned radianceDirection = 0);
+               unsigned occupancyWords = 0, unsigned radianceDirection = 0,
+               const std::optional<CellRange>& cells = std::nullopt);
   // Binds count, occupancy and the channels at their TEXUNIT_VALUE_* units.
   void bind() const;
   // Binds the six faces of `channel`'s anisotropic chain at TEXUNIT_VALUE_ANISO + face.
@@ -82,7 +95,7 @@ class ValueTextures {
   std::vector<glm::vec4> readAniso(const std::string& channel, int face, int gridLevel) const;
   std::vector<uint32_t> readCounts() const;
   glm::uvec3 levelSize(int level) const;
-  nlohmann::json describe() const;  // formats, levels, bytes
+  nlohmann::json describe() const;  // formats, levels, bytes, the last resolve's cells
 
  private:
   unsigned textureOf(const std::string& channel) const;
@@ -93,6 +106,7 @@ class ValueTextures {
   GlTexture count_, occupancy_, channel_[4];
   GlTexture aniso_[4][6];  // normal, albedo, radiance (glossy unused)
   size_t bytes_ = 0;
+  uint64_t resolvedCells_ = 0;  // by the last resolve
 };
 
 // A 3D texture of a grid's cells: `levels` levels of `format`, filtered

@@ -4,6 +4,7 @@
 
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
+#include "core/scene.h"
 #include "illum/framework/sample_loop.h"
 #include "shaders/shared/value_grid.glsl"
 #include "voxelize/atlas_voxelizer.h"
@@ -27,11 +28,17 @@ class ValueGridsResource : public Resource {
     const bool radiance = atlas && atlas->hasRadiance() && !res.sampleLights();
     const bool relit = radiance && need_.lightMaps && res.changed(*need_.lightMaps);
     if (tex_ && !res.changed(need_.grid) && !relit) return false;
+    // A frame of an animation changes the sums only in the cells the dynamic meshes left and entered
+    // (the static sums are restored as they were): only those are resolved again — unless radiance is
+    // inserted, which the moved shadows change everywhere.
+    std::optional<CellRange> cells;
+    if (tex_ && atlas && !radiance) cells = movedCells(res, resolvedAt_);
     if (!tex_)
       tex_ = std::make_unique<ValueTextures>(res.get<GridBox>(need_.grid), need_.grid.values, need_.mips);
     if (radiance) insertRadiance(res, *atlas, prof);
     tex_->resolve(atlas ? atlas->valueBuffers() : res.get<CachedValueSums>(need_.grid).buffers(),
-                  res.shaders(), prof);
+                  res.shaders(), prof, 0, 0, cells);
+    resolvedAt_ = res.time();
     return true;
   }
 
@@ -40,6 +47,7 @@ class ValueGridsResource : public Resource {
     if (!atlas || !atlas->hasRadiance()) return false;
     insertRadiance(res, *atlas, prof);
     tex_->resolve(atlas->valueBuffers(), res.shaders(), prof);
+    resolvedAt_ = res.time();
     return true;
   }
 
@@ -59,8 +67,25 @@ class ValueGridsResource : public Resource {
         prof);
   }
 
+  // The cells the dynamic meshes' bounds at `before` and now cover, a cell of margin around them.
+  CellRange movedCells(SceneResources& res, float before) const {
+    Bounds b = res.scene().dynamicBounds(before);
+    const Bounds now = res.scene().dynamicBounds(res.time());
+    if (!now.empty()) b.extend(now.lo), b.extend(now.hi);
+    if (b.empty()) return {};
+    const GridBox& box = tex_->box();
+    const glm::vec3 v = box.voxelSize();
+    const glm::ivec3 res3(box.resolution);
+    const glm::ivec3 lo =
+                         glm::clamp(glm::ivec3(glm::floor((b.lo - box.origin) / v)) - 1, glm::ivec3(0), res3),
+                     hi =
+                         glm::clamp(glm::ivec3(glm::floor((b.hi - box.origin) / v)) + 2, glm::ivec3(0), res3);
+    return {glm::uvec3(lo), glm::uvec3(glm::max(hi, lo))};
+  }
+
   ValueGridNeed need_;
   std::unique_ptr<ValueTextures> tex_;
+  float resolvedAt_ = 0;  // the scene time of the sums the textures were last resolved from
 };
 
 void check(const ResourceNeed& need, const SceneNeeds&, const std::string& method, bool gl) {

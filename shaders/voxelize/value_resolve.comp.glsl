@@ -12,6 +12,8 @@
 #include "shared/bindings.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 uniform uvec4 uResolution;
+uniform uvec3 uFirstCell;  // the cells resolved: uFirstCell … uEndCell − 1 (all, or a changed box)
+uniform uvec3 uEndCell;
 layout(std430, binding = BINDING_VALUE_COUNTS) readonly buffer Counts { uint counts[]; };
 layout(r32ui, binding = IMAGE_VALUE_COUNT) uniform writeonly uimage3D oCount;
 layout(r8, binding = IMAGE_VALUE_OCCUPANCY) uniform writeonly image3D oOccupancy;
@@ -36,8 +38,8 @@ uniform float uRadianceMax;
 layout(std430, binding = BINDING_PYRAMID) readonly buffer PyramidWords { uint pyramidWords[]; };
 #endif
 void main() {
-  uvec3 cell = gl_GlobalInvocationID;
-  if (cell.x >= uResolution.x || cell.y >= uResolution.y || cell.z >= uResolution.z) return;
+  uvec3 cell = gl_GlobalInvocationID + uFirstCell;
+  if (any(greaterThanEqual(cell, uEndCell))) return;
   uint i = valueIndex(cell, uResolution, 0u);
   uint n = counts[i / 4u];
   ivec3 c = ivec3(cell);

@@ -73,6 +73,41 @@ bool allFinite(const Image& img) {
 
 }  // namespace
 
+// The bunny turning on the Cornell box's floor: a frame after the first resolves its value grids only in
+// the cells the bunny's bounds covered before and after (the static sums stand as they were), and
+// every frame equals a still at its time bit for bit.
+TEST(VoxelPath, AnimationFramesResolveOnlyTheMovedCells) {
+  RenderOptions o;
+  o.scene = std::string(VGI_TEST_DATA) + "/../../scenes/cornell-bunny.json";
+  o.method = "voxelpath";
+  o.set = {"temporal=false"};
+  o.width = o.height = 32;
+  o.spp = 1;
+  o.progress = false;
+  RenderOptions anim = o;
+  anim.frames = 3;
+  anim.timeStep = 0.5f;
+  std::vector<Image> frames;
+  const RenderOutput last =
+      runRender(anim, [&](int, const RenderOutput& out) { frames.push_back(out.result.image); });
+  ASSERT_EQ(frames.size(), 3u);
+  const nlohmann::json& stats = last.stats["frames"];
+  for (int f = 0; f < 3; ++f) {
+    RenderOptions still = o;
+    still.time = 0.5f * float(f);
+    EXPECT_EQ(runRender(still).result.image.pixels, frames[size_t(f)].pixels) << "frame " << f;
+    const uint64_t resolved = stats[size_t(f)]["extra"]["value_grids"]["resolved_cells"].get<uint64_t>();
+    const auto r = stats[size_t(f)]["extra"]["grid"]["resolution"];
+    const uint64_t all = r[0].get<uint64_t>() * r[1].get<uint64_t>() * r[2].get<uint64_t>();
+    if (f == 0)
+      EXPECT_EQ(resolved, all);
+    else
+      EXPECT_LT(resolved, all / 10) << "frame " << f;
+    EXPECT_GT(resolved, 0u) << "frame " << f;
+  }
+  EXPECT_GT(compareImages(frames[0], frames[2]).relMae, 0.001) << "the bunny turned";
+}
+
 // The loop adds nothing when no bounce is asked for: the image is the
 // deferred pass's, bit for bit the `direct` method's.
 TEST(VoxelPath, MaxDepthOneIsTheDirectMethodBitForBit) {
