@@ -7,8 +7,10 @@
 
 namespace vgi::test {
 
-inline RenderOutput render(const std::string& scene, const std::string& method, std::vector<std::string> set,
-                           int size, int spp, std::vector<std::string> aovs = {}) {
+// A square still of `size` pixels, `spp` samples, quiet.
+inline RenderOptions options(const std::string& scene, const std::string& method,
+                             std::vector<std::string> set, int size, int spp,
+                             std::vector<std::string> aovs = {}) {
   RenderOptions o;
   o.scene = scene;
   o.method = method;
@@ -17,7 +19,27 @@ inline RenderOutput render(const std::string& scene, const std::string& method, 
   o.spp = spp;
   o.progress = false;
   o.aovs = std::move(aovs);
-  return runRender(o);
+  return o;
+}
+
+inline RenderOutput render(const std::string& scene, const std::string& method, std::vector<std::string> set,
+                           int size, int spp, std::vector<std::string> aovs = {}) {
+  return runRender(options(scene, method, std::move(set), size, spp, std::move(aovs)));
+}
+
+// The animation of `still`'s options over `frames` frames, `step` apart: each frame's image, and the
+// run's output (its stats' "frames": per frame).
+struct Frames {
+  std::vector<Image> images;
+  RenderOutput last;
+};
+inline Frames renderFrames(const RenderOptions& still, int frames, float step) {
+  RenderOptions anim = still;
+  anim.frames = frames;
+  anim.timeStep = step;
+  Frames r;
+  r.last = runRender(anim, [&](int, const RenderOutput& out) { r.images.push_back(out.result.image); });
+  return r;
 }
 
 }  // namespace vgi::test

@@ -346,24 +346,15 @@ TEST(Vct, AnimationFramesEqualStillsWithoutTheRangePass) {
   const std::string bunny = std::string(VGI_TEST_DATA) + "/../../scenes/cornell-bunny.json";
   for (const std::string& scene : {lightScene, bunny}) {
     const bool light = scene == lightScene;
-    RenderOptions o;
-    o.scene = scene;
-    o.method = "vct";
-    o.set = {"temporal=false"};
-    o.width = o.height = 32;
-    o.spp = 1;
-    o.progress = false;
-    RenderOptions anim = o;
-    anim.frames = 3;
-    anim.timeStep = light ? 0.5f : 0.25f;
-    std::vector<Image> frames;
-    const RenderOutput last =
-        runRender(anim, [&](int, const RenderOutput& out) { frames.push_back(out.result.image); });
+    const RenderOptions o = test::options(scene, "vct", {"temporal=false"}, 32, 1);
+    const float step = light ? 0.5f : 0.25f;
+    const test::Frames a = test::renderFrames(o, 3, step);
+    const std::vector<Image>& frames = a.images;
     ASSERT_EQ(frames.size(), 3u) << scene;
-    const nlohmann::json& stats = last.stats["frames"];
+    const nlohmann::json& stats = a.last.stats["frames"];
     for (int f = 0; f < 3; ++f) {
       RenderOptions still = o;
-      still.time = anim.timeStep * float(f);
+      still.time = step * float(f);
       EXPECT_EQ(runRender(still).result.image.pixels, frames[size_t(f)].pixels) << scene << " frame " << f;
       const nlohmann::json& t = stats[size_t(f)]["timings_ms"];
       EXPECT_EQ(t.contains("vct_inject_max"), f == 0) << scene << " frame " << f << ": " << t.dump();

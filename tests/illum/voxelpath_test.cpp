@@ -77,21 +77,12 @@ bool allFinite(const Image& img) {
 // the cells the bunny's bounds covered before and after (the static sums stand as they were), and
 // every frame equals a still at its time bit for bit.
 TEST(VoxelPath, AnimationFramesResolveOnlyTheMovedCells) {
-  RenderOptions o;
-  o.scene = std::string(VGI_TEST_DATA) + "/../../scenes/cornell-bunny.json";
-  o.method = "voxelpath";
-  o.set = {"temporal=false"};
-  o.width = o.height = 32;
-  o.spp = 1;
-  o.progress = false;
-  RenderOptions anim = o;
-  anim.frames = 3;
-  anim.timeStep = 0.5f;
-  std::vector<Image> frames;
-  const RenderOutput last =
-      runRender(anim, [&](int, const RenderOutput& out) { frames.push_back(out.result.image); });
+  const RenderOptions o = test::options(std::string(VGI_TEST_DATA) + "/../../scenes/cornell-bunny.json",
+                                        "voxelpath", {"temporal=false"}, 32, 1);
+  const test::Frames a = test::renderFrames(o, 3, 0.5f);
+  const std::vector<Image>& frames = a.images;
   ASSERT_EQ(frames.size(), 3u);
-  const nlohmann::json& stats = last.stats["frames"];
+  const nlohmann::json& stats = a.last.stats["frames"];
   for (int f = 0; f < 3; ++f) {
     RenderOptions still = o;
     still.time = 0.5f * float(f);
