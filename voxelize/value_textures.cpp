@@ -161,12 +161,23 @@ void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders,
   }
   if (mips_ == ValueMips::None) return;
   auto s = prof.scope("value_mips");
+  // Level l's texels over level 0's changed cells (their parents), or all of it.
+  auto levelRange = [&](int l) {
+    const glm::uvec3 size = levelSize(l);
+    if (!cells) return CellRange{{}, size};
+    const uint32_t side = 1u << l;
+    return CellRange{glm::min(cells->lo / side, size), glm::min((cells->hi + (side - 1u)) / side, size)};
+  };
   auto run = [&](unsigned prog, unsigned input, int inputLevel, unsigned output, int outputLevel,
-                 GLenum format, glm::uvec3 size) {
+                 GLenum format, int gridLevel) {
+    const CellRange r = levelRange(gridLevel);
+    if (r.count() == 0) return;
     glBindTextureUnit(TEXUNIT_PASS_INPUT, input);
     shaders.setUniform(prog, "uInputLevel", inputLevel);
+    shaders.setUniform(prog, "uFirstCell", r.lo);
+    shaders.setUniform(prog, "uEndCell", r.hi);
     glBindImageTexture(IMAGE_OUTPUT, output, outputLevel, GL_TRUE, 0, GL_WRITE_ONLY, format);
-    dispatch3D(size);
+    dispatch3D(r.hi - r.lo);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   };
   auto isoChain = [&](unsigned tex, GLenum format) {
@@ -174,7 +185,7 @@ void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders,
                                           {{"ISOTROPIC", "1"}, {"OUTPUT_FORMAT", formatName(format)}});
     glUseProgram(prog);
     shaders.setUniform(prog, "uFromValues", 0);
-    for (int l = 1; l < levels_; ++l) run(prog, tex, l - 1, tex, l, format, levelSize(l));
+    for (int l = 1; l < levels_; ++l) run(prog, tex, l - 1, tex, l, format, l);
   };
   isoChain(occupancy_.get(), GL_R8);
   for (auto& ch : channels_)
@@ -198,9 +209,9 @@ void ValueTextures::resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders,
       shaders.setUniform(prog, "uFace", f);
       const unsigned face = aniso_[k][f].get();
       shaders.setUniform(prog, "uFromValues", 1);
-      run(prog, channel_[k].get(), 0, face, 0, GL_RGBA16F, levelSize(1));
+      run(prog, channel_[k].get(), 0, face, 0, GL_RGBA16F, 1);
       shaders.setUniform(prog, "uFromValues", 0);
-      for (int l = 2; l < levels_; ++l) run(prog, face, l - 2, face, l - 1, GL_RGBA16F, levelSize(l));
+      for (int l = 2; l < levels_; ++l) run(prog, face, l - 2, face, l - 1, GL_RGBA16F, l);
     }
   }
 }

@@ -73,8 +73,8 @@ class ValueTextures {
   // texture of the direction each cell's radiance leaves in (vct's
   // `directional`: illum/resources/cone_volume.h), which the radiance's
   // anisotropic chain then reads its first level through (value_mip.comp, DIRECTIONAL).
-  // cells: level 0 is resolved within [lo, hi) only (the sums changed nowhere else; the mips are
-  // built whole from it); none: everywhere.
+  // cells: level 0 is resolved within [lo, hi) only (the sums changed nowhere else) and each mip
+  // level over their parents; none: everywhere.
   void resolve(const ValueSumBuffers& sums, ShaderLibrary& shaders, Profiler& profiler,
                unsigned occupancyWords = 0, unsigned radianceDirection = 0,
                const std::optional<CellRange>& cells = std::nullopt);

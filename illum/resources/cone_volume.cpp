@@ -8,6 +8,7 @@
 #include "core/gpu_memory.h"
 #include "core/gpu_scene.h"
 #include "core/profiler.h"
+#include "core/scene.h"
 #include "core/shader_library.h"
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gl_ray_tracer.h"
@@ -55,6 +56,60 @@ ValueGridNeed ConeVolumeNeed::valueGrids() const {
   return {grid, anisotropic ? ValueMips::Anisotropic : ValueMips::Isotropic, lightMaps};
 }
 
+namespace {
+bool sameLights(const std::vector<Light>& a, const std::vector<Light>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].type != b[i].type || a[i].position != b[i].position || a[i].direction != b[i].direction ||
+        a[i].intensity != b[i].intensity || a[i].coneHalfAngleDeg != b[i].coneHalfAngleDeg ||
+        a[i].falloff != b[i].falloff)
+      return false;
+  return true;
+}
+
+// Adds to `out` box b and what b shadows from each light within the grid box [lo, hi]: b's corners
+// carried away from the light to the grid's faces. False where a light lies within b (all of it).
+bool addShadowed(Bounds& out, const Bounds& b, const std::vector<Light>& lights, glm::vec3 lo, glm::vec3 hi) {
+  if (b.empty()) return true;
+  out.extend(b.lo), out.extend(b.hi);
+  for (const Light& l : lights) {
+    const bool parallel = l.type == LightType::Directional;
+    if (!parallel && glm::all(glm::greaterThanEqual(l.position, b.lo)) &&
+        glm::all(glm::lessThanEqual(l.position, b.hi)))
+      return false;
+    for (int i = 0; i < 8; ++i) {
+      const glm::vec3 c(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z);
+      const glm::vec3 d = parallel ? l.direction : c - l.position;
+      float t = 1e30f;  // to the grid's face the ray from c along d leaves through
+      for (int a = 0; a < 3; ++a)
+        if (d[a] > 1e-20f)
+          t = std::min(t, std::max(hi[a] - c[a], 0.0f) / d[a]);
+        else if (d[a] < -1e-20f)
+          t = std::min(t, std::min(lo[a] - c[a], 0.0f) / d[a]);
+      if (t < 1e29f) out.extend(c + t * d);
+    }
+  }
+  return true;
+}
+}  // namespace
+
+std::optional<CellRange> ConeVolume::changedCells(SceneResources& res, float before) const {
+  const GridBox& box = own_->box();
+  const glm::vec3 lo = box.origin, hi = box.origin + box.extent;
+  Bounds changed;
+  if (!addShadowed(changed, res.scene().dynamicBounds(before), res.lights(), lo, hi) ||
+      !addShadowed(changed, res.scene().dynamicBounds(res.time()), res.lights(), lo, hi))
+    return std::nullopt;
+  if (changed.empty()) return CellRange{};
+  // Two cells of margin: a (triangle, cell) pair is lit at the triangle's point nearest the cell's
+  // centre, and the shadow test's bias and filter reach a little past the shadow's edge.
+  const glm::vec3 v = box.voxelSize();
+  const glm::ivec3 n(box.resolution);
+  const glm::ivec3 a = glm::clamp(glm::ivec3(glm::floor((changed.lo - lo) / v)) - 2, glm::ivec3(0), n),
+                   z = glm::clamp(glm::ivec3(glm::floor((changed.hi - lo) / v)) + 3, glm::ivec3(0), n);
+  return CellRange{glm::uvec3(a), glm::uvec3(glm::max(a, z))};
+}
+
 bool ConeVolume::update(SceneResources& res, const ResourceNeed& need, Profiler& prof) {
   need_ = need.spec<ConeVolumeNeed>();
   const glm::vec3 v = res.get<GridBox>(need_.grid).voxelSize();
@@ -95,29 +150,44 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   // A fill after the first (an animation's frame, a moved light, a sample's area lights) tries the
   // last fill's range: no pass for the maximum where it is the same (the sums are a fresh fill's).
   const bool again = !filledFor_.empty();
-  filledFor_ = need_.settings().dump();
+  const std::string settings = need_.settings().dump();
+  const float rangeBefore = sums_.radianceMax();
+  // Only the dynamic meshes moved (the settings, the lights and then the range as before): the sums
+  // changed only where they were and are and in what they shadow, and only those cells are
+  // resolved and filtered again.
+  std::optional<CellRange> cells;
+  if (again && settings == filledFor_ && sameLights(res.lights(), filledLights_))
+    cells = changedCells(res, filledAt_);
+  filledFor_ = settings;
+  filledLights_ = res.lights();
+  filledAt_ = res.time();
   if (injectsRadiance(need_.radiance))
     sums_.inject(res, res.get<GridBox>(need_.grid), need_.radiance, *need_.lightMaps, need_.bias,
-                 need_.normalOffset, nullptr, prof, again ? sums_.radianceMax() : 0.0f);
+                 need_.normalOffset, nullptr, prof, again ? rangeBefore : 0.0f);
+  if (sums_.radianceMax() != rangeBefore) cells.reset();
   const unsigned words = res.get<GlPyramid>(need_.pyramid()).words();
   if (direction_) {
     auto s = prof.scope("vct_direction_resolve");
     const unsigned prog = shaders.program({"illum/vct/direction_resolve.comp.glsl"});
     glUseProgram(prog);
     const glm::uvec3 r = own_->box().resolution;
+    const CellRange range = cells ? *cells : CellRange{{}, r};
     shaders.setUniform(prog, "uResolution", glm::uvec4(r, 0u));
+    shaders.setUniform(prog, "uFirstCell", range.lo);
+    shaders.setUniform(prog, "uEndCell", glm::min(range.hi, r));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_DIRECTION, sums_.directions());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_PYRAMID, words);
     glBindImageTexture(IMAGE_VALUE_DIRECTION, direction_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA8_SNORM);
-    glDispatchCompute((r.x + 3) / 4, (r.y + 3) / 4, (r.z + 3) / 4);
+    const glm::uvec3 size = glm::max(range.hi, range.lo) - range.lo;
+    if (range.count() > 0) glDispatchCompute((size.x + 3) / 4, (size.y + 3) / 4, (size.z + 3) / 4);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
   ValueSumBuffers b;
   b.counts = sums_.counts();
   b.sums[3] = sums_.sums();
   b.radianceMax = sums_.radianceMax();
-  own_->resolve(b, shaders, prof, words, need_.directionalChain ? direction_.get() : 0u);
+  own_->resolve(b, shaders, prof, words, need_.directionalChain ? direction_.get() : 0u, cells);
 }
 
 void InjectionSums::allocate(uint64_t slots, bool directional) {

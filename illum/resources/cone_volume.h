@@ -30,9 +30,11 @@
 #include <string>
 
 #include "core/gl_handles.h"
+#include "core/scene.h"
 #include "illum/resources/light_maps.h"
 #include "illum/resources/or_mip_pyramid.h"
 #include "illum/resources/value_grids.h"
+#include "voxelize/value_textures.h"
 
 namespace vgi {
 
@@ -126,7 +128,12 @@ class ConeVolume : public Resource, public ConeSource {
   void allocate(SceneResources& res);                  // the volume of its own and its sums
   void fill(SceneResources& res, Profiler& profiler);  // (re)fills it: injection, resolve
   ConeVolumeNeed need_;
-  std::string filledFor_;                  // the settings of the last fill (an adopted volume may get others)
+  std::string filledFor_;            // the settings of the last fill (an adopted volume may get others)
+  std::vector<Light> filledLights_;  // … its lights
+  float filledAt_ = 0;               // … its scene time
+  // The cells a fill at the scene's time now can change against one at `before` with the same lights:
+  // the dynamic meshes' bounds then and now and what they shadow; none: all of them.
+  std::optional<CellRange> changedCells(SceneResources& res, float before) const;
   const ValueTextures* volume_ = nullptr;  // own_, or the value grids' (radiance=atlas)
   std::unique_ptr<ValueTextures> own_;
   InjectionSums sums_;   // also with radiance=none: the resolve reads zero counts

@@ -21,6 +21,8 @@ layout(binding = TEXUNIT_VALUE_DIRECTION) uniform sampler3D uDirection;
 #endif
 uniform int uInputLevel;
 uniform int uFromValues;
+uniform uvec3 uFirstCell;  // the texels built: uFirstCell … uEndCell − 1 (all, or a changed box's parents)
+uniform uvec3 uEndCell;
 uniform uint uFace;
 vec4 child(ivec3 p) {
   // An odd-sized level's last texel has children beyond its input: empty.
@@ -37,8 +39,8 @@ vec4 child(ivec3 p) {
   return v;
 }
 void main() {
-  ivec3 cell = ivec3(gl_GlobalInvocationID);
-  if (any(greaterThanEqual(cell, imageSize(oLevel)))) return;
+  ivec3 cell = ivec3(gl_GlobalInvocationID + uFirstCell);
+  if (any(greaterThanEqual(cell, min(imageSize(oLevel), ivec3(uEndCell))))) return;
   ivec3 base = 2 * cell;
   vec4 c[8];
   for (int i = 0; i < 8; ++i) c[i] = child(base + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1));

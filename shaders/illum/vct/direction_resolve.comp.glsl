@@ -10,12 +10,14 @@
 #include "shared/bindings.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 uniform uvec4 uResolution;
+uniform uvec3 uFirstCell;  // the cells resolved: uFirstCell … uEndCell − 1 (all, or a changed box)
+uniform uvec3 uEndCell;
 layout(std430, binding = BINDING_VALUE_DIRECTION) readonly buffer DirectionSums { uint directionSums[]; };
 layout(std430, binding = BINDING_PYRAMID) readonly buffer PyramidWords { uint pyramidWords[]; };
 layout(rgba8_snorm, binding = IMAGE_VALUE_DIRECTION) uniform writeonly image3D oDirection;
 void main() {
-  uvec3 cell = gl_GlobalInvocationID;
-  if (cell.x >= uResolution.x || cell.y >= uResolution.y || cell.z >= uResolution.z) return;
+  uvec3 cell = gl_GlobalInvocationID + uFirstCell;
+  if (any(greaterThanEqual(cell, uEndCell))) return;
   uint i = valueIndex(cell, uResolution, 0u);
   bool occupied =
       (pyramidWords[columnWordIndex(cell.x, cell.y, depthWord(cell.z), uResolution)] & depthBit(cell.z)) != 0u;
