@@ -359,15 +359,17 @@ TEST(Vct, AnimationFramesEqualStillsWithoutTheRangePass) {
       EXPECT_EQ(runRender(still).result.image.pixels, frames[size_t(f)].pixels) << scene << " frame " << f;
       const nlohmann::json& t = stats[size_t(f)]["timings_ms"];
       EXPECT_EQ(t.contains("vct_inject_max"), f == 0) << scene << " frame " << f << ": " << t.dump();
-      if (f > 0)
+      if (f > 0) {
         EXPECT_EQ(t.contains("vct_inject_again"), light) << scene << " frame " << f << ": " << t.dump();
+      }
       // The bunny's frames resolve and filter only the cells it and its shadow left and entered; the
       // moved light's, all of them.
       const uint64_t resolved = stats[size_t(f)]["extra"]["volume"]["resolved_cells"].get<uint64_t>();
-      if (f == 0 || light)
+      if (f == 0 || light) {
         EXPECT_EQ(resolved, 128u * 128u * 128u) << scene << " frame " << f;
-      else
+      } else {
         EXPECT_LT(resolved, 128u * 128u * 128u / 8u) << scene << " frame " << f;
+      }
     }
     EXPECT_GT(compareImages(frames[0], frames[2]).relMae, 0.001) << scene << ": it moved";
   }

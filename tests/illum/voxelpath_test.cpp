@@ -90,10 +90,11 @@ TEST(VoxelPath, AnimationFramesResolveOnlyTheMovedCells) {
     const uint64_t resolved = stats[size_t(f)]["extra"]["value_grids"]["resolved_cells"].get<uint64_t>();
     const auto r = stats[size_t(f)]["extra"]["grid"]["resolution"];
     const uint64_t all = r[0].get<uint64_t>() * r[1].get<uint64_t>() * r[2].get<uint64_t>();
-    if (f == 0)
+    if (f == 0) {
       EXPECT_EQ(resolved, all);
-    else
+    } else {
       EXPECT_LT(resolved, all / 10) << "frame " << f;
+    }
     EXPECT_GT(resolved, 0u) << "frame " << f;
   }
   EXPECT_GT(compareImages(frames[0], frames[2]).relMae, 0.001) << "the bunny turned";
