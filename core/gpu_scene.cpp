@@ -35,16 +35,22 @@ namespace {
 // Interleaved position, shading normal, uv, geometric (face) normal: 11 floats per vertex.
 constexpr int kVertexFloats = int(shared::SCENE_VERTEX_FLOATS);
 static_assert(shared::SCENE_VERTEX_UV == 6u, "interleave() writes the uv after position and normal");
+// `verts` is resized, not reallocated where it is large enough (an animation's frames reuse it).
 void interleave(const FlatScene& f, std::vector<float>& verts) {
-  verts.clear();
-  verts.reserve(f.positions.size() * kVertexFloats);
-  for (size_t i = 0; i < f.positions.size(); ++i) {
-    const glm::vec3 &p = f.positions[i], &n = f.normals[i];
-    const glm::vec2& uv = f.uvs[i];
-    const size_t t = i - i % 3;
-    glm::vec3 g = glm::cross(f.positions[t + 1] - f.positions[t], f.positions[t + 2] - f.positions[t]);
-    g = glm::length(g) > 0.0f ? glm::normalize(g) : n;
-    verts.insert(verts.end(), {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y, g.x, g.y, g.z});
+  verts.resize(f.positions.size() * kVertexFloats);
+  float* out = verts.data();
+  for (size_t t = 0; t + 2 < f.positions.size(); t += 3) {
+    const glm::vec3 face =
+        glm::cross(f.positions[t + 1] - f.positions[t], f.positions[t + 2] - f.positions[t]);
+    const bool flat = !(glm::length(face) > 0.0f);
+    const glm::vec3 unit = flat ? face : glm::normalize(face);
+    for (size_t i = t; i < t + 3; ++i, out += kVertexFloats) {
+      const glm::vec3 &p = f.positions[i], &n = f.normals[i];
+      const glm::vec2& uv = f.uvs[i];
+      const glm::vec3 g = flat ? n : unit;  // a degenerate face takes each corner's shading normal
+      const float v[kVertexFloats] = {p.x, p.y, p.z, n.x, n.y, n.z, uv.x, uv.y, g.x, g.y, g.z};
+      std::copy(v, v + kVertexFloats, out);
+    }
   }
 }
 
@@ -62,6 +68,11 @@ GpuScene::GpuScene(const Scene& scene, float time) {
   FlatScene f = flatten(scene, time);
   triangles_ = f.triangleCount();
   bounds_ = scene.bounds(time);
+  for (const Mesh& m : scene.meshes)
+    if (!m.dynamic) {
+      const glm::mat4 M = m.objectToWorld(time);
+      for (const glm::vec3& p : m.positions) staticBounds_.extend(glm::vec3(M * glm::vec4(p, 1.0f)));
+    }
   std::vector<float> verts;
   interleave(f, verts);
   glCreateVertexArrays(1, &vao_);
@@ -134,18 +145,21 @@ GpuScene::GpuScene(const Scene& scene, float time) {
 void GpuScene::setTime(const Scene& scene, float time) {
   if (scene.triangleCount() != triangles_)
     fail("GpuScene::setTime: the scene has ", scene.triangleCount(), " triangles, not ", triangles_);
-  bounds_ = scene.bounds(time);
-  // Only the dynamic meshes move: re-upload their vertex ranges.
+  // Only the dynamic meshes move: the bounds are the static ones' (kept) and theirs; re-upload
+  // their vertex ranges (through buffers kept between frames).
+  bounds_ = staticBounds_;
+  const Bounds moving = scene.dynamicBounds(time);
+  if (!moving.empty()) bounds_.extend(moving.lo), bounds_.extend(moving.hi);
   size_t first = 0;  // the mesh's first triangle
-  std::vector<float> verts;
   for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
     const Mesh& m = scene.meshes[mi];
     if (m.dynamic && !m.triangles.empty()) {
-      FlatScene f;
-      flattenMesh(scene, int(mi), time, f);
-      interleave(f, verts);
+      for (auto* v : {&flat_.positions, &flat_.normals}) v->clear();
+      flat_.uvs.clear(), flat_.material.clear(), flat_.meshOfTriangle.clear();
+      flattenMesh(scene, int(mi), time, flat_);
+      interleave(flat_, verts_);
       glNamedBufferSubData(vbo_, GLintptr(first * 3 * kVertexFloats * sizeof(float)),
-                           GLsizeiptr(verts.size() * sizeof(float)), verts.data());
+                           GLsizeiptr(verts_.size() * sizeof(float)), verts_.data());
     }
     first += m.triangles.size();
   }

@@ -43,7 +43,9 @@ class GpuScene {
   size_t lightCount_ = 0;
   unsigned albedoArray_ = 0, envMap_ = 0;
   size_t triangles_ = 0;
-  Bounds bounds_;
+  Bounds bounds_, staticBounds_;  // all meshes at the last time; the static ones
+  FlatScene flat_;                // setTime's buffers, kept between frames
+  std::vector<float> verts_;
   glm::vec4 envColorScale_{0.0f};
   bool envHasMap_ = false;
 };

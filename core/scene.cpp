@@ -142,13 +142,16 @@ void flattenMesh(const Scene& scene, int mi, float time, FlatScene& f) {
   const Mesh& m = scene.meshes[size_t(mi)];
   glm::mat4 M = m.objectToWorld(time);
   glm::mat3 N = glm::transpose(glm::inverse(glm::mat3(M)));
+  // Each vertex transformed once (a vertex is shared by ~6 corners), then gathered per corner.
+  std::vector<glm::vec3> wp(m.positions.size()), wn(m.normals.size());
+  for (size_t v = 0; v < wp.size(); ++v) wp[v] = glm::vec3(M * glm::vec4(m.positions[v], 1.0f));
+  for (size_t v = 0; v < wn.size(); ++v) wn[v] = glm::normalize(N * m.normals[v]);
   for (auto& t : m.triangles) {
-    glm::vec3 p[3];
-    for (int k = 0; k < 3; ++k) p[k] = glm::vec3(M * glm::vec4(m.positions[t[k]], 1.0f));
+    const glm::vec3 p[3] = {wp[t[0]], wp[t[1]], wp[t[2]]};
     glm::vec3 ng = glm::normalize(glm::cross(p[1] - p[0], p[2] - p[0]));
     for (int k = 0; k < 3; ++k) {
       f.positions.push_back(p[k]);
-      glm::vec3 n = m.normals.empty() ? ng : glm::normalize(N * m.normals[t[k]]);
+      glm::vec3 n = wn.empty() ? ng : wn[t[k]];
       if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) n = ng;
       f.normals.push_back(n);
       f.uvs.push_back(m.uvs.empty() ? glm::vec2(0.0f) : m.uvs[t[k]]);

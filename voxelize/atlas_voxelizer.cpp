@@ -102,10 +102,14 @@ struct AtlasVoxelizer::ValueBuffers {
     for (unsigned s : sums)
       if (s) glDeleteBuffers(1, &s);
   }
-  void copyTo(const ValueBuffers& o) const {
-    glCopyNamedBufferSubData(counts, o.counts, 0, 0, GLsizeiptr(cells * 4));
+  // Cells [first, end) (linear, valueIndex's order).
+  void copyTo(const ValueBuffers& o, size_t first, size_t end) const {
+    glCopyNamedBufferSubData(counts, o.counts, GLintptr(first * 4), GLintptr(first * 4),
+                             GLsizeiptr((end - first) * 4));
     for (int k = 0; k < 3; ++k)
-      if (sums[k]) glCopyNamedBufferSubData(sums[k], o.sums[k], 0, 0, GLsizeiptr(cells * 16));
+      if (sums[k])
+        glCopyNamedBufferSubData(sums[k], o.sums[k], GLintptr(first * 16), GLintptr(first * 16),
+                                 GLsizeiptr((end - first) * 16));
   }
   void bind() const {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, counts);
@@ -189,6 +193,7 @@ void AtlasVoxelizer::createPrograms() {
                                          : ch == "albedo" ? "ALBEDO"
                                                           : "GLOSSY")] = "1";
     valueDefs["ATLAS_VERTEX_FLOATS"] = std::to_string(kVertexFloats);
+    valueDefs["INSERT_BITS"] = "1";  // the binary insertion in the same pass
     valueProg_ = req.shaders->program({"voxelize/atlas_insert_values.comp.glsl"}, valueDefs);
     setGridUniforms(*req.shaders, valueProg_, req.box);
     if (std::find(req.valueGrids.begin(), req.valueGrids.end(), "radiance") != req.valueGrids.end()) {
@@ -556,7 +561,7 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     }
     renderAtlas(m, modelToBox(m.mesh->objectToWorld(time), request_.box), renderProg_, values ? 5 : 2);
   }
-  {
+  if (!values) {
     auto s = prof.scope("insertion");
     glUseProgram(insertProg_);
     request_.shaders->setUniform(insertProg_, "uAtlasSize", glm::ivec2(R));
@@ -565,10 +570,12 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VOXEL_COUNTER, counter);
     glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  }
-  if (values) {
+  } else {
+    // The bits and the values in one pass (INSERT_BITS).
     auto s = prof.scope("insertion_values");
     glUseProgram(valueProg_);
+    target.bind(BINDING_GRID_WORDS);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VOXEL_COUNTER, counter);
     request_.shaders->setUniform(valueProg_, "uAtlasSize", glm::ivec2(R));
     setPointCellInputs(valueProg_, m, time);
     const unsigned units[3] = {TEXUNIT_ATLAS_NORMAL, TEXUNIT_ATLAS_ALBEDO, TEXUNIT_ATLAS_GLOSSY};
@@ -608,15 +615,48 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
   }
 }
 
+// The cells the dynamic meshes' points and footprints can reach at `time`: their bounds, widened
+// by the largest footprint radius and a cell (rounding), through the grid's axes.
+CellRange AtlasVoxelizer::dynamicCells(float time) const {
+  Bounds b;
+  float footprint = 0;
+  for (auto& m : meshes_)
+    if (m->dynamic) {
+      const glm::mat4 M = m->mesh->objectToWorld(time);
+      for (const glm::vec3& p : m->mesh->positions) b.extend(glm::vec3(M * glm::vec4(p, 1.0f)));
+      footprint = std::max(footprint, request_.atlasFootprint * m->texelWorld);
+    }
+  const glm::vec3 v = request_.box.voxelSize();
+  const int reach = int(std::ceil(footprint / std::min({v.x, v.y, v.z})));
+  return boundsCells(request_.box, b, 1 + reach, 2 + reach);
+}
+
 void AtlasVoxelizer::voxelizeFrame(float time, Profiler& prof) {
   {
     auto s = prof.scope("copy");
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    glCopyNamedBufferSubData(static_->buffer(), frame_->buffer(), 0, 0, GLsizeiptr(static_->bytes()));
-    if (staticValues_) staticValues_->copyTo(*frameValues_);
+    // The frame grid holds the static grid and the dynamic meshes as the last frame inserted them:
+    // the static grid is copied back over the cells those could reach (rows of the grid's words,
+    // slices of the value sums); the first frame copies all of it.
+    const glm::uvec3 n = request_.box.resolution;
+    const CellRange all{glm::uvec3(0), n};
+    const CellRange r = framed_ ? dynamicCells(framedAt_) : all;
+    restoredCells_ = r.count();
+    if (r.count() > 0) {
+      const GLintptr row = GLintptr(n.x) * 16;  // one grid row of one slab: n.x RGBA32UI words
+      for (uint32_t slab = r.lo.z / 128; slab < (r.hi.z + 127) / 128; ++slab) {
+        const GLintptr first = (GLintptr(slab) * n.y + r.lo.y) * row;
+        glCopyNamedBufferSubData(static_->buffer(), frame_->buffer(), first, first,
+                                 GLsizeiptr(r.hi.y - r.lo.y) * row);
+      }
+      if (staticValues_)
+        staticValues_->copyTo(*frameValues_, size_t(r.lo.z) * n.x * n.y, size_t(r.hi.z) * n.x * n.y);
+    }
     const uint32_t zero = 0;
     glClearNamedBufferData(frameCounter_, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   }
+  framed_ = true;
+  framedAt_ = time;
   for (auto& m : meshes_)
     if (m->dynamic)
       renderAndInsert(*m, time, *frame_, frameValues_.get(), frameCounter_, prof, nullptr, nullptr);
@@ -664,6 +704,7 @@ nlohmann::json AtlasVoxelizer::stats() const {
   glGetNamedBufferSubData(staticCounter_, 0, 4, &staticPoints);
   glGetNamedBufferSubData(frameCounter_, 0, 4, &framePoints);
   s["points"] = staticPoints + framePoints;  // of the last frame, static meshes included
+  s["restored_cells"] = restoredCells_;      // the static grid copied back over these at the last frame
   return s;
 }
 

@@ -32,7 +32,8 @@ class AtlasVoxelizer {
   AtlasVoxelizer(const AtlasVoxelizer&) = delete;
   AtlasVoxelizer& operator=(const AtlasVoxelizer&) = delete;
 
-  // Static grid → frame grid ("copy"), then the dynamic meshes at `time`
+  // Static grid → frame grid ("copy"; after the first frame only over the cells the dynamic
+  // meshes could reach at the last frame's time), then the dynamic meshes at `time`
   // ("atlas_render", "insertion").
   void voxelizeFrame(float time, Profiler& profiler);
   const GpuGridBuffer& frameGrid() const { return *frame_; }
@@ -52,7 +53,7 @@ class AtlasVoxelizer {
                       Profiler& profiler);
   bool hasRadiance() const { return radianceSums_ != 0; }
 
-  // "points" (of the last frame, static included), "atlas_resolution",
+  // "points" (of the last frame, static included), "restored_cells" (the last frame's copy), "atlas_resolution",
   // "atlases" (per mesh), "triangles_without_texels", "static_meshes", "dynamic_meshes".
   nlohmann::json stats() const;
   // The GPU memory it holds: the static and frame grids, the value sums, the atlas targets, the meshes.
@@ -66,6 +67,7 @@ class AtlasVoxelizer {
                        const ValueBuffers* values, unsigned counter, Profiler& profiler,
                        std::vector<int>* ids, AtlasSamples* points);
   void setPointCellInputs(unsigned program, const MeshGpu& mesh, float time) const;
+  CellRange dynamicCells(float time) const;
   // The constructor's steps.
   void createPrograms();
   void createGrids();
@@ -92,6 +94,9 @@ class AtlasVoxelizer {
            radianceMaxBuffer_ = 0;
   float radianceMax_ = 0;  // atlas points of the static meshes / this frame's dynamic ones
   int maxResolution_ = 0;
+  bool framed_ = false;  // the frame grid holds a frame (at framedAt_)
+  float framedAt_ = 0;
+  uint64_t restoredCells_ = 0;
   nlohmann::json stats_;
 };
 

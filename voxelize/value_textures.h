@@ -42,14 +42,6 @@ class ShaderLibrary;
 
 enum class ValueMips { None, Isotropic, Anisotropic };
 
-// A box of a grid's cells, [lo, hi) per axis.
-struct CellRange {
-  glm::uvec3 lo{0u}, hi{0u};
-  uint64_t count() const {
-    const glm::uvec3 s = glm::max(hi, lo) - lo;
-    return uint64_t(s.x) * s.y * s.z;
-  }
-};
 const char* valueMipsName(ValueMips m);
 
 // The GL buffers of a multi-valued insertion (AtlasVoxelizer::valueBuffers()).

@@ -61,6 +61,25 @@ GridBox cubicCellBox(const GridBox& box) {
   return g;
 }
 
+CellRange boundsCells(const GridBox& box, const Bounds& b, int below, int above) {
+  if (b.empty()) return {};
+  const glm::vec3 v = box.voxelSize(), n(box.resolution);
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 p((c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z);
+    const glm::vec3 q = glm::transpose(box.axes) * (p - box.origin) / v;
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  // Clamped before the conversion (bounds far outside the grid fit no int).
+  const glm::vec3 m(float(std::max(below, above)) + 1.0f);
+  const glm::ivec3 a = glm::ivec3(glm::floor(glm::clamp(lo, -m, n + m))) - below,
+                   z = glm::ivec3(glm::floor(glm::clamp(hi, -m, n + m))) + above;
+  const glm::ivec3 res(box.resolution);
+  const glm::ivec3 l = glm::clamp(a, glm::ivec3(0), res), h = glm::clamp(z, glm::ivec3(0), res);
+  return {glm::uvec3(l), glm::uvec3(glm::max(h, l))};
+}
+
 GridBox fitGridBox(Bounds b, glm::uvec3 resolution) {
   if (b.empty()) fail("cannot fit a voxel grid: the scene is empty");
   GridBox g;

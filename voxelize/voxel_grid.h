@@ -38,6 +38,20 @@ GridBox fitGridBox(Bounds bounds, glm::uvec3 resolution);
 // The same box grown about its centre so its cells are cubes (the longest cell side).
 GridBox cubicCellBox(const GridBox& box);
 
+// A box of a grid's cells, [lo, hi) per axis.
+struct CellRange {
+  glm::uvec3 lo{0u}, hi{0u};
+  uint64_t count() const {
+    const glm::uvec3 s = glm::max(hi, lo) - lo;
+    return uint64_t(s.x) * s.y * s.z;
+  }
+};
+// The cells a world-space box covers (its corners through the grid's axes), from `below` cells
+// under its lowest cell to `above` − 1 cells over its highest, clamped to the grid; empty
+// bounds: an empty range. What moved between two frames (a dynamic mesh's bounds before and
+// after) is redone over such a range.
+CellRange boundsCells(const GridBox& box, const Bounds& bounds, int below, int above);
+
 // Throws if a grid of this resolution would not fit in memory (names the size).
 void checkGridMemory(glm::uvec3 resolution, int grids = 1);
 

@@ -103,11 +103,7 @@ std::optional<CellRange> ConeVolume::changedCells(SceneResources& res, float bef
   if (changed.empty()) return CellRange{};
   // Two cells of margin: a (triangle, cell) pair is lit at the triangle's point nearest the cell's
   // centre, and the shadow test's bias and filter reach a little past the shadow's edge.
-  const glm::vec3 v = box.voxelSize();
-  const glm::ivec3 n(box.resolution);
-  const glm::ivec3 a = glm::clamp(glm::ivec3(glm::floor((changed.lo - lo) / v)) - 2, glm::ivec3(0), n),
-                   z = glm::clamp(glm::ivec3(glm::floor((changed.hi - lo) / v)) + 3, glm::ivec3(0), n);
-  return CellRange{glm::uvec3(a), glm::uvec3(glm::max(a, z))};
+  return boundsCells(box, changed, 2, 3);
 }
 
 bool ConeVolume::update(SceneResources& res, const ResourceNeed& need, Profiler& prof) {

@@ -72,15 +72,7 @@ class ValueGridsResource : public Resource {
     Bounds b = res.scene().dynamicBounds(before);
     const Bounds now = res.scene().dynamicBounds(res.time());
     if (!now.empty()) b.extend(now.lo), b.extend(now.hi);
-    if (b.empty()) return {};
-    const GridBox& box = tex_->box();
-    const glm::vec3 v = box.voxelSize();
-    const glm::ivec3 res3(box.resolution);
-    const glm::ivec3 lo =
-                         glm::clamp(glm::ivec3(glm::floor((b.lo - box.origin) / v)) - 1, glm::ivec3(0), res3),
-                     hi =
-                         glm::clamp(glm::ivec3(glm::floor((b.hi - box.origin) / v)) + 2, glm::ivec3(0), res3);
-    return {glm::uvec3(lo), glm::uvec3(glm::max(hi, lo))};
+    return boundsCells(tex_->box(), b, 1, 2);
   }
 
   ValueGridNeed need_;

@@ -4,12 +4,8 @@
 // (insertAtlasPoints) runs the same shared kernels.
 #include "grid_uniforms.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
-#include "shared/bindings.glsl"
-layout(std430, binding = BINDING_GRID_WORDS) buffer Columns { uint words[]; };
-layout(std430, binding = BINDING_VOXEL_COUNTER) buffer Counters { uint points; };
-void visitCell(ivec2 texel, uvec3 c) {
-  atomicOr(words[columnWordIndex(c.x, c.y, depthWord(c.z), uResolution)], depthBit(c.z));
-}
+#include "atlas_insert_bits.glsl"
+void visitCell(ivec2 texel, uvec3 c) { setCellBit(c); }
 #include "atlas_point_cells.glsl"
 void main() {
   ivec2 t = ivec2(gl_GlobalInvocationID.xy);

@@ -4,7 +4,9 @@
 // (atlas_point_cells.glsl), so every set cell has values. Only the channels a
 // caller asked for are compiled in (VALUE_NORMAL, VALUE_ALBEDO, VALUE_GLOSSY;
 // VALUE_RADIANCE alone in the radiance pass, which leaves the counts to the
-// pass that inserted the same points).
+// pass that inserted the same points). With INSERT_BITS the same pass sets the
+// binary grid's bits and counts the points too (atlas_insert_bits.glsl): one walk
+// over the points and their footprints instead of two.
 #include "grid_uniforms.glsl"
 #include "shared/value_grid.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -23,7 +25,13 @@ layout(binding = TEXUNIT_ATLAS_RADIANCE) uniform sampler2D atlasRadiance;
 layout(std430, binding = BINDING_VALUE_RADIANCE) buffer RadianceSums { uint radianceSums[]; };
 uniform float uRadianceMax;
 #endif
+#ifdef INSERT_BITS
+#include "atlas_insert_bits.glsl"
+#endif
 void visitCell(ivec2 t, uvec3 cell) {
+#ifdef INSERT_BITS
+  setCellBit(cell);
+#endif
 #ifdef VALUE_RADIANCE
   vec4 r = texelFetch(atlasRadiance, t, 0);
   for (uint c = 0u; c < 3u; ++c) atomicAdd(radianceSums[valueIndex(cell, uResolution, c)], toFixedRadiance(r[c], uRadianceMax));
@@ -49,5 +57,9 @@ void visitCell(ivec2 t, uvec3 cell) {
 void main() {
   ivec2 t = ivec2(gl_GlobalInvocationID.xy);
   if (t.x >= uAtlasSize.x || t.y >= uAtlasSize.y) return;
+#ifdef INSERT_BITS
+  if (visitPointCells(t)) atomicAdd(points, 1u);
+#else
   visitPointCells(t);
+#endif
 }

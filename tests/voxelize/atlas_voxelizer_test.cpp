@@ -361,6 +361,11 @@ TEST(AtlasVoxelizer, FramesReuseTheStaticGridWithoutStaleVoxels) {
   }
   EXPECT_EQ(frames[0].words(), frames[2].words());
   EXPECT_NE(frames[0].words(), frames[1].words());
+  // The last frame copied the static grid back only over the cells the triangle could reach at
+  // time 1 (a few rows of the 64 x 64 x 128 grid).
+  const uint64_t restored = v.stats()["restored_cells"];
+  EXPECT_GT(restored, 0u);
+  EXPECT_LT(restored, r.box.cellCount() / 4);
   VoxelizeRequest at1 = r;
   at1.time = 1.0f;
   nlohmann::json stats;
@@ -372,6 +377,38 @@ TEST(AtlasVoxelizer, FramesReuseTheStaticGridWithoutStaleVoxels) {
 }  // namespace vgi
 
 namespace vgi {
+// With value grids too: a voxelizer taken through several times holds at each the grid and the
+// values of a fresh voxelizer's first frame (which copies everything), bit for bit — the static
+// part copied back only where the dynamic mesh was at the frame before.
+TEST(AtlasVoxelizer, FramesRestoreOnlyWhereTheDynamicMeshWasWithValues) {
+  GlFixture f;
+  Scene s = loadScene(test::writeMovingTriangleScene("moving-values"));
+  VoxelizeRequest r = f.request(s, {64, 64, 128});
+  r.valueGrids = {"normal", "albedo", "glossy"};
+  Profiler prof(true);
+  AtlasVoxelizer v(r, prof);
+  bool first = true;
+  for (float t : {0.0f, 1.0f, 0.5f, 0.0f}) {
+    v.voxelizeFrame(t, prof);
+    AtlasVoxelizer fresh(r, prof);
+    fresh.voxelizeFrame(t, prof);
+    EXPECT_EQ(v.readFrame().words(), fresh.readFrame().words()) << "time " << t;
+    const ValueGrids a = v.readValues(), b = fresh.readValues();
+    EXPECT_EQ(a.counts, b.counts) << "time " << t;
+    ASSERT_EQ(a.means.size(), 3u);
+    for (size_t c = 0; c < a.means.size(); ++c)
+      EXPECT_TRUE(a.means[c] == b.means[c]) << a.channels[c] << " at time " << t;
+    EXPECT_EQ(fresh.stats()["restored_cells"], r.box.cellCount());
+    const uint64_t restored = v.stats()["restored_cells"];
+    if (first)
+      EXPECT_EQ(restored, r.box.cellCount());
+    else
+      EXPECT_LT(restored, r.box.cellCount() / 4) << "time " << t;
+    first = false;
+  }
+  EXPECT_EQ(f.gl->errorCount(), 0);
+}
+
 // Multi-valued grids: built only on request, one value cell per binary cell,
 // exact material values where a single surface fills a cell, unit normals on
 // flat walls, glossy parameters round-tripping, frames copying the static part.

@@ -117,6 +117,48 @@ TEST(VoxelGrid, ResolutionParsingAndMemoryLimits) {
   test::expectError([] { checkGridMemory({8192, 8192, 1024}, 4); }, {"8192x8192x1024", "MiB"});
 }
 
+// The cells a world box covers, on an axis-aligned and a rotated grid: every point of the box lies
+// in a cell of the range (the margins widen it exactly), nothing outside the grid, empty bounds
+// give an empty range.
+TEST(VoxelGrid, BoundsCellsCoverTheBoxThroughTheGridsAxes) {
+  GridBox box;
+  box.origin = glm::vec3(-1.0f, 2.0f, 0.5f);
+  box.extent = glm::vec3(2.0f, 1.0f, 4.0f);
+  box.resolution = {32, 16, 128};
+  Bounds b;
+  b.extend({-0.31f, 2.27f, 1.13f});
+  b.extend({0.42f, 2.61f, 2.9f});
+  const CellRange r = boundsCells(box, b, 0, 1);
+  // x: (-0.31 + 1) / 2 * 32 = 11.04 … (0.42 + 1) / 2 * 32 = 22.72: cells 11 … 22.
+  EXPECT_EQ(r.lo, glm::uvec3(11, 4, 20));
+  EXPECT_EQ(r.hi, glm::uvec3(23, 10, 77));
+  const CellRange wide = boundsCells(box, b, 2, 3);
+  EXPECT_EQ(wide.lo, r.lo - 2u);
+  EXPECT_EQ(wide.hi, r.hi + 2u);
+  Bounds huge;
+  huge.extend(glm::vec3(-1e20f));
+  huge.extend(glm::vec3(1e20f));
+  EXPECT_EQ(boundsCells(box, huge, 1, 2).hi, box.resolution);
+  EXPECT_EQ(boundsCells(box, huge, 1, 2).lo, glm::uvec3(0));
+  EXPECT_EQ(boundsCells(box, Bounds{}, 1, 2).count(), 0u);
+  // Rotated: sample the box; each point's cell is inside the range.
+  box.axes = glm::mat3_cast(glm::angleAxis(0.7f, glm::normalize(glm::vec3(1, 2, 3))));
+  box.origin = glm::vec3(-2.0f, 0.5f, -1.0f);
+  const CellRange rr = boundsCells(box, b, 0, 1);
+  EXPECT_GT(rr.count(), 0u);
+  const shared::GridParams g = box.params();
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 10; ++j)
+      for (int k = 0; k <= 10; ++k) {
+        const glm::vec3 p = glm::mix(b.lo, b.hi, glm::vec3(i, j, k) / 10.0f);
+        const glm::vec3 q = shared::offsetToGrid(g, p - box.origin);
+        if (!shared::insideGrid(g, q)) continue;
+        const glm::uvec3 c = shared::gridCell(g, q);
+        EXPECT_TRUE(glm::all(glm::greaterThanEqual(c, rr.lo)) && glm::all(glm::lessThan(c, rr.hi)))
+            << i << "," << j << "," << k;
+      }
+}
+
 TEST(ExactVoxelizer, TinyTriangleInsideOneCell) {
   Scene s = gridScene({{{{3.2f, 4.3f, 5.4f}, {3.3f, 4.3f, 5.4f}, {3.2f, 4.35f, 5.45f}}}});
   BinaryGrid g = voxelizeExact(s, unitBox({8, 8, 128}));
