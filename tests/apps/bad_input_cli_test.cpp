@@ -723,6 +723,8 @@ TEST(BadInputCli, MeasurementScriptsCheckTheirArgumentsAndPassOnVgisReason) {
   refused(py + "channel_energy.py --vgi " + vgiPath + " --size big " + out, {"--size", "big"});
   refused(py + "artefacts_tables.py " + empty, {empty, "results.json"});
   refused(py + "artefacts_tables.py", {"usage"});
+  refused(py + "artefacts_remedies_tables.py", {"usage"});
+  refused(py + "artefacts_remedies_tables.py " + empty, {empty, "results.json"});
   refused(py + "svo_tables.py", {"usage"});
   refused(py + "svo_tables.py /no/such/dir", {"/no/such/dir", "does not exist"});
   refused(py + "sweep_report.py " + empty, {empty, "results.json"});
@@ -730,6 +732,7 @@ TEST(BadInputCli, MeasurementScriptsCheckTheirArgumentsAndPassOnVgisReason) {
   {  // results of another experiment
     std::ofstream(empty + "/results.json") << R"({"experiment": "other", "rows": [{"role": "point"}]})";
     refused(py + "svo_tables.py " + empty, {"'other'", "svo.json"});
+    refused(py + "artefacts_remedies_tables.py " + empty, {"'other'", "artefacts-remedies.json"});
     std::filesystem::remove(empty + "/results.json");
   }
   refused("bash scripts/bench_traverse.sh a b", {"usage"});
