@@ -66,6 +66,8 @@ RENDERS = [
     ("vct", "cornell", ["--method", "vct", "--set", GRID]),
     ("vct_parity", "parity", ["--method", "vct", "--set", GRID, "--frames", "2", "--time-step", "1"]),
     ("vct_svo", "cornell", ["--method", "vct", "--set", GRID, "--set", "volume=svo"]),
+    # The injection's triangle-parallel path (the geometry shader's), for every triangle of up to 512 cells.
+    ("vct_inject_small", "parity", ["--method", "vct", "--set", GRID, "--set", "inject_small=512"]),
     ("vct_texels", "cornell", ["--method", "vct", "--set", GRID, "--set", "radiance=texels"]),
     ("vct_atlas", "cornell", ["--method", "vct", "--set", GRID, "--set", "radiance=atlas"]),
     ("vct_squared", "cornell", ["--method", "vct", "--set", GRID, "--set", "face_weights=squared"]),

@@ -85,6 +85,17 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
       fail("parameter 'directional': ", d, " needs ", why, " (radiance=", coneRadianceName(s.radiance),
            ", volume=", svo ? "svo" : "dense", ", anisotropic=", s.anisotropic ? "true" : "false", ")");
   }
+  if (withRadiance) {
+    s.injectSmall =
+        p.getInt("inject_small", 64,
+                 "radiance=inject: a triangle whose bounding box spans at most this many cells is lit "
+                 "triangle-parallel in the geometry shader (the same (triangle, cell) pairs as the "
+                 "conservative rasterization, without rasterizing it: half the injection's time where "
+                 "triangles are small); 0: every triangle through the rasterization",
+                 0, 512);
+    if (p.has("inject_small") && s.radiance != ConeRadiance::Inject)
+      fail("parameter 'inject_small': needs radiance=inject (radiance=", coneRadianceName(s.radiance), ")");
+  }
   // directional: its sums 16 and its texture 4.
   const double gib = cells *
                      (24.0 + 1.15 + 9.15 + (s.anisotropic ? 6.9 : 0.0) + (s.directional ? 20.0 : 0.0)) /
@@ -121,6 +132,7 @@ ConeVolumeNeed ConeVolumeSettings::need() const {
   if (injectsRadiance(radiance)) {
     n.bias = shadow.bias;
     n.normalOffset = shadow.normalOffset;
+    n.injectSmall = injectSmall;
   }
   return n;
 }
@@ -136,6 +148,7 @@ SparseOctreeNeed ConeVolumeSettings::octreeNeed() const {
   n.lightMaps = d.lightMaps;
   n.bias = d.bias;
   n.normalOffset = d.normalOffset;
+  n.injectSmall = d.injectSmall;
   return n;
 }
 

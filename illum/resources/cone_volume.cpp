@@ -49,7 +49,8 @@ nlohmann::json ConeVolumeNeed::key() const {
 nlohmann::json ConeVolumeNeed::settings() const {
   return {{"light_maps", lightMaps ? lightMaps->key() : nlohmann::json(nullptr)},
           {"bias", bias},
-          {"normal_offset", normalOffset}};
+          {"normal_offset", normalOffset},
+          {"inject_small", injectSmall}};
 }
 
 ValueGridNeed ConeVolumeNeed::valueGrids() const {
@@ -159,7 +160,7 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   filledAt_ = res.time();
   if (injectsRadiance(need_.radiance))
     sums_.inject(res, res.get<GridBox>(need_.grid), need_.radiance, *need_.lightMaps, need_.bias,
-                 need_.normalOffset, nullptr, prof, again ? rangeBefore : 0.0f);
+                 need_.normalOffset, need_.injectSmall, nullptr, prof, again ? rangeBefore : 0.0f);
   if (sums_.radianceMax() != rangeBefore) cells.reset();
   const unsigned words = res.get<GlPyramid>(need_.pyramid()).words();
   if (direction_) {
@@ -200,7 +201,7 @@ void InjectionSums::allocate(uint64_t slots, bool directional) {
 }
 
 float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadiance radiance,
-                            const LightMapNeed& mapsNeed, float bias, float normalOffset,
+                            const LightMapNeed& mapsNeed, float bias, float normalOffset, int smallCells,
                             const SparseVoxelOctree* octree, Profiler& prof, float reuseRange) {
   const unsigned counts = counts_.get(), sums = sums_.get(), max = max_.get(), directions = directions_.get();
   const uint32_t zero = 0;
@@ -215,7 +216,7 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
              : std::vector<std::string>{"voxelize/conservative.vert.glsl", "voxelize/conservative.geom.glsl",
                                         "illum/vct/inject.frag.glsl"};
   ShaderDefines defs;
-  if (!texels) defs["CONSERVATIVE_VALUES"] = "1";
+  if (!texels) defs["CONSERVATIVE_VALUES"] = defs["INJECT_HYBRID"] = "1";
   if (octree) defs["INJECT_SVO"] = "1";
   if (directions) {
     if (texels || octree) fail("internal: directional injection is the dense volume's, radiance=inject");
@@ -249,6 +250,7 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
       shaders.setUniform(p, "uViewport", float(side));
       shaders.setUniform(p, "uShadowBias", bias);
       shaders.setUniform(p, "uNormalOffset", normalOffset);
+      shaders.setUniform(p, "uInjectSmallCells", smallCells);
       drawWithoutAttachments(side, side, [&] {
         bindAll();
         gpu.bind(shaders, p);

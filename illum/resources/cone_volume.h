@@ -80,9 +80,12 @@ class InjectionSums {
   // reuseRange > 0 (a frame of an animation: the last fill's range): no pass for the maximum — the
   // sums' pass with that range takes it too, and only where it differs are the sums injected again
   // with it. Either way the range is this fill's own maximum: the sums a fresh fill makes, bit for bit.
+  // smallCells: inject's triangles whose bounding box spans at most this many cells are lit
+  // triangle-parallel in the geometry shader (conservative.geom.glsl, INJECT_HYBRID: the pairs the
+  // rasterization would visit), the rest through it; 0: all through it.
   float inject(SceneResources& res, const GridBox& box, ConeRadiance radiance, const LightMapNeed& maps,
-               float bias, float normalOffset, const SparseVoxelOctree* octree, Profiler& profiler,
-               float reuseRange = 0.0f);
+               float bias, float normalOffset, int smallCells, const SparseVoxelOctree* octree,
+               Profiler& profiler, float reuseRange = 0.0f);
   unsigned counts() const { return counts_.get(); }
   unsigned sums() const { return sums_.get(); }
   unsigned directions() const { return directions_.get(); }  // 0 unless directional
@@ -105,9 +108,11 @@ struct ConeVolumeNeed {
   bool directionalChain = false;  // … and the anisotropic chain's first level
   std::optional<LightMapNeed> lightMaps;   // inject, atlas: the direct light's maps
   float bias = 1.0f, normalOffset = 0.0f;  // inject: the maps' shadow test (texels, voxels)
-  nlohmann::json key() const;              // grid, radiance, anisotropic, directional: what is allocated
-                                           // and built
-  nlohmann::json settings() const;         // the light maps and their shadow test: what injection reads
+  int injectSmall =
+      64;  // inject: triangles whose box spans at most this many cells are lit triangle-parallel
+  nlohmann::json key() const;       // grid, radiance, anisotropic, directional: what is allocated
+                                    // and built
+  nlohmann::json settings() const;  // the light maps and their shadow test: what injection reads
   OrMipPyramidNeed pyramid() const { return {grid}; }
   ValueGridNeed valueGrids() const;  // radiance=atlas: the volume
 };

@@ -23,7 +23,8 @@ nlohmann::json SparseOctreeNeed::key() const {
 nlohmann::json SparseOctreeNeed::settings() const {
   return {{"light_maps", lightMaps ? lightMaps->key() : nlohmann::json(nullptr)},
           {"bias", bias},
-          {"normal_offset", normalOffset}};
+          {"normal_offset", normalOffset},
+          {"inject_small", injectSmall}};
 }
 
 bool SparseOctree::update(SceneResources& res, const ResourceNeed& need, Profiler& prof) {
@@ -66,7 +67,7 @@ void SparseOctree::fill(SceneResources& res, Profiler& prof) {
     return;
   }
   sums_.inject(res, octree_->box(), need_.radiance, *need_.lightMaps, need_.bias, need_.normalOffset,
-               octree_.get(), prof);
+               need_.injectSmall, octree_.get(), prof);
   octree_->resolve(sums_.counts(), sums_.sums(), sums_.radianceMax(), res.shaders(), prof);
 }
 

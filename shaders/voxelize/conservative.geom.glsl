@@ -31,28 +31,51 @@ flat out vec2 gUv1;
 flat out vec2 gUv2;
 #endif
 
-#ifdef HYBRID
+// (Included for both small-triangle paths below, outside their #ifdefs: an include is expanded once.)
 #include "shared/voxel_grid.glsl"
 #include "shared/triangle_box.glsl"
 #include "shared/bindings.glsl"
+#ifdef HYBRID
 layout(std430, binding = BINDING_GRID_WORDS) buffer Columns { uint words[]; };
 layout(std430, binding = BINDING_VOXEL_COUNTER) buffer HybridCounts { uint hybridCounts[2]; };  // small, large
 uniform float uCutoff;
 const int kHybridMaxCells = 512;
+// A cell the small triangle overlaps: its bit set.
+void smallTriangleCell(ivec3 c, vec3 a, vec3 b, vec3 cc) {
+  atomicOr(words[columnWordIndex(uint(c.x), uint(c.y), depthWord(uint(c.z)), uResolution)], depthBit(uint(c.z)));
+}
+#endif
 
-// Sets the cells the triangle overlaps in its bounding box (grid coordinates);
-// false (nothing set) when the box spans more than kHybridMaxCells cells.
-bool voxelizeSmall(vec3 a, vec3 b, vec3 c) {
+#ifdef INJECT_HYBRID
+// vct's injection, triangle-parallel for small triangles (as HYBRID does for the
+// binary grid): a triangle whose bounding box spans at most uInjectSmallCells
+// cells lights every cell of it the triangle–box test confirms (the pairs the
+// fragment path would visit) here and emits nothing; larger ones go on
+// (uInjectSmallCells: `inject_small`; 0: none is small).
+#include "illum/vct/inject_pair.glsl"
+uniform int uInjectSmallCells;
+vec3 smallNormal;  // the triangle's unit world normal (0: degenerate), set before its cells
+// A cell the small triangle overlaps: the pair lit.
+void smallTriangleCell(ivec3 c, vec3 a, vec3 b, vec3 cc) {
+  injectPair(uvec3(c), a, b, cc, vWorld[0], vWorld[1], vWorld[2], vUv[0], vUv[1], vUv[2], smallNormal,
+             gl_PrimitiveIDIn);
+}
+#endif
+
+#if defined(HYBRID) || defined(INJECT_HYBRID)
+// The triangle-parallel path of both: calls smallTriangleCell for every cell of the triangle's
+// bounding box (grid coordinates) that the triangle–box test confirms; false (nothing visited) when
+// the box spans more than maxCells cells.
+bool visitSmallTriangle(vec3 a, vec3 b, vec3 c, int maxCells) {
   ivec3 res = ivec3(uResolution.xyz);
   ivec3 lo = clamp(ivec3(floor(min(a, min(b, c)))), ivec3(0), res - 1);
   ivec3 hi = clamp(ivec3(floor(max(a, max(b, c)))), ivec3(0), res - 1);
   ivec3 span = hi - lo + 1;
-  if (span.x * span.y * span.z > kHybridMaxCells) return false;
+  if (span.x * span.y * span.z > maxCells) return false;
   for (int z = lo.z; z <= hi.z; ++z)
     for (int y = lo.y; y <= hi.y; ++y)
       for (int x = lo.x; x <= hi.x; ++x)
-        if (triangleOverlapsBox(vec3(x, y, z) + 0.5f, vec3(0.5f), a, b, c))
-          atomicOr(words[columnWordIndex(uint(x), uint(y), depthWord(uint(z)), uResolution)], depthBit(uint(z)));
+        if (triangleOverlapsBox(vec3(x, y, z) + 0.5f, vec3(0.5f), a, b, c)) smallTriangleCell(ivec3(x, y, z), a, b, c);
   return true;
 }
 #endif
@@ -70,11 +93,16 @@ void main() {
   int axis = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
 #ifdef HYBRID
   // The area projected on the dominant plane: half the normal's dominant component.
-  if (0.5f * max(an.x, max(an.y, an.z)) < uCutoff && voxelizeSmall(vGrid[0], vGrid[1], vGrid[2])) {
+  if (0.5f * max(an.x, max(an.y, an.z)) < uCutoff && visitSmallTriangle(vGrid[0], vGrid[1], vGrid[2], kHybridMaxCells)) {
     atomicAdd(hybridCounts[0], 1u);
     return;
   }
   atomicAdd(hybridCounts[1], 1u);
+#endif
+#ifdef INJECT_HYBRID
+  vec3 wn = cross(vWorld[1] - vWorld[0], vWorld[2] - vWorld[0]);
+  smallNormal = dot(wn, wn) > 0.0f ? normalize(wn) : vec3(0.0f);
+  if (visitSmallTriangle(vGrid[0], vGrid[1], vGrid[2], uInjectSmallCells)) return;
 #endif
   vec2 p0 = swizzle(vGrid[0], axis).xy, p1 = swizzle(vGrid[1], axis).xy, p2 = swizzle(vGrid[2], axis).xy;
   if ((p1.x - p0.x) * (p2.y - p0.y) - (p1.y - p0.y) * (p2.x - p0.x) < 0.0f) {  // make it counter-clockwise

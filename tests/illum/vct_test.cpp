@@ -284,6 +284,10 @@ TEST(Vct, BadParametersAreRefused) {
   refused("vct", {"directional=level1", "radiance=texels"}, {"directional", "radiance=inject", "texels"});
   refused("vct", {"directional=level0", "anisotropic=false"}, {"directional", "anisotropic=true"});
   refused("vct", {"directional=true"}, {"directional", "true"});
+  refused("vct", {"inject_small=-1"}, {"inject_small", "-1"});
+  refused("vct", {"inject_small=100000"}, {"inject_small", "100000"});
+  refused("vct", {"inject_small=8", "radiance=texels"}, {"inject_small", "radiance=inject", "texels"});
+  refused("vct_ao", {"inject_small=8"}, {"inject_small"});
 }
 
 // A sealed hollow box whose walls are half a voxel thick, lit from outside
@@ -373,6 +377,49 @@ TEST(Vct, AnimationFramesEqualStillsWithoutTheRangePass) {
     }
     EXPECT_GT(compareImages(frames[0], frames[2]).relMae, 0.001) << scene << ": it moved";
   }
+}
+
+// inject_small: triangles whose bounding box spans at most that many cells are lit in the geometry
+// shader (triangle-parallel: every cell of the box the triangle–box test confirms) instead of through
+// the conservative rasterization (the same pairs, one per fragment column). A finely tessellated
+// sphere in the Cornell box (12 k triangles, a fraction of a cell each at 128³): its light is the
+// same either way — to the float rounding of a few contact pairs — in the volume and in the
+// image; the big walls take the rasterization in both.
+TEST(Vct, TriangleParallelInjectionLightsTheRasterizationsPairs) {
+  const std::string obj = testing::TempDir() + "/vct_fine_sphere.obj";
+  {
+    std::ofstream f(obj);
+    const int rings = 64, segments = 96;
+    for (int i = 0; i <= rings; ++i)
+      for (int j = 0; j < segments; ++j) {
+        const float th = float(M_PI) * float(i) / float(rings),
+                    ph = 2.0f * float(M_PI) * float(j) / float(segments);
+        f << "v " << 0.28f + 0.1f * std::sin(th) * std::cos(ph) << " " << 0.1f + 0.1f * std::cos(th) << " "
+          << -0.25f + 0.1f * std::sin(th) * std::sin(ph) << "\n";
+      }
+    for (int i = 0; i < rings; ++i)
+      for (int j = 0; j < segments; ++j) {
+        const int a = i * segments + j + 1, b = i * segments + (j + 1) % segments + 1;
+        f << "f " << a << " " << b << " " << b + segments << "\nf " << a << " " << b + segments << " "
+          << a + segments << "\n";
+      }
+  }
+  const std::string scene = testing::TempDir() + "/vct_fine_sphere.json";
+  std::ofstream(scene) << R"({"meshes": [{"path": "builtin:cornell"}, {"path": ")" << obj << R"("}]})";
+  const RenderOutput raster = test::render(scene, "vct", {"inject_small=0"}, 64, 2, {"indirect"});
+  const RenderOutput parallel = test::render(scene, "vct", {"inject_small=512"}, 64, 2, {"indirect"});
+  const RenderOutput exact =
+      test::render(scene, "reference", {"integrator=path", "maxdepth=2"}, 64, 64, {"indirect"});
+  const Image& a = parallel.result.aovs.at("indirect");
+  const Image& b = raster.result.aovs.at("indirect");
+  const ImageDiff d = compareImages(a, b);
+  EXPECT_LT(d.relMae, 1e-4) << "the same pairs, the same light";
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(d.energyRgb[c], 1.0f, 1e-4f) << c;
+  // Not trivially so: the sphere's own light is a visible part of the image (a vct without its
+  // small triangles' light would differ by far more than the paths do).
+  const ImageDiff toExact = compareImages(b, exact.result.aovs.at("indirect"));
+  EXPECT_LT(toExact.relMae, 0.5);
+  EXPECT_EQ(parallel.stats["params"]["inject_small"], 512);
 }
 
 // The constellations' weights are the cosine-weighted hemisphere's shares:

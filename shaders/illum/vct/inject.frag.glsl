@@ -16,15 +16,8 @@
 // octree's leaves' (voxelize/sparse_octree.h; a cell's slot found by
 // descending the tree; a cell not in the tree is left out, as the dense
 // resolve leaves out a cell the binary grid does not hold).
-#include "shared/constants.glsl"
-#include "shared/sampling.glsl"
-#include "shared/brdf.glsl"
-#include "shared/environment.glsl"
-#include "shared/gpu_scene.glsl"
-#include "shared/light_maps.glsl"
-#include "shared/closest_point.glsl"
 #include "voxelize/conservative_cells.glsl"
-#include "inject_sums.glsl"
+#include "inject_pair.glsl"
 flat in vec3 gWorldNormal;
 flat in vec3 gWorld0;
 flat in vec3 gWorld1;
@@ -32,43 +25,9 @@ flat in vec3 gWorld2;
 flat in vec2 gUv0;
 flat in vec2 gUv1;
 flat in vec2 gUv2;
-uniform float uShadowBias;    // in shadow-map texels
-uniform float uNormalOffset;  // in shadow-map texels
-
-// Barycentric weights (of b, c) of q on triangle (a, b, c).
-vec2 barycentric(vec3 q, vec3 a, vec3 b, vec3 c) {
-  vec3 v0 = b - a, v1 = c - a, v2 = q - a;
-  float d00 = dot(v0, v0), d01 = dot(v0, v1), d11 = dot(v1, v1), d20 = dot(v2, v0), d21 = dot(v2, v1);
-  float den = d00 * d11 - d01 * d01;
-  if (den <= 0.0f) return vec2(0.0f);
-  return vec2(d11 * d20 - d01 * d21, d00 * d21 - d01 * d20) / den;
-}
 
 void visitCell(uvec3 c) {
-  uint slot = injectSlot(c);
-  if (slot == INJECT_NO_SLOT) return;  // a cell outside the octree: not lit at all
-  vec3 q = closestPointOnTriangle(vec3(c) + 0.5f, gA, gB, gC);
-  vec2 w = barycentric(q, gA, gB, gC);
-  vec3 p = gWorld0 + w.x * (gWorld1 - gWorld0) + w.y * (gWorld2 - gWorld0);
-  vec2 uv = gUv0 + w.x * (gUv1 - gUv0) + w.y * (gUv2 - gUv0);
-  int m = triMaterial[gl_PrimitiveID];
-  vec3 albedo = materials[m].albedoLayer.xyz;
-  float layer = materials[m].albedoLayer.w;
-  if (layer >= 0.0f) albedo *= texture(albedoTextures, vec3(uv.x, 1.0f - uv.y, layer)).xyz;
-  BrdfParams diffuse;
-  diffuse.albedo = albedo;
-  diffuse.ks = vec3(0.0f);
-  diffuse.exponent = 1.0f;
-  vec3 n = gWorldNormal;
-  vec3 Lfront = vec3(0.0f), Lback = vec3(0.0f);
-  if (dot(n, n) > 0.0f) {
-    Lfront = lightMapsDirect(diffuse, p, n, n, n, uShadowBias, uNormalOffset);
-    Lback = lightMapsDirect(diffuse, p, -n, -n, -n, uShadowBias, uNormalOffset);
-  }
-  injectAdd(slot, Lfront + Lback);
-#if defined(INJECT_DIRECTIONAL) && !defined(INJECT_MAX)
-  injectDirection(slot, n, Lfront, Lback);
-#endif
+  injectPair(c, gA, gB, gC, gWorld0, gWorld1, gWorld2, gUv0, gUv1, gUv2, gWorldNormal, gl_PrimitiveID);
 }
 
 void main() { visitTriangleCells(); }
