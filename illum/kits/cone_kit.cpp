@@ -30,7 +30,9 @@ ConeVolumeSettings readConeVolumeParams(ParamSet& p, bool withRadiance, bool ani
   else
     s.radiance = ConeRadiance::None;
   const bool atlas = s.radiance == ConeRadiance::Atlas;
-  s.grid = readBinaryGridParams(p, 4, false, atlas ? "atlas" : "conservative");
+  // hybrid: the conservative rasterization's cells (to float rounding at contacts), the small triangles
+  // set in the geometry shader — a tenth of its time on the bunny and Sibenik (docs/BENCHMARKS.md).
+  s.grid = readBinaryGridParams(p, 4, false, atlas ? "atlas" : "hybrid");
   s.grid.cubicCells = true;
   if (atlas && s.grid.voxelizer != "atlas")
     fail("parameter 'voxelizer': '", s.grid.voxelizer,

@@ -5,8 +5,11 @@
 //      conservative rasterization is lit with the shadow-mapped diffuse direct
 //      light and averaged into the cell (illum/cone_kit: radiance=inject), or
 //      the atlas voxelizer's radiance channel is used (radiance=atlas); the
-//      opacity is the binary grid of `voxelizer` (default conservative: the
-//      thesis' voxelization, and the triangle–box cells close thin walls).
+//      opacity is the binary grid of `voxelizer` (default hybrid: the
+//      thesis' conservative voxelization — the triangle–box cells close thin
+//      walls — with the small triangles set triangle-parallel in the geometry
+//      shader, as Basgier 2015 §3.4–3.5 builds it: the same cells to float
+//      rounding, a tenth of the time).
 //      Stored dense (3D textures) or, volume=svo, as the papers' sparse voxel
 //      octree (illum/resources/sparse_octree.h: the same values at the same
 //      resolution, read through the same coneSample).

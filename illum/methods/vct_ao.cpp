@@ -2,7 +2,8 @@
 // thesis evaluates it (Basgier 2015, ../shared/papers/003_…, §5.2 and
 // §6.3.1, after Crassin et al. 2011): a few wide cones per pixel through the
 // opacity volume (illum/cone_kit: radiance=none; the opacity of any binary
-// voxelizer, default conservative), front-to-back accumulation of opacity
+// voxelizer, default hybrid: the conservative cells, small triangles set
+// triangle-parallel, §3.4–3.5), front-to-back accumulation of opacity
 // with the distance falloff f(t) = 1/(1 + λ t / r), AO the cosine-weighted
 // mean of the cones' transparency.
 //   Constellations (`cones`): 3 (a ring of three at 45°), 5 (the normal +
