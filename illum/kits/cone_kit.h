@@ -32,7 +32,7 @@ struct ConeVolumeSettings {
   bool absWeights = true;         // the faces mixed by |d| (the thesis) or d²
   float step = 1.0f;              // the march's step, in cone diameters
   int maxLevel = -1;              // the highest mip level a cone samples (-1: the chain's last)
-  int injectSmall = 64;           // inject: triangles of at most this many cells lit triangle-parallel
+  int injectSmall = 27;           // inject: triangles of at most this many cells lit triangle-parallel
   ShadowParams shadow;            // the light maps' (injection and direct light)
   // The dense volume these settings build (radiance none: no light maps).
   ConeVolumeNeed need() const;

@@ -109,7 +109,7 @@ struct ConeVolumeNeed {
   std::optional<LightMapNeed> lightMaps;   // inject, atlas: the direct light's maps
   float bias = 1.0f, normalOffset = 0.0f;  // inject: the maps' shadow test (texels, voxels)
   int injectSmall =
-      64;  // inject: triangles whose box spans at most this many cells are lit triangle-parallel
+      27;  // inject: triangles whose box spans at most this many cells are lit triangle-parallel
   nlohmann::json key() const;       // grid, radiance, anisotropic, directional: what is allocated
                                     // and built
   nlohmann::json settings() const;  // the light maps and their shadow test: what injection reads

@@ -30,7 +30,7 @@ struct SparseOctreeNeed {
   int updateEvery = 1;  // dynamic scenes: rebuild the tree at every k-th changed grid
   std::optional<LightMapNeed> lightMaps;   // inject: the direct light's maps
   float bias = 1.0f, normalOffset = 0.0f;  // inject: the maps' shadow test
-  int injectSmall = 64;                    // inject: the triangle-parallel path's largest box, in cells
+  int injectSmall = 27;                    // inject: the triangle-parallel path's largest box, in cells
   nlohmann::json key() const;              // what is allocated and how it is rebuilt
   nlohmann::json settings() const;         // what injection reads
   OrMipPyramidNeed pyramid() const { return {grid}; }
