@@ -183,6 +183,33 @@ vec3 lightMapsDirect(BrdfParams brdf, vec3 p, vec3 n, vec3 ng, vec3 wo, float bi
   return sum;
 }
 
+// lightMapsDirect on both sides of a surface at once — front along n, back along −n (the same
+// values as the two calls: a light reaches at most one side, so each light takes one sample and
+// one shadow test, on the side it lights; wo is each side's own normal).
+struct TwoSided {
+  vec3 front, back;
+};
+TwoSided lightMapsDirectTwoSided(BrdfParams brdf, vec3 p, vec3 n, float bias, float normalOffset) {
+  TwoSided r;
+  r.front = vec3(0.0f);
+  r.back = vec3(0.0f);
+  for (int i = 0; i < uLightCount; ++i) {
+    LightSample ls = sampleDeltaLight(lights[i], p);
+    float c = dot(ls.wi, n);
+    vec3 side = c > 0.0f ? n : -n;
+    float cosI = dot(ls.wi, side);
+    bool lit = cosI > 0.0f && (ls.radiance.x + ls.radiance.y + ls.radiance.z) > 0.0f;
+    if (lit) lit = lightMapLit(i, p, side, side, cosI, bias, normalOffset);
+    if (!lit) continue;
+    vec3 L = evalBrdf(brdf, side, side, ls.wi) * ls.radiance * cosI;
+    if (c > 0.0f)
+      r.front += L;
+    else
+      r.back += L;
+  }
+  return r;
+}
+
 // --- Reading reflective shadow maps (VGI §5.1): back-projection of a point
 // into every light's RSM, and RSM texels as virtual point lights.
 

@@ -46,8 +46,9 @@ void injectPair(uvec3 c, vec3 a, vec3 b, vec3 cc, vec3 w0, vec3 w1, vec3 w2, vec
   vec3 n = worldNormal;
   vec3 Lfront = vec3(0.0f), Lback = vec3(0.0f);
   if (dot(n, n) > 0.0f) {
-    Lfront = lightMapsDirect(diffuse, p, n, n, n, uShadowBias, uNormalOffset);
-    Lback = lightMapsDirect(diffuse, p, -n, -n, -n, uShadowBias, uNormalOffset);
+    TwoSided L = lightMapsDirectTwoSided(diffuse, p, n, uShadowBias, uNormalOffset);
+    Lfront = L.front;
+    Lback = L.back;
   }
   injectAdd(slot, Lfront + Lback);
 #if defined(INJECT_DIRECTIONAL) && !defined(INJECT_MAX)
