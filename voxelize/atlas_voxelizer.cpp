@@ -132,6 +132,9 @@ struct AtlasVoxelizer::MeshGpu {
   // A dynamic mesh's atlas, drawn once in object space (position, triangle; with values normal,
   // albedo, glossy): each frame moves its points by the mesh's transform instead of drawing it again.
   unsigned kept[5] = {0, 0, 0, 0, 0};
+  // The kept atlas's texels that hold a point (x | y << 16): its insertions run one invocation per point.
+  unsigned keptPoints = 0;
+  GLsizei keptCount = 0;
 };
 
 AtlasVoxelizer::AtlasVoxelizer(const VoxelizeRequest& req, Profiler& prof,
@@ -426,6 +429,7 @@ AtlasVoxelizer::~AtlasVoxelizer() {
     glDeleteBuffers(2, b);
     glDeleteVertexArrays(1, &m->vao);
     glDeleteTextures(5, m->kept);  // (0 names are ignored)
+    glDeleteBuffers(1, &m->keptPoints);
   }
   glDeleteFramebuffers(1, &fbo_);
   glDeleteTextures(2, targets_);
@@ -451,7 +455,22 @@ void AtlasVoxelizer::setPointCellInputs(unsigned program, const MeshGpu& m, floa
   glBindTextureUnit(TEXUNIT_ATLAS_POSITION, kept ? m.kept[0] : targets_[0]);
   glBindTextureUnit(TEXUNIT_ATLAS_TRIANGLE, kept ? m.kept[1] : targets_[1]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_CORNERS, m.vbo);
+  // A kept atlas's points are listed (the buffer bound either way: never read unlisted).
+  sh.setUniform(program, "uListed", kept ? int(m.keptCount) : 0);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_ATLAS_POINTS, kept ? m.keptPoints : m.vbo);
 }
+
+namespace {
+// The insertion's workgroups: 8 × 8 texels over the atlas, or 64 listed points each (uListed).
+void dispatchPoints(int resolution, GLsizei listed) {
+  if (listed <= 0) {
+    glDispatchCompute(unsigned(resolution + 7) / 8, unsigned(resolution + 7) / 8, 1);
+    return;
+  }
+  const unsigned groups = (unsigned(listed) + 63u) / 64u, x = std::min(groups, 65535u);
+  glDispatchCompute(x, (groups + x - 1) / x, 1);
+}
+}  // namespace
 
 void AtlasVoxelizer::keepAtlas(MeshGpu& m, Profiler& prof) {
   auto s = prof.scope("atlas_render");
@@ -472,6 +491,25 @@ void AtlasVoxelizer::keepAtlas(MeshGpu& m, Profiler& prof) {
     glTextureParameteri(m.kept[k], GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glCopyImageSubData(from[k], GL_TEXTURE_2D, 0, 0, 0, 0, m.kept[k], GL_TEXTURE_2D, 0, 0, 0, 0, R, R, 1);
   }
+  // The texels holding a point, once (the kept atlas does not change): read back a band of rows at a
+  // time, listed in texel order, uploaded.
+  std::vector<uint32_t> points;
+  const int band = std::max(1, std::min(R, (1 << 22) / std::max(R, 1)));  // ≤ 64 MiB of texels a read
+  std::vector<glm::vec4> pos;
+  for (int y0 = 0; y0 < R; y0 += band) {
+    const int rows = std::min(band, R - y0);
+    pos.resize(size_t(rows) * size_t(R));
+    glGetTextureSubImage(m.kept[0], 0, 0, y0, 0, R, rows, 1, GL_RGBA, GL_FLOAT,
+                         GLsizei(pos.size() * sizeof(glm::vec4)), pos.data());
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < R; ++x)
+        if (pos[size_t(y) * size_t(R) + size_t(x)].w != 0.0f)
+          points.push_back(uint32_t(x) | (uint32_t(y0 + y) << 16));
+  }
+  m.keptCount = GLsizei(points.size());
+  glCreateBuffers(1, &m.keptPoints);
+  glNamedBufferStorage(m.keptPoints, GLsizeiptr(std::max<size_t>(points.size(), 1) * 4),
+                       points.empty() ? nullptr : points.data(), 0);
 }
 
 void AtlasVoxelizer::renderAtlas(const MeshGpu& m, const glm::mat4& model, unsigned prog, int targets) const {
@@ -541,7 +579,7 @@ void AtlasVoxelizer::insertRadiance(float time, const std::function<void(unsigne
     setPointCellInputs(radianceInsertProg_, *m, time);
     glBindTextureUnit(TEXUNIT_ATLAS_RADIANCE, radianceTarget_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, radianceSums_);
-    glDispatchCompute(unsigned(m->resolution + 7) / 8, unsigned(m->resolution + 7) / 8, 1);
+    dispatchPoints(m->resolution, m->kept[0] ? m->keptCount : 0);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   }
   stats_["radiance_max"] = radianceMax_;
@@ -568,7 +606,7 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
     setPointCellInputs(insertProg_, m, time);
     target.bind(BINDING_GRID_WORDS);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VOXEL_COUNTER, counter);
-    glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
+    dispatchPoints(R, kept ? m.keptCount : 0);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   } else {
     // The bits and the values in one pass (INSERT_BITS).
@@ -587,7 +625,7 @@ void AtlasVoxelizer::renderAndInsert(const MeshGpu& m, float time, const GpuGrid
         kept ? glm::mat4(glm::transpose(glm::inverse(glm::mat3(model)))) : glm::mat4(1.0f));
     request_.shaders->setUniform(valueProg_, "uTurnNormals", kept ? 1 : 0);
     values->bind();
-    glDispatchCompute(unsigned(R + 7) / 8, unsigned(R + 7) / 8, 1);
+    dispatchPoints(R, kept ? m.keptCount : 0);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   }
   const unsigned positions = kept ? m.kept[0] : targets_[0], triangles = kept ? m.kept[1] : targets_[1];

@@ -39,6 +39,7 @@
 #define BINDING_SVO_FRAGMENTS 28   // SSBO uint[]: the octree's fragments (packed cells)
 #define BINDING_GATHER_FIXUP 29    // SSBO the gather kit's fix-up list (illum/gather/gather.glsl: GatherFixup)
 #define BINDING_VALUE_DIRECTION 30  // SSBO vct's directional injection: per cell the leaving direction's sums (illum/vct/inject_sums.glsl)
+#define BINDING_ATLAS_POINTS 31     // SSBO a kept atlas's valid texels (x | y << 16), its insertions' invocations
 
 // ---- uniform buffers (std140 blocks of params structs: illum/framework/compute_pass.h)
 #define UBO_PASS 0         // a compute pass's own parameters: `uniform Pass { T p; }`

@@ -8,7 +8,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 void visitCell(ivec2 texel, uvec3 c) { setCellBit(c); }
 #include "atlas_point_cells.glsl"
 void main() {
-  ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-  if (t.x >= uAtlasSize.x || t.y >= uAtlasSize.y) return;
+  ivec2 t;
+  if (!insertionTexel(t)) return;
   if (visitPointCells(t)) atomicAdd(points, 1u);
 }

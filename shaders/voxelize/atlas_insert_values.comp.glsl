@@ -55,8 +55,8 @@ void visitCell(ivec2 t, uvec3 cell) {
 }
 #include "atlas_point_cells.glsl"
 void main() {
-  ivec2 t = ivec2(gl_GlobalInvocationID.xy);
-  if (t.x >= uAtlasSize.x || t.y >= uAtlasSize.y) return;
+  ivec2 t;
+  if (!insertionTexel(t)) return;
 #ifdef INSERT_BITS
   if (visitPointCells(t)) atomicAdd(points, 1u);
 #else

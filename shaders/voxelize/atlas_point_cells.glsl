@@ -16,6 +16,24 @@ uniform mat4 uModel;  // object → offset from the grid's origin (AtlasVoxelize
 // (uPointModel = uModel: the points move with the mesh, no atlas is drawn per frame); a static mesh's
 // atlas holds the offsets (identity, which changes no bit).
 uniform mat4 uPointModel;
+// A kept atlas's texels that hold a point (x | y << 16), listed once (AtlasVoxelizer::keepAtlas): with
+// uListed > 0 the dispatch is one invocation per listed texel, 64 a workgroup, instead of one per texel
+// of the atlas — the same points, without the invocations of the empty texels.
+layout(std430, binding = BINDING_ATLAS_POINTS) readonly buffer AtlasPoints { uint atlasPoints[]; };
+uniform int uListed;  // 0: the dispatch covers the atlas (8 × 8 texels a workgroup); > 0: that many listed
+
+// The texel this invocation inserts; false past the atlas or the list.
+bool insertionTexel(out ivec2 t) {
+  if (uListed > 0) {
+    uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u + gl_LocalInvocationIndex;
+    if (i >= uint(uListed)) return false;
+    uint v = atlasPoints[i];
+    t = ivec2(int(v & 0xffffu), int(v >> 16));
+    return true;
+  }
+  t = ivec2(gl_GlobalInvocationID.xy);
+  return t.x < uAtlasSize.x && t.y < uAtlasSize.y;
+}
 
 vec3 gridCorner(GridParams g, int i) {
   int o = ATLAS_VERTEX_FLOATS * i;

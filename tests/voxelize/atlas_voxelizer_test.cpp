@@ -324,8 +324,13 @@ TEST(AtlasVoxelizer, AMovedMeshsKeptAtlasInsertsLikeTheCpu) {
   std::vector<AtlasSamples> points;
   BinaryGrid gpu = voxelizeAtlasGl(r, prof, stats, &points);
   BinaryGrid cpu(r.box);
-  for (auto& atlas : points) insertAtlasPoints(atlas, cpu);
+  uint64_t valid = 0;  // every atlas texel holding a point (the dynamic mesh's listed ones among them)
+  for (auto& atlas : points) {
+    insertAtlasPoints(atlas, cpu);
+    for (const glm::vec4& p : atlas.positions) valid += p.w != 0.0f ? 1 : 0;
+  }
   EXPECT_EQ(gpu.words(), cpu.words());
+  EXPECT_EQ(stats["points"].get<uint64_t>(), valid) << "each point inserted once";
   EXPECT_EQ(stats["dynamic_meshes"], 1);
   // The same time from frames: the kept atlas is moved again, not drawn.
   AtlasVoxelizer v(r, prof);
