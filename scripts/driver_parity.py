@@ -65,6 +65,10 @@ RENDERS = [
     ("avg_none", "cornell", ["--method", "avg", "--set", "visibility=none"]),
     ("vct", "cornell", ["--method", "vct", "--set", GRID]),
     ("vct_parity", "parity", ["--method", "vct", "--set", GRID, "--frames", "2", "--time-step", "1"]),
+    # Past its last keyframe the triangle stands; its second frame injects only its cells and its
+    # shadow's (the range the same: the region pass, the cleared region, the per-cell maxima's reduction).
+    ("vct_parity_region", "parity",
+     ["--method", "vct", "--set", GRID, "--time", "1", "--frames", "2", "--time-step", "0.5"]),
     ("vct_svo", "cornell", ["--method", "vct", "--set", GRID, "--set", "volume=svo"]),
     # The injection's triangle-parallel path (the geometry shader's), for every triangle of up to 512 cells.
     ("vct_inject_small", "parity", ["--method", "vct", "--set", GRID, "--set", "inject_small=512"]),

@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -138,7 +139,9 @@ void ConeVolume::allocate(SceneResources& res) {
   own_ = std::make_unique<ValueTextures>(box, std::vector<std::string>{"radiance"},
                                          need_.anisotropic ? ValueMips::Anisotropic : ValueMips::Isotropic);
   volume_ = own_.get();
-  sums_.allocate(box.cellCount(), need_.directional);
+  // A scene with dynamic meshes keeps each cell's largest pair: its frames inject only what moved.
+  sums_.allocate(box.cellCount(), need_.directional,
+                 need_.radiance == ConeRadiance::Inject && !res.scene().dynamicBounds(res.time()).empty());
   if (need_.directional) direction_ = makeGridTexture3D(box.resolution, 1, GL_RGBA8_SNORM, true);
 }
 
@@ -160,7 +163,8 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   filledAt_ = res.time();
   if (injectsRadiance(need_.radiance))
     sums_.inject(res, res.get<GridBox>(need_.grid), need_.radiance, *need_.lightMaps, need_.bias,
-                 need_.normalOffset, need_.injectSmall, nullptr, prof, again ? rangeBefore : 0.0f);
+                 need_.normalOffset, need_.injectSmall, nullptr, prof, again ? rangeBefore : 0.0f,
+                 cells ? &*cells : nullptr);
   if (sums_.radianceMax() != rangeBefore) cells.reset();
   const unsigned words = res.get<GlPyramid>(need_.pyramid()).words();
   if (direction_) {
@@ -187,27 +191,50 @@ void ConeVolume::fill(SceneResources& res, Profiler& prof) {
   own_->resolve(b, shaders, prof, words, need_.directionalChain ? direction_.get() : 0u, cells);
 }
 
-void InjectionSums::allocate(uint64_t slots, bool directional) {
+void reduceCellMax(ShaderLibrary& shaders, unsigned cellMax, uint64_t cells, unsigned result) {
+  if (cells > 0xffffffffull) fail("internal: reduceCellMax takes at most 2^32 - 1 cells");
+  const unsigned reduce = shaders.program({"illum/vct/cell_max_reduce.comp.glsl"});
+  glUseProgram(reduce);
+  shaders.setUniform(reduce, "uCells", unsigned(cells));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_INJECT_CELL_MAX, cellMax);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE_MAX, result);
+  // About 16 cells an invocation, in at most 65535 groups (GL's least limit) of 64.
+  glDispatchCompute(unsigned(std::clamp<uint64_t>((cells + 64 * 16 - 1) / (64 * 16), 1, 65535)), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void InjectionSums::allocate(uint64_t slots, bool directional, bool cellMax) {
   slots_ = std::max<uint64_t>(slots, 1);
-  checkGpuAllocation(double(slots_) * (directional ? 36.0 : 20.0),
+  checkGpuAllocation(double(slots_) * ((directional ? 36.0 : 20.0) + (cellMax ? 4.0 : 0.0)),
                      "the radiance injection's sums (" + std::to_string(slots_) + " slots)");
   counts_ = makeBuffer(slots_ * 4);
   sums_ = makeBuffer(slots_ * 16);
   max_ = makeBuffer(4);
   directions_ = directional ? makeBuffer(slots_ * 16) : GlBuffer();
+  cellMax_ = cellMax ? makeBuffer(slots_ * 4) : GlBuffer();
   const uint32_t zero = 0;
-  for (unsigned b : {counts_.get(), sums_.get(), directions_.get()})
+  for (unsigned b : {counts_.get(), sums_.get(), directions_.get(), cellMax_.get()})
     if (b) glClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
 }
 
 float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadiance radiance,
                             const LightMapNeed& mapsNeed, float bias, float normalOffset, int smallCells,
-                            const SparseVoxelOctree* octree, Profiler& prof, float reuseRange) {
-  const unsigned counts = counts_.get(), sums = sums_.get(), max = max_.get(), directions = directions_.get();
+                            const SparseVoxelOctree* octree, Profiler& prof, float reuseRange,
+                            const CellRange* region) {
+  const unsigned counts = counts_.get(), sums = sums_.get(), max = max_.get(), directions = directions_.get(),
+                 cellMax = cellMax_.get();
   const uint32_t zero = 0;
-  for (unsigned b : {counts, sums, directions})
-    if (b) glClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   const bool texels = radiance == ConeRadiance::Texels;
+  if (cellMax && (texels || octree))
+    fail("internal: the per-cell maxima are the dense volume's, radiance=inject");
+  if (!(reuseRange > 0.0f && cellMax)) region = nullptr;
+  auto clearAll = [&] {
+    for (unsigned b : {counts, sums, directions, cellMax})
+      if (b) glClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  };
+  if (!region) clearAll();
+  injected_ = region ? region->count() : slots_;
   ShaderLibrary& shaders = res.shaders();
   const GpuScene& gpu = res.get<GpuScene>();
   const LightMaps& maps = res.get<LightMaps>(mapsNeed);
@@ -222,10 +249,15 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
     if (texels || octree) fail("internal: directional injection is the dense volume's, radiance=inject");
     defs["INJECT_DIRECTIONAL"] = "1";
   }
+  if (cellMax) defs["INJECT_CELL_MAX"] = "1";
   const unsigned prog = shaders.program(files, defs);
   ShaderDefines checkDefs = defs;
   checkDefs["INJECT_CHECK_RANGE"] = "1";
   const unsigned checkProg = shaders.program(files, checkDefs);
+  ShaderDefines regionDefs = checkDefs;
+  regionDefs["INJECT_REGION"] = "1";
+  const unsigned regionProg = region ? shaders.program(files, regionDefs) : 0u;
+  defs.erase("INJECT_CELL_MAX");
   defs["INJECT_MAX"] = "1";
   const unsigned maxProg = shaders.program(files, defs);
   auto run = [&](unsigned p) {
@@ -239,6 +271,8 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, sums);
       if (directions && p != maxProg)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_DIRECTION, directions);
+      if (cellMax && p != maxProg)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_INJECT_CELL_MAX, cellMax);
     };
     if (texels) {
       const int r = maps.resolution();
@@ -269,6 +303,48 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
     return m > 0.0f && std::isfinite(m) ? m : 1.0f;
   };
   glClearNamedBufferData(max, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  if (region) {
+    const glm::uvec3 n = box.resolution;
+    {
+      auto s = prof.scope("vct_inject");
+      // The region's sums from 0, then its pairs with the last fill's range.
+      ShaderDefines clearDefs;
+      if (directions) clearDefs["INJECT_DIRECTIONAL"] = "1";
+      const unsigned clear = shaders.program({"illum/vct/inject_clear.comp.glsl"}, clearDefs);
+      glUseProgram(clear);
+      shaders.setUniform(clear, "uResolution", glm::uvec4(n, 0u));
+      shaders.setUniform(clear, "uFirstCell", region->lo);
+      shaders.setUniform(clear, "uEndCell", glm::min(region->hi, n));
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_COUNTS, counts);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_RADIANCE, sums);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_INJECT_CELL_MAX, cellMax);
+      if (directions) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_VALUE_DIRECTION, directions);
+      const glm::uvec3 size = glm::max(glm::min(region->hi, n), region->lo) - region->lo;
+      if (region->count() > 0) glDispatchCompute((size.x + 3) / 4, (size.y + 3) / 4, (size.z + 3) / 4);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      shaders.setUniform(regionProg, "uRadianceMax", reuseRange);
+      shaders.setUniform(regionProg, "uRegionLo", region->lo);
+      shaders.setUniform(regionProg, "uRegionHi", glm::min(region->hi, n));
+      if (region->count() > 0) run(regionProg);
+    }
+    {
+      // This frame's range: the largest pair of any cell (the region's new, the rest as before).
+      auto s = prof.scope("vct_inject_range");
+      reduceCellMax(shaders, cellMax, slots_, max);
+    }
+    const float m = passMax();
+    if (m == reuseRange) {
+      radianceMax_ = m;
+      return m;
+    }
+    clearAll();
+    injected_ = slots_;
+    auto s = prof.scope("vct_inject_again");
+    shaders.setUniform(prog, "uRadianceMax", m);
+    run(prog);
+    radianceMax_ = m;
+    return m;
+  }
   if (reuseRange > 0.0f) {
     {
       auto s = prof.scope("vct_inject");
@@ -281,8 +357,7 @@ float InjectionSums::inject(SceneResources& res, const GridBox& box, ConeRadianc
       return m;
     }
     // Another maximum (clamped, or a coarser range than a fresh fill's): the sums again with it.
-    for (unsigned b : {counts, sums, directions})
-      if (b) glClearNamedBufferData(b, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    clearAll();
     auto s = prof.scope("vct_inject_again");
     shaders.setUniform(prog, "uRadianceMax", m);
     run(prog);
@@ -310,6 +385,7 @@ nlohmann::json ConeVolume::stats() {
     // The injection's sums and counts per cell are the volume's too (20 bytes a cell).
     j["injection_bytes"] = sums_.bytes();
     j["bytes"] = j["bytes"].get<double>() + sums_.bytes();
+    if (injectsRadiance(need_.radiance)) j["injected_cells"] = sums_.injectedSlots();
   }
   j["radiance_source"] = coneRadianceName(need_.radiance);
   j["directional"] = !need_.directional ? "none" : need_.directionalChain ? "level1" : "level0";

@@ -7,7 +7,10 @@
 //           cell) pair with the light maps' shadow-tested diffuse light
 //           (shaders/illum/vct/inject.frag; Dinse 2015 §3.1), the opacity
 //           the binary grid of any voxelizer (through its pyramid's words);
-//           injected again whenever the light maps are drawn again;
+//           injected again whenever the light maps are drawn again — where
+//           only dynamic meshes moved, only the cells they and their shadow
+//           covered before and after (changedCells) are injected, resolved
+//           and filtered again, the range from the cells' kept maxima;
 //   texels  the 2013 article's: each texel of the (reflective) light maps
 //           into the cell its surface point falls in (inject_texels.comp);
 //           cells no texel reaches stay unlit (its holes);
@@ -66,10 +69,16 @@ inline bool injectsRadiance(ConeRadiance r) { return r == ConeRadiance::Inject |
 // shared/value_grid.glsl defines them: a count (4 bytes) and rgb sums (16),
 // with the word of the first pass' maximum, the sums' fixed-point range;
 // `directional`: also the direction sums (16 bytes).
+// The largest of `cells` words of buffer cellMax (non-negative float bits: the injection's per-cell
+// maxima, shaders/illum/vct/cell_max_reduce.comp) into word 0 of buffer result, by atomicMax: the
+// caller clears it first (or keeps a bound it already holds).
+void reduceCellMax(ShaderLibrary& shaders, unsigned cellMax, uint64_t cells, unsigned result);
+
 class InjectionSums {
  public:
-  // Buffers for `slots` slots, zero (checked against the GL memory budget).
-  void allocate(uint64_t slots, bool directional = false);
+  // Buffers for `slots` slots, zero (checked against the GL memory budget). cellMax (a scene with
+  // dynamic meshes, dense slots): also per slot its pairs' largest radiance, for region fills.
+  void allocate(uint64_t slots, bool directional = false, bool cellMax = false);
   // Clears the sums and injects into them (radiance inject or texels; `octree`:
   // the slots are its leaves, cells outside it left out); returns the range.
   //   inject  the light maps' shadow-tested diffuse light of every (triangle,
@@ -83,18 +92,24 @@ class InjectionSums {
   // smallCells: inject's triangles whose bounding box spans at most this many cells are lit
   // triangle-parallel in the geometry shader (conservative.geom.glsl, INJECT_HYBRID: the pairs the
   // rasterization would visit), the rest through it; 0: all through it.
+  // region (with reuseRange, inject, dense slots allocated with cellMax): only the pairs of these
+  // cells are injected again — the cells a moving mesh and its shadow changed; every other cell's
+  // pairs are the last fill's — and the range is the largest of the per-cell maxima; where that is
+  // not the last fill's range, all of them are injected again with it (still the fresh fill's sums).
   float inject(SceneResources& res, const GridBox& box, ConeRadiance radiance, const LightMapNeed& maps,
                float bias, float normalOffset, int smallCells, const SparseVoxelOctree* octree,
-               Profiler& profiler, float reuseRange = 0.0f);
+               Profiler& profiler, float reuseRange = 0.0f, const CellRange* region = nullptr);
   unsigned counts() const { return counts_.get(); }
   unsigned sums() const { return sums_.get(); }
   unsigned directions() const { return directions_.get(); }  // 0 unless directional
   float radianceMax() const { return radianceMax_; }
-  double bytes() const { return double(slots_) * (directions_ ? 36.0 : 20.0); }
+  // The slots the last fill injected (all, or a region's).
+  uint64_t injectedSlots() const { return injected_; }
+  double bytes() const { return double(slots_) * ((directions_ ? 36.0 : 20.0) + (cellMax_ ? 4.0 : 0.0)); }
 
  private:
-  GlBuffer counts_, sums_, max_, directions_;
-  uint64_t slots_ = 0;
+  GlBuffer counts_, sums_, max_, directions_, cellMax_;
+  uint64_t slots_ = 0, injected_ = 0;
   float radianceMax_ = 1.0f;
 };
 

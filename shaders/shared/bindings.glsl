@@ -22,6 +22,7 @@
 #define BINDING_VALUE_ALBEDO 11    // SSBO multi-valued grid: albedo sums
 #define BINDING_VALUE_GLOSSY 12    // SSBO multi-valued grid: glossy sums
 #define BINDING_TRACE_RAYS 13      // SSBO rays of a batch trace (traverse/trace_rays.comp)
+#define BINDING_INJECT_CELL_MAX 13  // SSBO uint[]: vct's injection, per cell its pairs' largest radiance (float bits; inject_sums.glsl)
 #define BINDING_TRACE_HITS 14      // SSBO their hits
 #define BINDING_VALUE_RADIANCE 15  // SSBO multi-valued grid: radiance sums
 #define BINDING_VALUE_RADIANCE_MAX 16  // SSBO uint: the radiance pass's maximum (float bits)

@@ -100,6 +100,12 @@ void main() {
   atomicAdd(hybridCounts[1], 1u);
 #endif
 #ifdef INJECT_HYBRID
+#ifdef INJECT_REGION
+  // A moving frame's injection: a triangle whose box (a cell of margin) misses the region has no
+  // pair there — nothing to rasterize.
+  vec3 tlo = min(vGrid[0], min(vGrid[1], vGrid[2])) - 1.0f, thi = max(vGrid[0], max(vGrid[1], vGrid[2])) + 1.0f;
+  if (any(lessThan(thi, vec3(uRegionLo))) || any(greaterThan(tlo, vec3(uRegionHi)))) return;
+#endif
   vec3 wn = cross(vWorld[1] - vWorld[0], vWorld[2] - vWorld[0]);
   smallNormal = dot(wn, wn) > 0.0f ? normalize(wn) : vec3(0.0f);
   if (visitSmallTriangle(vGrid[0], vGrid[1], vGrid[2], uInjectSmallCells)) return;

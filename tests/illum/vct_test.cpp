@@ -7,7 +7,9 @@
 // and bad parameters. The point-lit sphere is in analytic_sphere_test.cpp.
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <glm/gtc/packing.hpp>
 #include <random>
@@ -340,43 +342,99 @@ TEST(Vct, LeakStudySettingsKeepTheLightInItsRoom) {
 // A frame of an animation fills the cone volume again without the pass for its fixed-point range: the
 // sums' pass takes the maximum with the last fill's range, and injects again only where it differs
 // (ConeVolume, InjectionSums::inject); where only a dynamic mesh moved, only the cells it and its
-// shadow covered before and after are resolved and filtered up the chain again. Either way every frame
-// equals a still at its time bit for bit: a light approaching the box (relit; its range grows: injected
-// again; all cells) and the bunny turning on the floor (the range stays: one pass; its cells).
+// shadow covered before and after are injected (the range: the largest of the cells' own maxima),
+// resolved and filtered up the chain again. Either way every frame equals a still at its time bit for
+// bit (where the scene's bounds are the same at every frame: an animation's grid box is the union of
+// its frames'): a light approaching the box (relit; its range grows: injected again; all cells), the
+// bunny turning on the floor (the range stays: one pass over its cells) and the bunny rising to just
+// under the light and sinking back (its top holds the largest pair: the range grows and shrinks with
+// it, and the frames where it changes are injected again, all cells).
 TEST(Vct, AnimationFramesEqualStillsWithoutTheRangePass) {
   const std::string lightScene = testing::TempDir() + "/vct_moving_light.json";
   std::ofstream(lightScene) << R"({"meshes": [{"path": "builtin:cornell"}], "lights": [{"type": "point",
       "position": [0.3, 0.4, 0.3], "intensity": 0.05, "keyframes": [
         {"time": 0, "position": [0.0, 0.0, 0.0]}, {"time": 1, "position": [0.3, 0.3, 0.3]}]}]})";
   const std::string bunny = std::string(VGI_TEST_DATA) + "/../../scenes/cornell-bunny.json";
-  for (const std::string& scene : {lightScene, bunny}) {
-    const bool light = scene == lightScene;
+  const std::string ply = test::sharedScene("stanford-bunny/bun_zipper.ply");  // "": the bunny's cases skip
+  const std::string rising = testing::TempDir() + "/vct_rising_bunny.json";
+  std::ofstream(rising) << R"({"meshes": [{"path": "builtin:cornell"}, {"path": ")" << ply
+                        << R"(", "dynamic": true,
+      "transform": {"translate": [0.0169, -0.0330, 0.0015]}, "keyframes": [
+        {"time": 0, "translate": [0.28, 0.01, 0.28]}, {"time": 1, "translate": [0.28, 0.38, 0.28]},
+        {"time": 2, "translate": [0.28, 0.01, 0.28]}]}]})";
+  enum Kind { Light, Turning, Rising };
+  for (Kind kind : {Light, Turning, Rising}) {
+    if (kind != Light && ply.empty()) continue;
+    const std::string scene = kind == Light ? lightScene : kind == Turning ? bunny : rising;
     const RenderOptions o = test::options(scene, "vct", {"temporal=false"}, 32, 1);
-    const float step = light ? 0.5f : 0.25f;
-    const test::Frames a = test::renderFrames(o, 3, step);
+    const float step = kind == Turning ? 0.25f : 0.5f;
+    const int n = kind == Rising ? 4 : 3;
+    const test::Frames a = test::renderFrames(o, n, step);
     const std::vector<Image>& frames = a.images;
-    ASSERT_EQ(frames.size(), 3u) << scene;
+    ASSERT_EQ(frames.size(), size_t(n)) << scene;
     const nlohmann::json& stats = a.last.stats["frames"];
-    for (int f = 0; f < 3; ++f) {
+    int again = 0;
+    for (int f = 0; f < n; ++f) {
       RenderOptions still = o;
       still.time = step * float(f);
       EXPECT_EQ(runRender(still).result.image.pixels, frames[size_t(f)].pixels) << scene << " frame " << f;
       const nlohmann::json& t = stats[size_t(f)]["timings_ms"];
       EXPECT_EQ(t.contains("vct_inject_max"), f == 0) << scene << " frame " << f << ": " << t.dump();
-      if (f > 0) {
-        EXPECT_EQ(t.contains("vct_inject_again"), light) << scene << " frame " << f << ": " << t.dump();
+      again += t.contains("vct_inject_again") ? 1 : 0;
+      if (f > 0 && kind != Rising) {
+        EXPECT_EQ(t.contains("vct_inject_again"), kind == Light)
+            << scene << " frame " << f << ": " << t.dump();
       }
-      // The bunny's frames resolve and filter only the cells it and its shadow left and entered; the
-      // moved light's, all of them.
-      const uint64_t resolved = stats[size_t(f)]["extra"]["volume"]["resolved_cells"].get<uint64_t>();
-      if (f == 0 || light) {
+      // The bunny's frames inject, resolve and filter only the cells it and its shadow left and
+      // entered (unless its range changed); the moved light's, all of them.
+      const nlohmann::json& volume = stats[size_t(f)]["extra"]["volume"];
+      const uint64_t resolved = volume["resolved_cells"].get<uint64_t>(),
+                     injected = volume["injected_cells"].get<uint64_t>();
+      if (f == 0 || kind == Light || t.contains("vct_inject_again")) {
         EXPECT_EQ(resolved, 128u * 128u * 128u) << scene << " frame " << f;
+        EXPECT_EQ(injected, 128u * 128u * 128u) << scene << " frame " << f;
       } else {
         EXPECT_LT(resolved, 128u * 128u * 128u / 8u) << scene << " frame " << f;
+        EXPECT_EQ(injected, resolved) << scene << " frame " << f;
       }
     }
+    if (kind == Rising) EXPECT_GE(again, 2) << "the range grew and shrank";
     EXPECT_GT(compareImages(frames[0], frames[2]).relMae, 0.001) << scene << ": it moved";
   }
+}
+
+// A moving frame's range is the largest of the injection's per-cell maxima (reduceCellMax): on the GPU
+// exactly the CPU's largest word, wherever it lies — the first cell, the last, one in the middle — and
+// for counts that fill no whole group, one cell, and more cells than invocations (each takes several).
+TEST(ConeVolume, TheCellMaximaReduceToTheLargestWordWhereverItLies) {
+  auto ctx = GlContext::create();
+  ShaderLibrary shaders;
+  std::mt19937 rng(7);
+  for (uint64_t n :
+       {uint64_t(1), uint64_t(63), uint64_t(1000), uint64_t(64 * 16 * 3 + 5), uint64_t(1) << 21}) {
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<uint32_t> words(n);
+    for (auto& w : words) {
+      const float v = u(rng) < 0.3f ? 0.0f : u(rng) * 4.0f;  // unlit cells: 0
+      std::memcpy(&w, &v, 4);
+    }
+    for (uint64_t at : {uint64_t(0), n - 1, n / 2}) {
+      std::vector<uint32_t> w = words;
+      const float big = 5.0f + float(at % 7);
+      std::memcpy(&w[at], &big, 4);
+      unsigned bufs[2];
+      glCreateBuffers(2, bufs);
+      glNamedBufferStorage(bufs[0], GLsizeiptr(n * 4), w.data(), 0);
+      const uint32_t zero = 0;
+      glNamedBufferStorage(bufs[1], 4, &zero, 0);
+      reduceCellMax(shaders, bufs[0], n, bufs[1]);
+      uint32_t got = 0;
+      glGetNamedBufferSubData(bufs[1], 0, 4, &got);
+      glDeleteBuffers(2, bufs);
+      EXPECT_EQ(got, *std::max_element(w.begin(), w.end())) << n << " cells, the largest at " << at;
+    }
+  }
+  EXPECT_EQ(ctx->errorCount(), 0);
 }
 
 // inject_small: triangles whose bounding box spans at most that many cells are lit in the geometry

@@ -7,7 +7,12 @@
 // direction the light leaves in (shared/value_grid.glsl: decodeDirection), four
 // words per slot. INJECT_CHECK_RANGE: the sums' pass with a range given (the
 // last fill's) also takes the largest radiance, which the caller checks
-// against it. Needs voxelize/grid_uniforms.glsl's uResolution.
+// against it. INJECT_CELL_MAX: the sums' passes also keep per cell its pairs'
+// largest radiance (float bits), from which a moving frame's range is taken
+// (illum/vct/cell_max_reduce.comp). INJECT_REGION: only the pairs of the cells
+// uRegionLo … uRegionHi − 1 (those a moving mesh and its shadow changed) are
+// injected; every other cell has no slot in this pass. Needs
+// voxelize/grid_uniforms.glsl's uResolution.
 #include "shared/value_grid.glsl"
 #ifdef INJECT_SVO
 #include "shared/sparse_octree_lookup.glsl"
@@ -24,6 +29,14 @@ layout(std430, binding = BINDING_VALUE_DIRECTION) buffer DirectionSums { uint di
 #endif
 #endif
 
+#ifdef INJECT_CELL_MAX
+layout(std430, binding = BINDING_INJECT_CELL_MAX) buffer CellMax { uint cellMaxBits[]; };
+#endif
+#ifdef INJECT_REGION
+uniform uvec3 uRegionLo;  // the cells injected: uRegionLo … uRegionHi − 1
+uniform uvec3 uRegionHi;
+#endif
+
 const uint INJECT_NO_SLOT = 0xffffffffu;
 
 // The slot of cell c, or INJECT_NO_SLOT where it has none (a cell outside the
@@ -34,6 +47,9 @@ uint injectSlot(uvec3 c) {
 #elif defined(INJECT_SVO)
   return svoLeafSlot(c);
 #else
+#ifdef INJECT_REGION
+  if (any(lessThan(c, uRegionLo)) || any(greaterThanEqual(c, uRegionHi))) return INJECT_NO_SLOT;
+#endif
   return valueIndex(c, uvec4(uResolution.xyz, 0u), 0u) / 4u;
 #endif
 }
@@ -56,6 +72,10 @@ void injectAdd(uint slot, vec3 L) {
   for (uint k = 0u; k < 3u; ++k) atomicAdd(radianceSums[4u * slot + k], toFixedRadiance(L[k], uRadianceMax));
 #ifdef INJECT_CHECK_RANGE
   injectMax(L);  // was the range given this pass' maximum?
+#endif
+#ifdef INJECT_CELL_MAX
+  uint bits = floatBitsToUint(max(L.x, max(L.y, L.z)));
+  if (bits > cellMaxBits[slot]) atomicMax(cellMaxBits[slot], bits);
 #endif
 #endif
 }
