@@ -114,6 +114,22 @@ Bounds Scene::bounds(float time) const { return meshBounds(meshes, time, false);
 
 Bounds Scene::dynamicBounds(float time) const { return meshBounds(meshes, time, true); }
 
+Scene Scene::meshGeometry(bool dynamic) const {
+  Scene out;
+  out.name = name;
+  for (const Mesh& m : meshes)
+    if (m.dynamic == dynamic) out.meshes.push_back(m);
+  out.materials = materials;
+  for (Material& m : out.materials) m.albedoTexture = -1;
+  out.lights = lights;
+  out.environment.color = environment.color;
+  out.environment.scale = environment.scale;
+  out.camera = camera;
+  out.cameraPath = cameraPath;
+  out.twoSidedEmission = twoSidedEmission;
+  return out;
+}
+
 bool Scene::hasDynamicMeshes() const {
   for (auto& m : meshes)
     if (m.dynamic) return true;

@@ -133,6 +133,9 @@ struct Scene {
   // The dynamic meshes' bounds at `time` (empty without dynamic meshes).
   Bounds dynamicBounds(float time) const;
   bool hasDynamicMeshes() const;
+  // The dynamic (or the static) meshes alone, as geometry for a binary voxelizer: the materials
+  // without their textures, no textures, no environment map; lights, camera and name as here.
+  Scene meshGeometry(bool dynamic) const;
   // The camera at `time`: `camera`, or the path's interpolation (position, target, up, field of view).
   Camera cameraAt(float time) const;
   // Whether a light has keyframes; placeLightsAt moves each such light to its path at `time`: the

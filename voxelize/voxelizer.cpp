@@ -10,11 +10,13 @@ namespace vgi {
 
 const std::vector<VoxelizerInfo>& voxelizerRegistry() {
   static const std::vector<VoxelizerInfo> table = {
-      {"atlas", "GL atlas voxelization (VGI section 3): atlas rendering + one point per texel", true,
+      {"atlas", "GL atlas voxelization (VGI section 3): atlas rendering + one point per texel", true, false,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeAtlasGl(r, p, s); }},
       {"slicemap", "GL single-pass slicemap (Eisemann & Decoret 2006): one raster pass along depth", true,
+       true,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeSlicemapGl(r, p, s); }},
       {"conservative", "GL three-axis conservative rasterization (dominant axis, expanded triangles)", true,
+       true,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) {
          return voxelizeConservativeGl(r, p, s);
        }},
@@ -22,9 +24,9 @@ const std::vector<VoxelizerInfo>& voxelizerRegistry() {
        "GL hybrid (Rauwendaal & Bailey 2013): small triangles triangle-parallel in the geometry shader, "
        "large "
        "ones conservatively rasterized, one pass",
-       true,
+       true, true,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json& s) { return voxelizeHybridGl(r, p, s); }},
-      {"exact", "CPU triangle-box overlap (separating axes): the reference", false,
+      {"exact", "CPU triangle-box overlap (separating axes): the reference", false, true,
        [](const VoxelizeRequest& r, Profiler& p, nlohmann::json&) {
          auto s = p.scope("voxelize_exact");
          return voxelizeExact(*r.scene, r.box, r.time, r.threads);

@@ -44,6 +44,9 @@ struct VoxelizeRequest {
 struct VoxelizerInfo {
   std::string name, description;
   bool needsGl;
+  // Every triangle sets its cells by itself: a scene's grid is the OR of its meshes' grids, so an
+  // animation keeps the static meshes' grid and voxelizes only the dynamic ones again.
+  bool perTriangle;
   // Fills `stats` with what it measured (e.g. "points", "atlas_resolution").
   std::function<BinaryGrid(const VoxelizeRequest&, Profiler&, nlohmann::json& stats)> run;
 };

@@ -67,12 +67,29 @@ class BinaryGridResource : public Resource {
     vreq.atlasFootprint = need_.atlasFootprint;
     vreq.hybridCutoff = need_.hybridCutoff;
     counted_ = false;
+    const VoxelizerInfo& voxelizer = findVoxelizer(need_.voxelizer);
     if (res.gl() && need_.voxelizer == "atlas") {
       // The atlas voxelizer keeps the static meshes' grid on the GPU and re-inserts the dynamic ones.
       if (!atlas_) atlas_ = std::make_unique<AtlasVoxelizer>(vreq, prof);
       atlas_->voxelizeFrame(res.time(), prof);
+    } else if (res.dynamic() && voxelizer.perTriangle) {
+      // The static meshes' grid is voxelized once and kept; each frame voxelizes the dynamic meshes
+      // alone and ORs it in: the same grid as the whole scene's (each triangle sets its cells alone).
+      if (!static_) {
+        const Scene still = res.scene().meshGeometry(false);
+        vreq.scene = &still;
+        static_ = std::make_unique<BinaryGrid>(voxelizer.run(vreq, prof, staticStats_));
+      }
+      const Scene moving = res.scene().meshGeometry(true);
+      vreq.scene = &moving;
+      grid_ = std::make_unique<BinaryGrid>(voxelizer.run(vreq, prof, voxelizerStats_));
+      std::vector<uint32_t>& w = grid_->words();
+      const std::vector<uint32_t>& k = static_->words();
+      for (size_t i = 0; i < w.size(); ++i) w[i] |= k[i];
+      voxelizerStats_["static_meshes"] = staticStats_;
+      voxelizerStats_["static_meshes"]["kept"] = true;
     } else {
-      grid_ = std::make_unique<BinaryGrid>(findVoxelizer(need_.voxelizer).run(vreq, prof, voxelizerStats_));
+      grid_ = std::make_unique<BinaryGrid>(voxelizer.run(vreq, prof, voxelizerStats_));
     }
     builtFor_ = res.time();
     if (cacheKey) writeCachedGrid(*cacheKey, prof);
@@ -196,8 +213,9 @@ class BinaryGridResource : public Resource {
   std::optional<float> builtFor_;   // the animation time it was built for
   std::unique_ptr<AtlasVoxelizer> atlas_;
   std::unique_ptr<BinaryGrid> grid_;
+  std::unique_ptr<BinaryGrid> static_;     // an animation's static meshes (a per-triangle voxelizer's)
   std::unique_ptr<CachedValueSums> sums_;  // the value channels' sums, read from the set-up cache
-  nlohmann::json voxelizerStats_ = nlohmann::json::object();
+  nlohmann::json voxelizerStats_ = nlohmann::json::object(), staticStats_ = nlohmann::json::object();
   uint64_t voxelsSet_ = 0;
   bool counted_ = false;
 };
@@ -205,27 +223,27 @@ class BinaryGridResource : public Resource {
 }  // namespace
 
 ResourceKind binaryGridKind() {
-  return {
-      "binary_grid",
-      "the scene voxelized into bitmask columns over a tight box (any voxelizer; atlas: static + dynamic)",
-      [](const ResourceNeed&) { return std::vector<ResourceNeed>{}; },
-      [](const ResourceNeed& n, const SceneNeeds&, const std::string& method, bool gl) {
-        const BinaryGridNeed& g = n.spec<BinaryGridNeed>();
-        const VoxelizerInfo& v = findVoxelizer(g.voxelizer);
-        if (v.needsGl && !gl)
-          fail("method '", method, "' runs on the CPU but voxelizer '", v.name, "' needs GL");
-        if (!g.values.empty() && !gl)
-          fail("method '", method, "' runs on the CPU but asks for multi-valued grids (GL textures)");
-        if (!g.values.empty() && g.voxelizer != "atlas")
-          fail("method '", method,
-               "' asks for multi-valued grids without the atlas voxelizer's binary grid (",
-               "voxelizer=", g.voxelizer, "): their values come from its atlas points");
-      },
-      [](const ResourceNeed&) { return std::vector<std::string>{"binary_grid"}; },
-      [](const ResourceNeed& n, SceneResources&) -> std::unique_ptr<Resource> {
-        return std::make_unique<BinaryGridResource>(n.spec<BinaryGridNeed>());
-      },
-      "grid"};
+  return {"binary_grid",
+          "the scene voxelized into bitmask columns over a tight box (any voxelizer; an animation keeps the "
+          "static meshes' grid)",
+          [](const ResourceNeed&) { return std::vector<ResourceNeed>{}; },
+          [](const ResourceNeed& n, const SceneNeeds&, const std::string& method, bool gl) {
+            const BinaryGridNeed& g = n.spec<BinaryGridNeed>();
+            const VoxelizerInfo& v = findVoxelizer(g.voxelizer);
+            if (v.needsGl && !gl)
+              fail("method '", method, "' runs on the CPU but voxelizer '", v.name, "' needs GL");
+            if (!g.values.empty() && !gl)
+              fail("method '", method, "' runs on the CPU but asks for multi-valued grids (GL textures)");
+            if (!g.values.empty() && g.voxelizer != "atlas")
+              fail("method '", method,
+                   "' asks for multi-valued grids without the atlas voxelizer's binary grid (",
+                   "voxelizer=", g.voxelizer, "): their values come from its atlas points");
+          },
+          [](const ResourceNeed&) { return std::vector<std::string>{"binary_grid"}; },
+          [](const ResourceNeed& n, SceneResources&) -> std::unique_ptr<Resource> {
+            return std::make_unique<BinaryGridResource>(n.spec<BinaryGridNeed>());
+          },
+          "grid"};
 }
 
 const ResourceKind& BinaryGridNeed::row() {

@@ -97,9 +97,8 @@ TEST(Scene, FlattenGivesFiniteNormals) {
 }
 
 TEST(Scene, ProjectSceneFilesLoadWhenTheirDataIsPresent) {
-  for (const char* name :
-       {"cornell-original.json", "sibenik.json", "bunny.json", "dragon.json", "cornell-bunny.json",
-        "sibenik-bunny.json", "sibenik-bunny-still.json"}) {
+  for (const char* name : {"cornell-original.json", "sibenik.json", "bunny.json", "dragon.json",
+                           "cornell-bunny.json", "sibenik-bunny.json", "sibenik-bunny-still.json"}) {
     std::string p = std::string(VGI_TEST_DATA) + "/../../scenes/" + name;
     std::ifstream in(p);
     ASSERT_TRUE(in.good()) << p;

@@ -514,3 +514,65 @@ TEST(Voxelizers, RecallFarFromTheOriginEqualsRecallAtTheOrigin) {
   EXPECT_EQ(f.gl->errorCount(), 0);
 }
 }  // namespace vgi
+
+namespace vgi {
+// An animation keeps the static meshes' grid of a per-triangle voxelizer and voxelizes only the dynamic
+// meshes again (the binary grid resource): for that, every voxelizer marked perTriangle gives a scene the
+// OR of its static and its dynamic meshes' grids, word for word — here a box, a tilted quad through it
+// and a moved, turned, finely split dynamic quad that crosses both, at a time between its keyframes.
+TEST(Voxelizers, APerTriangleVoxelizersGridIsItsMeshesGridsOrEd) {
+  GlFixture f;
+  Scene s;
+  test::addBox(s, glm::vec3(0.1f), glm::vec3(0.6f), test::addMaterial(s, glm::vec3(0.5f)));
+  test::addMesh(s, {{0.0f, 0.2f, 0.1f}, {0.9f, 0.3f, 0.2f}, {0.8f, 0.9f, 0.9f}, {0.1f, 0.7f, 0.8f}},
+                {{0, 1, 2}, {0, 2, 3}});
+  std::vector<glm::vec3> p;
+  std::vector<glm::uvec3> t;
+  const int n = 24;  // an n×n grid of small triangles (the hybrid voxelizer's triangle-parallel path too)
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      p.push_back({0.5f * float(i) / n, 0.05f * std::sin(float(i + j)), 0.5f * float(j) / n});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const unsigned a = unsigned(j * (n + 1) + i);
+      t.push_back({a, a + 1, a + unsigned(n) + 2});
+      t.push_back({a, a + unsigned(n) + 2, a + unsigned(n) + 1});
+    }
+  Mesh& d = test::addMesh(s, p, t);
+  d.dynamic = true;
+  Keyframe k0, k1;
+  k0.translation = {0.2f, 0.3f, 0.2f};
+  k1.time = 1.0f;
+  k1.translation = {0.4f, 0.5f, 0.1f};
+  k1.rotation = glm::angleAxis(glm::radians(50.0f), glm::normalize(glm::vec3(1, 2, 0)));
+  d.keyframes = {k0, k1};
+  const Scene still = s.meshGeometry(false), moving = s.meshGeometry(true);
+  ASSERT_EQ(still.meshes.size(), 2u);
+  ASSERT_EQ(moving.meshes.size(), 1u);
+  int checked = 0;
+  for (const VoxelizerInfo& v : voxelizerRegistry()) {
+    if (!v.perTriangle) continue;
+    VoxelizeRequest r = f.request(s, {64, 64, 128}, 0.6f);
+    Profiler prof(true);
+    nlohmann::json stats;
+    const BinaryGrid all = v.run(r, prof, stats);
+    r.scene = &still;
+    const BinaryGrid a = v.run(r, prof, stats);
+    r.scene = &moving;
+    const BinaryGrid b = v.run(r, prof, stats);
+    uint64_t both = 0, onlyMoving = 0, differ = 0;
+    for (size_t i = 0; i < all.words().size(); ++i) {
+      const uint32_t x = a.words()[i], y = b.words()[i];
+      both += uint64_t(__builtin_popcount(x & y));
+      onlyMoving += uint64_t(__builtin_popcount(y & ~x));
+      differ += all.words()[i] != (x | y) ? 1 : 0;
+    }
+    EXPECT_EQ(differ, 0u) << v.name << ": words that differ from the meshes' grids OR-ed";
+    EXPECT_GT(both, 0u) << v.name << ": the dynamic quad crosses the static meshes' cells";
+    EXPECT_GT(onlyMoving, 0u) << v.name;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4) << "slicemap, conservative, hybrid, exact";
+  EXPECT_EQ(f.gl->errorCount(), 0);
+}
+}  // namespace vgi
