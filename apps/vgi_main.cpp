@@ -17,6 +17,7 @@
 #include "core/build_info.h"
 #include "core/error.h"
 #include "core/shader_library.h"
+#include "voxelize/setup_cache.h"
 
 namespace {
 
@@ -79,6 +80,55 @@ std::string suggestion(CLI::App& app, int argc, char** argv) {
   return "";
 }
 
+// The subcommand argv names (`vgi bench motion`: motion), and the index of its first argument.
+CLI::App* commandOf(CLI::App& app, int argc, char** argv, int& first) {
+  CLI::App* cmd = &app;
+  first = 1;
+  while (first < argc) {
+    CLI::App* sub = nullptr;
+    for (CLI::App* s : cmd->get_subcommands([](CLI::App*) { return true; }))
+      if (s->get_name() == argv[first]) sub = s;
+    if (!sub) break;
+    cmd = sub;
+    ++first;
+  }
+  return cmd;
+}
+
+// An empty value ("--help-module=", "--scene ''", an empty positional argument). CLI11 reads
+// "--opt=" as the option without a value and takes the next argument for it ("--spp= -o x.exr" became
+// "--spp = -o"; "--help-module= --size 16x16" complained about 16x16), and "--opt ''" as not given: no
+// option of vgi means anything by an empty value, so it is refused naming the option.
+std::string emptyValue(CLI::App& app, int argc, char** argv) {
+  int first = 1;
+  CLI::App* cmd = commandOf(app, argc, argv, first);
+  if (cmd == &app) return "";
+  auto option = [&](const std::string& word) -> const CLI::Option* {
+    for (const CLI::Option* o : cmd->get_options()) {
+      for (auto& l : o->get_lnames())
+        if (word == "--" + l) return o;
+      for (auto& n : o->get_snames())
+        if (word == "-" + n) return o;
+    }
+    return nullptr;
+  };
+  for (int i = first; i < argc; ++i) {
+    const std::string w = argv[i];
+    if (w == "--") break;
+    if (w.empty()) return "an empty argument (argument " + std::to_string(i) + " of the command line)";
+    if (w[0] != '-') continue;
+    const size_t eq = w.find('=');
+    const CLI::Option* o = option(w.substr(0, eq));
+    if (!o || o->get_type_size_max() == 0) continue;  // not an option, or a flag
+    const std::string name = w.substr(0, eq);
+    if (eq != std::string::npos && eq + 1 == w.size()) return name + " was given an empty value";
+    if (eq == std::string::npos && i + 1 < argc && argv[i + 1][0] == 0)
+      return name + " was given an empty value";
+    if (eq == std::string::npos) ++i;  // its value
+  }
+  return "";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -96,7 +146,15 @@ int main(int argc, char** argv) {
   vgi::app::addViewCommand(app);
   vgi::app::addVoxelizeCommand(app);
   vgi::app::addBenchCommand(app);
+  if (const std::string empty = emptyValue(app, argc, argv); !empty.empty()) {
+    std::fprintf(stderr, "vgi: error: %s (see vgi %s --help)\n", empty.c_str(), argc > 1 ? argv[1] : "");
+    return 2;
+  }
   try {
+    // vgi's own environment variables are checked before any command runs: one read as something else
+    // (VGI_CACHE_LIMIT_MB=2GB was the default 2 GiB, without a word) is refused naming it.
+    vgi::setupCacheLimit();
+    vgi::defaultShaderDir();
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help

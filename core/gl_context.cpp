@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #ifdef VGI_SANITIZE_BUILD
 #include <dlfcn.h>
 
@@ -88,6 +89,13 @@ std::unique_ptr<GlContext> GlContext::create(GlBackend backend) {
 
 void selectZinkOnLavapipe() {
   const char* icd = std::getenv("VK_ICD_FILENAMES");
+  if (icd && *icd) {  // the loader would skip a missing file, and zink fail with no word of why
+    std::stringstream list(icd);
+    for (std::string f; std::getline(list, f, ':');)
+      if (!std::ifstream(f))
+        fail("--gl zink: VK_ICD_FILENAMES '", icd, "': '", f,
+             "' cannot be read (unset, vgi finds lavapipe's own ICD file)");
+  }
   if (!icd || !*icd) {
     static const char* const kIcds[] = {"/usr/share/vulkan/icd.d/lvp_icd.x86_64.json",
                                         "/usr/share/vulkan/icd.d/lvp_icd.json"};

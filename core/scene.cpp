@@ -25,6 +25,12 @@ glm::vec3 Texture::lookup(glm::vec2 uv, bool wrapV) const {
                   fy);
 }
 
+float keyFraction(float time, float a, float b) {
+  if (!(b > a)) return 0.0f;
+  const double t = (double(time) - double(a)) / (double(b) - double(a));
+  return float(std::clamp(t, 0.0, 1.0));
+}
+
 glm::mat4 Mesh::objectToWorld(float time) const {
   if (!dynamic || keyframes.empty()) return transform;
   const Keyframe* a = &keyframes.front();
@@ -38,8 +44,7 @@ glm::mat4 Mesh::objectToWorld(float time) const {
         b = &keyframes[i + 1];
       }
   }
-  float t = b->time > a->time ? (time - a->time) / (b->time - a->time) : 0.0f;
-  t = glm::clamp(t, 0.0f, 1.0f);
+  const float t = keyFraction(time, a->time, b->time);
   glm::mat4 m = glm::translate(glm::mat4(1.0f), glm::mix(a->translation, b->translation, t));
   m = m * glm::mat4_cast(glm::slerp(a->rotation, b->rotation, t));
   m = glm::scale(m, glm::mix(a->scale, b->scale, t));
@@ -57,7 +62,7 @@ void Scene::placeLightsAt(float time) {
     size_t i = 0;
     while (i + 2 < keys.size() && time >= keys[i + 1].time) ++i;
     const LightKey &a = keys[i], &b = keys[std::min(i + 1, keys.size() - 1)];
-    const float t = b.time > a.time ? glm::clamp((time - a.time) / (b.time - a.time), 0.0f, 1.0f) : 0.0f;
+    const float t = keyFraction(time, a.time, b.time);
     l.position = glm::mix(a.position, b.position, t);
     const glm::vec3 d = glm::mix(a.direction, b.direction, t);
     l.direction = glm::length(d) > 1e-3f ? glm::normalize(d) : (t < 0.5f ? a.direction : b.direction);
@@ -71,7 +76,7 @@ Camera Scene::cameraAt(float time) const {
   size_t i = 0;
   while (time >= cameraPath[i + 1].time) ++i;
   const CameraKey &a = cameraPath[i], &b = cameraPath[i + 1];
-  const float t = (time - a.time) / (b.time - a.time);
+  const float t = keyFraction(time, a.time, b.time);
   Camera c = a.camera;
   c.position = glm::mix(a.camera.position, b.camera.position, t);
   c.target = glm::mix(a.camera.target, b.camera.target, t);

@@ -31,6 +31,11 @@ struct Material {
   glm::vec3 emission{0.0f};
 };
 
+// Where `time` lies between two keys at times a < b, in [0, 1] (0 where b <= a). Computed in double:
+// in float, (time − a) / (b − a) overflows to inf/inf for keys near ±3.4e38, which the loader accepts,
+// and a NaN fraction placed a light nowhere (a black image with exit 0).
+float keyFraction(float time, float a, float b);
+
 struct Keyframe {
   float time = 0;
   glm::vec3 translation{0.0f};

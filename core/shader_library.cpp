@@ -19,8 +19,14 @@ namespace fs = std::filesystem;
 namespace vgi {
 
 std::string defaultShaderDir() {
-  if (const char* env = std::getenv("VGI_SHADER_DIR")) return env;
   std::error_code ec;
+  if (const char* env = std::getenv("VGI_SHADER_DIR")) {
+    // A folder that is not vgi's shaders would fail at the first program with a missing include.
+    if (!fs::is_directory(fs::path(env) / "shared", ec))
+      fail("VGI_SHADER_DIR '", env,
+           "': not a folder of vgi's shaders (it has no shared/; unset, vgi finds its own: vgi --version)");
+    return env;
+  }
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) {
     const fs::path beside = exe.parent_path().parent_path() / VGI_SHADER_DIR_RELATIVE;

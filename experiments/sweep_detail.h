@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "core/error.h"
 #include "experiments/sweep.h"
 
 namespace vgi::sweep_detail {
@@ -28,6 +29,11 @@ double positive(const nlohmann::json& v, const std::string& key, bool zeroAllowe
 std::string stemOfRender(const SweepRender& r);
 // A render's stats JSON, or null where it is missing or torn (a render killed while writing it).
 nlohmann::json readJson(const std::string& path);
+// A stats file whose fields are not what vgi writes (a run half-wrote it, another tool wrote it): its
+// render counts as not done, and the person is told which file, key and value (a warning, once).
+void notDone(const Error& e);
+// The most samples a render takes (`--spp`, RenderOptions).
+constexpr long long kMaxSpp = 1 << 20;
 
 // What expanding the methods gathers across them.
 struct ExpandState {

@@ -12,6 +12,7 @@
 
 #include "core/image.h"
 #include "core/image_metrics.h"
+#include "core/json_fields.h"
 #include "core/json_text.h"
 #include "core/output_files.h"
 #include "experiments/sweep_detail.h"
@@ -23,6 +24,8 @@ namespace vgi {
 namespace fs = std::filesystem;
 
 namespace {
+using sweep_detail::kMaxSpp;
+using sweep_detail::notDone;
 using sweep_detail::readJson;
 using sweep_detail::stemOfRender;
 
@@ -36,22 +39,25 @@ std::string machineName() {
 }
 
 // A render's time per image (an animation's: the mean per frame): total, in the per-sample passes,
-// and the set-up (the rest).
-void addTimes(const nlohmann::json& stats, nlohmann::json& row) {
-  auto times = [](const nlohmann::json& s, double& total, double& sample) {
-    total = s.value("total_ms", 0.0);
+// and the set-up (the rest). Each field is checked as it is read (a refusal names the file and key).
+void addTimes(const JsonFields& stats, nlohmann::json& row) {
+  auto times = [](const JsonFields& s, double& total, double& sample) {
+    total = s.numberIn("total_ms", 0.0, 0.0, 1e15);
     sample = 0;
-    const nlohmann::json timings = s.value("timings_ms", nlohmann::json::object());
-    for (auto& pass : s.value("sample_passes", nlohmann::json::array()))
-      sample += timings.value(pass.get<std::string>(), 0.0);
-    if (!s.contains("sample_passes")) sample = total;  // CPU methods: all per sample
+    const JsonFields timings = s.fields("timings_ms");
+    const nlohmann::json& passes = s.array("sample_passes");
+    for (auto& pass : passes) {
+      if (!pass.is_string()) s.bad("sample_passes", "must be a list of pass names");
+      sample += timings.numberIn(pass.get<std::string>(), 0.0, 0.0, 1e15);
+    }
+    if (!s.has("sample_passes")) sample = total;  // CPU methods: all per sample
   };
   double total = 0, sample = 0;
-  const nlohmann::json frames = stats.value("frames", nlohmann::json());
-  if (frames.is_array() && !frames.empty()) {
-    for (auto& f : frames) {
+  const nlohmann::json& frames = stats.array("frames");
+  if (!frames.empty()) {
+    for (size_t i = 0; i < frames.size(); ++i) {
       double t, s;
-      times(f, t, s);
+      times(JsonFields(frames[i], stats.origin() + " frames[" + std::to_string(i) + "]"), t, s);
       total += t;
       sample += s;
     }
@@ -106,9 +112,16 @@ nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string
 void addRows(const Experiment& e, const SweepRender& render, const std::vector<int>& checkpoints,
              const SweepRender& ref, const nlohmann::json& base, const std::string& machine,
              nlohmann::json& rows) {
-  const nlohmann::json last = readJson(stemOfRender(render) + ".json");
+  const std::string lastPath = stemOfRender(render) + ".json";
+  const nlohmann::json last = readJson(lastPath);
   const int frames = render.options.frames;
-  int completed = last.is_object() ? last.value("spp_completed", 0) : 0;
+  int completed = 0;
+  try {
+    if (!last.is_null())
+      completed = int(JsonFields(last, "'" + lastPath + "'").integer("spp_completed", 0, 0, kMaxSpp));
+  } catch (const Error& e) {
+    notDone(e);
+  }
   if (frames > 1) completed = sweepRenderDone(render, render.options.spp) ? render.options.spp : 0;
   std::vector<std::pair<int, std::string>> images;
   for (int k : checkpoints)
@@ -120,14 +133,20 @@ void addRows(const Experiment& e, const SweepRender& render, const std::vector<i
     const nlohmann::json stats = readJson(stem + ".json");
     if (!stats.is_object() || (frames == 1 && !fs::exists(stem + ".exr"))) continue;
     nlohmann::json row = base;
-    row["resolved_params"] = stats.value("params", nlohmann::json::object());
+    try {  // what the row takes from the stats, each field checked
+      const JsonFields st(stats, "'" + stem + ".json'");
+      row["resolved_params"] = st.object("params");
+      addTimes(st, row);
+      row["time_limited"] = st.flag("time_limited", false);
+      row["gl_renderer"] = st.text("gl_renderer", "");
+      row["git_revision"] = st.text("git_revision", "");
+    } catch (const Error& e) {
+      notDone(e);
+      continue;
+    }
     row["reference"] = ref.id;
     row["spp"] = spp;
     if (frames > 1) row["frames"] = frames;
-    addTimes(stats, row);
-    row["time_limited"] = stats.value("time_limited", false);
-    row["gl_renderer"] = stats.value("gl_renderer", "");
-    row["git_revision"] = stats.value("git_revision", "");
     row["machine"] = machine;
     for (auto& ch : channels) {
       const std::string suffix = ch == "image" ? ".exr" : "." + ch + ".exr";

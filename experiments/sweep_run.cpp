@@ -7,8 +7,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "core/error.h"
+#include "core/json_fields.h"
+#include "core/json_text.h"
 #include "core/output_files.h"
 #include "core/warnings.h"
 #include "experiments/sweep_detail.h"
@@ -24,17 +27,25 @@ namespace sweep_detail {
 std::string stemOfRender(const SweepRender& r) { return fs::path(r.stem).replace_extension("").string(); }
 
 nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) return nullptr;
+  std::stringstream text;
+  text << in.rdbuf();
   try {
-    return nlohmann::json::parse(in);
-  } catch (const std::exception&) {
+    return parseJsonText(text.str(), path);
+  } catch (const Error&) {
     return nullptr;  // a render killed while writing it
   }
 }
 
+void notDone(const Error& e) {
+  printWarning(std::string(e.what()) + ": that render counts as not done (vgi sweep renders it again)");
+}
+
 }  // namespace sweep_detail
 
+using sweep_detail::kMaxSpp;
+using sweep_detail::notDone;
 using sweep_detail::readJson;
 using sweep_detail::stemOfRender;
 
@@ -46,14 +57,23 @@ std::string sweepCommand(const SweepRender& r, const std::string& vgi) {
 
 bool sweepRenderDone(const SweepRender& r, int spp) {
   if (!r.file.empty()) return true;
-  const nlohmann::json s = readJson(stemOfRender(r) + ".json");
-  if (!s.is_object()) return false;
-  if (r.options.frames > 1) {  // every frame with every sample
-    const nlohmann::json frames = s.value("frames", nlohmann::json::array());
-    return !s.value("interrupted", true) && int(frames.size()) == r.options.frames && frames.is_array() &&
-           frames.back().value("spp_completed", 0) >= spp;
+  const std::string path = stemOfRender(r) + ".json";
+  const nlohmann::json s = readJson(path);
+  if (s.is_null()) return false;
+  try {
+    const JsonFields f(s, "'" + path + "'");
+    if (r.options.frames > 1) {  // every frame with every sample
+      const nlohmann::json& frames = f.array("frames");
+      if (f.flag("interrupted", true) || int(frames.size()) != r.options.frames) return false;
+      const JsonFields last(frames.back(),
+                            "'" + path + "' frames[" + std::to_string(frames.size() - 1) + "]");
+      return last.integer("spp_completed", 0, 0, kMaxSpp) >= spp;
+    }
+    return f.integer("spp_completed", 0, 0, kMaxSpp) >= spp || f.flag("time_limited", false);
+  } catch (const Error& e) {
+    notDone(e);
+    return false;
   }
-  return s.value("spp_completed", 0) >= spp || s.value("time_limited", false);
 }
 
 std::string sweepFrameStem(const SweepRender& r, int frame) {

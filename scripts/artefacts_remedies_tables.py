@@ -78,7 +78,8 @@ def main(out, avg):
         rb, rw = by[label].get(BUNNY), by[label].get(WALK)
         ch = channel(rb or rw)
         te = at.metric(rb, ch, "temporal_error")
-        ratio = at.fmt(te / floor_te, 2) if te is not None and floor_te else "—"
+        te_value, floor_value = sa.number(te), sa.number(floor_te)
+        ratio = at.fmt(te_value / floor_value, 2) if te_value is not None and floor_value else "—"
         mark = "" if ch == "indirect" else " (image)"
 
         def change(r):

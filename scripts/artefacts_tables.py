@@ -37,11 +37,14 @@ def name_of(row):
 
 
 def fmt(x, digits=4):
-    return "—" if x is None else f"{x:.{digits}f}"
+    """"—" where there is no such row or metric, "undefined" where vgi wrote one without a value."""
+    return sa.fmt(x, f".{digits}f")
 
 
 def metric(row, channel, key):
-    return row.get(channel, {}).get(key) if row else None
+    """The metric as vgi wrote it (a number or "undefined"), None where the row or the field is missing."""
+    value = row.get(channel, {}) if isinstance(row, dict) else None
+    return value.get(key) if isinstance(value, dict) else None
 
 
 def method_table(order, by, headers, scenes, cell):
@@ -119,7 +122,7 @@ def main(out):
             print(f"| {name_of(r[next(iter(r))])} | {fmt(metric(w, 'indirect', 'leak'))} | "
                   f"{fmt(metric(c, 'indirect', 'leak'))} | {fmt(metric(r.get(BUNNY), 'indirect', 'temporal_error'))} | "
                   f"{fmt(metric(rw, 'indirect', 'temporal_error'))} | {fmt(metric(rw, 'indirect', 'rel_mae'))} | "
-                  f"{fmt(rw['time_ms'] if rw else None, 0)} |")
+                  f"{fmt(rw.get('time_ms') if rw else None, 0)} |")
 
 
 if __name__ == "__main__":

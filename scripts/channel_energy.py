@@ -45,11 +45,15 @@ def main():
                    "--size", a.size, "-o", stem + ".exr"]
             sa.run_vgi(cmd, log=stem + ".log")  # a failure names vgi's reason (an unknown method, …)
             s = json.load(open(stem + ".json"))
-            ratio = {ch: sum(e["energy_rgb"]) / 3.0 for ch, e in s["error"].items()}
+            # A channel's energy without a value ("undefined" against a black reference) stays so.
+            ratio = {}
+            for ch, e in s["error"].items():
+                rgb = [sa.number(x) for x in e.get("energy_rgb", [])]
+                ratio[ch] = sum(rgb) / 3.0 if len(rgb) == 3 and None not in rgb else "undefined"
             rows.append((os.path.basename(scene), m, " ".join(s["exact"]["set"]), ratio, s["exact"].get("note", "")))
     print(f"| scene | method | counterpart (reference_gl) | image | direct | indirect |\n|---|---|---|---|---|---|")
     for scene, m, cp, r, note in rows:
-        cell = lambda ch: f"{r[ch]:.3f}" if ch in r else "–"
+        cell = lambda ch: sa.fmt(r.get(ch), ".3f", missing="–")
         print(f"| {scene} | {m} | {cp} | {cell('image')} | {cell('direct')} | {cell('indirect')} |")
     return 0
 

@@ -56,6 +56,10 @@ if [ -z "$vgi" ]; then
 fi
 [ -n "$vgi" ] || { echo "gpu_bench: no vgi binary found (give --vgi PATH)" >&2; exit 2; }
 sa_vgi --vgi "$vgi"
+# A VGI_SCENES that is not a folder would leave every scene's rows out, each with a note that it is absent.
+if [ -n "${VGI_SCENES+set}" ] && [ ! -d "$VGI_SCENES" ]; then
+  sa_fail VGI_SCENES "$VGI_SCENES" "is not a folder (the test scenes' folder, ../shared/scenes by default)"
+fi
 [ -z "$parity_ref" ] || [ -d "$parity_ref" ] || [ ! -e "$parity_ref" ] ||
   sa_fail --parity-ref "$parity_ref" "exists and is not a folder"
 sa_out OUT "$out"

@@ -9,6 +9,7 @@ mistake never ends in a Python traceback.
 """
 import argparse
 import json
+import math
 import os
 import re
 import subprocess
@@ -74,6 +75,22 @@ def sweep_results(arg, folder, experiment=None):
     if experiment and res.get("experiment") != experiment:
         fail(arg, folder, f"is a sweep of '{res.get('experiment')}', not of scenes/experiments/{experiment}.json")
     return res
+
+
+def number(x):
+    """A metric as a float, or None where it has no value: vgi writes "undefined" for a ratio with no
+    value (against a black reference; core/json_text.h), older files may hold null, and a row may lack
+    the metric altogether."""
+    return float(x) if isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) else None
+
+
+def fmt(x, spec=".4f", missing="—"):
+    """A metric as a table cell: `missing` where there is none (None: no such row or field), "undefined"
+    where vgi wrote one without a value, else the number formatted with `spec`."""
+    if x is None:
+        return missing
+    v = number(x)
+    return "undefined" if v is None else format(v, spec)
 
 
 def out_folder(arg, path):

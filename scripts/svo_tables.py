@@ -26,7 +26,7 @@ PASSES = {
 
 
 def fmt(x, digits=4):
-    return "—" if x is None else f"{x:.{digits}f}"
+    return sa.fmt(x, f".{digits}f")
 
 
 def main(out):
@@ -37,8 +37,14 @@ def main(out):
           f"revision {first['git_revision']}, {first['machine']}, `{first['gl_renderer']}`.\n")
     stats = {}
     for r in rows:
-        with open(os.path.join(out, "points", r["point"], "render.json")) as f:
-            stats[r["point"]] = json.load(f)
+        path = os.path.join(out, "points", r["point"], "render.json")
+        try:
+            with open(path) as f:
+                stats[r["point"]] = json.load(f)
+        except ValueError as e:
+            sa.fail("DIR", out, f"its {path} does not parse ({e})")
+        if not isinstance(stats[r["point"]], dict):
+            sa.fail("DIR", out, f"its {path} is not a render's stats")
     dense = {}
     for r in rows:
         if r["label"].endswith(" dense"):
@@ -57,17 +63,18 @@ def main(out):
             v = str(r["params"]["voxels"])
             d = dense.get((scene, r["method"], v))
             ratio = None
-            if d is not None and d is not r and err is not None:
-                de = d.get(channel, {}).get("rel_mae")
-                ratio = err / de if de else None
-            vol = s["extra"].get("volume", {})
+            if d is not None and d is not r and sa.number(err) is not None:
+                de = sa.number(d.get(channel, {}).get("rel_mae"))
+                ratio = sa.number(err) / de if de else None
+            vol = (s.get("extra") or {}).get("volume", {})
             t = s.get("timings_ms", {})
-            spp = max(s.get("spp_completed", s.get("spp", 1)), 1)
-            ms = {k: sum(t.get(n, 0.0) for n in names) for k, names in PASSES.items()}
+            spp = max(sa.number(s.get("spp_completed", s.get("spp", 1))) or 1, 1)
+            ms = {k: sum(sa.number(t.get(n, 0.0)) or 0.0 for n in names) for k, names in PASSES.items()}
+            mib = lambda b: sa.fmt(sa.number(b) / 2**20 if sa.number(b) is not None else b, ".1f")
             print(f"| {r['label']} | {v}³ | {fmt(err)} | {fmt(ratio, 3)} | "
-                  f"{vol.get('bytes', 0) / 2**20:.1f} | {s['memory']['peak_rss_bytes'] / 2**20:.0f} | "
+                  f"{mib(vol.get('bytes', 0))} | {mib((s.get('memory') or {}).get('peak_rss_bytes'))} | "
                   f"{vol.get('nodes', '—')} | {ms['build']:.0f} | {ms['inject']:.0f} | {ms['filter']:.0f} | "
-                  f"{ms['cones'] / spp:.0f} | {r['time_ms']:.0f} |")
+                  f"{ms['cones'] / spp:.0f} | {fmt(r.get('time_ms'), 0)} |")
         print()
 
 

@@ -43,15 +43,11 @@ def import_pyplot():
     plt = pyplot
 
 
-def num(x):
-    """A metric as a float, or None where it has no value: vgi writes "undefined" for a ratio against
-    a black reference (core/json_text.h); older files may hold null."""
-    return float(x) if isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) else None
+num = sa.number
 
 
 def fmt(x, spec):
-    v = num(x)
-    return "undefined" if v is None else format(v, spec)
+    return sa.fmt(x, spec, missing="undefined")
 
 
 def slug(s):
@@ -163,9 +159,14 @@ def main(out):
         for r in finals:
             t = {}
             path = os.path.join(out, render_dir(r), "render.json")
-            if os.path.exists(path):
+            try:  # a render killed while writing it, or another run's half-written file: no bar
                 with open(path) as f:
-                    t = json.load(f).get("timings_ms", {})
+                    stats = json.load(f)
+                t = stats.get("timings_ms", {}) if isinstance(stats, dict) else {}
+            except (OSError, ValueError):
+                pass
+            if not isinstance(t, dict):
+                t = {}
             timings.append(t)
             for k, v in t.items():
                 if k not in passes and (num(v) or 0.0) >= 0.5:

@@ -3,13 +3,16 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 
+#include "core/error.h"
 #include "core/hash.h"
+#include "core/warnings.h"
 
 namespace fs = std::filesystem;
 
@@ -78,13 +81,25 @@ bool writeSetupCache(const std::string& dir, const std::string& kind, uint64_t k
   if (dir.empty()) return false;
   std::error_code ec;
   fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir, ec)) {
+    printWarning("the set-up cache folder '" + dir + "' cannot be made (" +
+                 (ec ? ec.message() : std::string("a file stands there")) +
+                 "): nothing is kept for the next render (VGI_CACHE_DIR moves it; empty turns it off)");
+    return false;
+  }
   const fs::path file = setupCacheFile(dir, kind, key);
   // A temporary of this process' own: two processes (parallel tests, two renders) building the same
   // entry must not write into one file, or one could rename the other's half-written file into place.
   fs::path tmp = file;
   tmp += "." + std::to_string(getpid()) + ".tmp";
   std::ofstream out(tmp, std::ios::binary);
-  if (!out) return false;
+  if (!out) {
+    printWarning(
+        "the set-up cache folder '" + dir +
+        "' cannot be written: nothing is kept for the next render (VGI_CACHE_DIR moves it; empty turns "
+        "it off)");
+    return false;
+  }
   const Header h = headerFor(kind, key, bytes, fnv1a(payload, bytes));
   out.write(reinterpret_cast<const char*>(&h), sizeof h);
   out.write(static_cast<const char*>(payload), std::streamsize(bytes));
@@ -101,12 +116,17 @@ bool writeSetupCache(const std::string& dir, const std::string& kind, uint64_t k
 }
 
 uint64_t setupCacheLimit() {
-  if (const char* v = std::getenv("VGI_CACHE_LIMIT_MB")) {
-    char* end = nullptr;
-    const unsigned long long mb = std::strtoull(v, &end, 10);
-    if (end != v && *end == 0 && mb >= 1 && mb < (1ull << 40)) return mb << 20;
-  }
-  return 2ull << 30;
+  const char* v = std::getenv("VGI_CACHE_LIMIT_MB");
+  if (!v) return 2ull << 30;
+  // Whole MiB only: "2GB", "0", "-1", "1e3" or "" would be read as something else (strtoull reads
+  // "-1" as 2^64 − 1), and a limit silently replaced by the default is a cache the user did not ask for.
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long mb = std::strtoull(v, &end, 10);
+  if (*v < '0' || *v > '9' || end == v || *end != 0 || errno == ERANGE || mb < 1 || mb >= (1ull << 40))
+    fail("VGI_CACHE_LIMIT_MB '", v,
+         "': must be a whole number of MiB in [1, 1099511627775] (unset, the set-up cache keeps 2048 MiB)");
+  return mb << 20;
 }
 
 size_t trimSetupCache(const std::string& dir, uint64_t limit) {

@@ -29,11 +29,13 @@ bool readSetupCache(const std::string& dir, const std::string& kind, uint64_t ke
 // Writes entry (kind, key) with `bytes` bytes of payload (atomically: a temporary renamed into place),
 // then trims the folder to setupCacheLimit() bytes, the least recently written entries first (every new
 // vgi build keys its grids anew, so old builds' entries would otherwise pile up). Returns whether it was
-// written; `dir` "" or an unwritable folder: false, nothing else happens.
+// written; `dir` "" : false; a folder that cannot be made (a file stands there): false, with a warning
+// (once); an unwritable one: false.
 bool writeSetupCache(const std::string& dir, const std::string& kind, uint64_t key, const void* payload,
                      size_t bytes);
 
-// $VGI_CACHE_LIMIT_MB (a whole number ≥ 1) in bytes, else 2 GiB.
+// $VGI_CACHE_LIMIT_MB (a whole number of MiB in [1, 2^40)) in bytes, else (unset) 2 GiB; any other value
+// is refused (vgi::Error naming the variable and the value).
 uint64_t setupCacheLimit();
 
 // Deletes the oldest entries (*.bin, by modification time) of `dir` until they hold at most `limit`

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "core/json_text.h"
+#include "core/json_fields.h"
 
 namespace vgi {
 
@@ -217,52 +217,6 @@ nlohmann::json renderJobJson(const RenderOptions& o) {
   return j;
 }
 
-namespace {
-
-// Typed reads of a job's keys, each error naming the origin, the key and the value.
-struct JobReader {
-  const nlohmann::json& j;
-  const std::string& origin;
-  [[noreturn]] void bad(const std::string& key, const std::string& what) const {
-    fail("job ", origin, ": '", key, "' = ", jsonExcerpt(j[key]), " ", what);
-  }
-  bool has(const std::string& key) const { return j.contains(key) && !j[key].is_null(); }
-  std::string text(const std::string& key, const std::string& def) const {
-    if (!has(key)) return def;
-    if (!j[key].is_string()) bad(key, "must be a string");
-    return j[key].get<std::string>();
-  }
-  long long integer(const std::string& key, long long def, long long lo, long long hi) const {
-    if (!has(key)) return def;
-    const nlohmann::json& v = j[key];
-    if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
-      bad(key, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    return v.get<long long>();
-  }
-  double number(const std::string& key, double def) const {
-    if (!has(key)) return def;
-    if (!j[key].is_number() || !std::isfinite(j[key].get<double>())) bad(key, "must be a finite number");
-    return j[key].get<double>();
-  }
-  bool flag(const std::string& key, bool def) const {
-    if (!has(key)) return def;
-    if (!j[key].is_boolean()) bad(key, "must be true or false");
-    return j[key].get<bool>();
-  }
-  std::vector<std::string> texts(const std::string& key) const {
-    std::vector<std::string> out;
-    if (!has(key)) return out;
-    if (!j[key].is_array()) bad(key, "must be a list of strings");
-    for (const nlohmann::json& v : j[key]) {
-      if (!v.is_string()) bad(key, "must be a list of strings");
-      out.push_back(v.get<std::string>());
-    }
-    return out;
-  }
-};
-
-}  // namespace
-
 RenderOptions readRenderJob(const nlohmann::json& in, const std::string& origin) {
   // A render's stats JSON carries its job under "job".
   const nlohmann::json& j = in.is_object() && in.contains("job") && in["job"].is_object() ? in["job"] : in;
@@ -273,7 +227,7 @@ RenderOptions readRenderJob(const nlohmann::json& in, const std::string& origin)
                                              "checkpoints", "time_limit", "camera", "light",   "quiet"};
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!keys.count(it.key())) fail("job ", origin, ": unknown key '", it.key(), "'");
-  const JobReader r{j, origin};
+  const JsonFields r(j, "job " + origin);
   RenderOptions o;
   o.scene = r.text("scene", o.scene);
   o.methodGiven = r.has("method");

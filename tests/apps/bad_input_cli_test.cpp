@@ -771,4 +771,209 @@ TEST(BadInputCli, MeasurementScriptsCheckTheirArgumentsAndPassOnVgisReason) {
   EXPECT_NE(sh.output.find("nosuchmethod"), std::string::npos) << sh.output;
 }
 
+// Issue 63, class 1: a results folder another run half-wrote. A point's render.json with a field of
+// the wrong type ended `--pending` in nlohmann's type_error (exit 3); every field read back is checked:
+// `--pending` lists the render again, `--collect` leaves its rows out, each saying which file and key.
+TEST(BadInputCli, ASweepFolderAnotherRunHalfWroteCountsAsNotDone) {
+  Image lit(8, 8);
+  for (auto& p : lit.pixels) p = glm::vec3(0.5f, 0.25f, 0.125f);
+  writeImage(lit, tmp("half_lit.exr"));
+  const std::string file = tmp("half_written.json"), dir = tmp("half_written_out");
+  std::filesystem::remove_all(dir);
+  std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "8x8", "spp": 2, "checkpoints": [1],
+    "reference": {"file": ")"
+                      << tmp("half_lit.exr") << R"("}, "methods": [{"method": "direct"}]})";
+  ASSERT_EQ(vgi("sweep " + file + " -o " + dir).code, 0);
+  std::string stats;
+  for (auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.path().filename() == "render.json") stats = e.path().string();
+  ASSERT_FALSE(stats.empty());
+  const std::string checkpoint =
+      std::filesystem::path(stats).replace_filename("render.spp00001.json").string();
+  const nlohmann::json good = nlohmann::json::parse(std::ifstream(stats));
+  const nlohmann::json goodCheckpoint = nlohmann::json::parse(std::ifstream(checkpoint));
+  EXPECT_EQ(vgi("sweep " + file + " -o " + dir + " --pending").output, "");  // done: nothing pending
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, nlohmann::json>>{{"spp_completed", "1"},
+                                                           {"spp_completed", -4},
+                                                           {"time_limited", "no"},
+                                                           {"total_ms", "soon"},
+                                                           {"timings_ms", {1, 2}},
+                                                           {"sample_passes", {{{"a", 1}}}},
+                                                           {"params", "none"},
+                                                           {"gl_renderer", 3}}) {
+    nlohmann::json bad = good;
+    bad[key] = value;
+    std::ofstream(stats) << bad.dump();
+    const CliRun pending = vgi("sweep " + file + " -o " + dir + " --pending");
+    EXPECT_EQ(pending.code, 0) << key << ": " << pending.output;
+    EXPECT_EQ(pending.output.find("internal error"), std::string::npos) << pending.output;
+    const bool countsAsNotDone = key == "spp_completed";  // (time_limited is read where spp falls short)
+    if (countsAsNotDone) {
+      EXPECT_NE(pending.output.find("render"), std::string::npos) << key << ": listed again\n"
+                                                                  << pending.output;
+      EXPECT_NE(pending.output.find("'" + key + "'"), std::string::npos) << pending.output;
+    }
+    const CliRun collect = vgi("sweep " + file + " -o " + dir + " --collect");
+    EXPECT_EQ(collect.code, 0) << key << ": " << collect.output;
+    EXPECT_EQ(collect.output.find("internal error"), std::string::npos) << collect.output;
+    EXPECT_NE(collect.output.find(stats), std::string::npos) << key << ": names the file\n" << collect.output;
+    EXPECT_NE(collect.output.find("'" + key + "'"), std::string::npos) << collect.output;
+  }
+  std::ofstream(stats) << good.dump();
+  // A checkpoint's stats and a frame of the wrong shape: that row is left out, saying why.
+  for (const nlohmann::json& frames : {nlohmann::json("three"), nlohmann::json::array({7})}) {
+    nlohmann::json bad = goodCheckpoint;
+    bad["frames"] = frames;
+    std::ofstream(checkpoint) << bad.dump();
+    const CliRun collect = vgi("sweep " + file + " -o " + dir + " --collect");
+    EXPECT_EQ(collect.code, 0) << collect.output;
+    EXPECT_NE(collect.output.find(checkpoint), std::string::npos) << collect.output;
+    EXPECT_NE(collect.output.find("1 rows"), std::string::npos) << collect.output;  // the last image's row
+  }
+  std::ofstream(checkpoint) << goodCheckpoint.dump();
+  // A plain run renders the damaged point again and ends with every row.
+  nlohmann::json bad = good;
+  bad["spp_completed"] = "2";
+  std::ofstream(stats) << bad.dump();
+  const CliRun again = vgi("sweep " + file + " -o " + dir);
+  EXPECT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(again.output.find("[1/1]"), std::string::npos) << again.output;
+  EXPECT_NE(again.output.find("2 rows"), std::string::npos) << again.output;
+  // What `bench motion` and `render --job` read: refused naming the file and the key.
+  const std::string moving = tmp("half_moving.json");
+  std::ofstream(moving) << R"({"method": "direct", "width": 8, "height": 8,
+      "frames": [{"timings_ms": {"a": 1}}, {"timings_ms": "fast"}]})";
+  expectRefused(vgi("bench motion " + moving + " " + moving), {moving, "timings_ms"});
+  std::ofstream(moving)
+      << R"({"method": "direct", "width": 8, "height": 8, "frames": [{"timings_ms": {"a": 1}}, 5]})";
+  expectRefused(vgi("bench motion " + moving + " " + moving), {moving, "timings_ms"});
+  nlohmann::json job = good;
+  job["job"]["spp"] = "1";
+  std::ofstream(tmp("half_job.json")) << job.dump();
+  expectRefused(vgi("render --job " + tmp("half_job.json")), {tmp("half_job.json"), "'spp'", "\"1\""});
+}
+
+// Issue 63, class 2: the table scripts read vgi's own "undefined" (a metric with no value) and rows
+// that are missing as such — a cell "undefined" or "—", never a traceback.
+TEST(BadInputCli, TableScriptsReadUndefinedMetricsAndMissingRows) {
+  const std::string scripts = dataPath("../../scripts");
+  const std::string dir = tmp("undefined_tables");
+  std::filesystem::create_directories(dir + "/points/p1");
+  const nlohmann::json undefinedChannel = {{"relmse", "undefined"},          {"relmse_relative", "undefined"},
+                                           {"rel_mae", "undefined"},         {"ssim", 1.0},
+                                           {"energy", "undefined"},          {"leak", "undefined"},
+                                           {"temporal_error", "undefined"},  {"change", "undefined"},
+                                           {"change_reference", "undefined"}};
+  auto row = [&](const std::string& label, const std::string& scene, const std::string& method) {
+    return nlohmann::json{{"label", label},
+                          {"scene", scene},
+                          {"method", method},
+                          {"role", "point"},
+                          {"point", "p1"},
+                          {"params", {{"voxels", 128}}},
+                          {"spp", 1},
+                          {"time_ms", 5.0},
+                          {"sample_ms", 4.0},
+                          {"setup_ms", 1.0},
+                          {"git_revision", "abc"},
+                          {"machine", "m"},
+                          {"gl_renderer", "llvmpipe"},
+                          {"image", undefinedChannel},
+                          {"indirect", undefinedChannel}};
+  };
+  auto run = [&](const std::string& experiment, const nlohmann::json& rows, const std::string& script) {
+    std::ofstream(dir + "/results.json")
+        << nlohmann::json{{"experiment", experiment}, {"size", {8, 8}}, {"spp", 1}, {"rows", rows}}.dump();
+    const CliRun r = test::shell("cd " + scripts + "/.. && python3 scripts/" + script + " " + dir);
+    EXPECT_EQ(r.code, 0) << script << "\n" << r.output;
+    EXPECT_EQ(r.output.find("Traceback"), std::string::npos) << script << "\n" << r.output;
+    EXPECT_NE(r.output.find("undefined"), std::string::npos) << script << "\n" << r.output;
+    return r;
+  };
+  const std::string bunny = "scenes/cornell-bunny.json", walk = "scenes/sibenik-walk.json";
+  // Two labels, and the second without a Sibenik walk row (a missing row): "—".
+  const nlohmann::json rows = {row("vct before", bunny, "vct"), row("vct before", walk, "vct"),
+                               row("exact, seed 2", bunny, "reference"), row("vct after", bunny, "vct")};
+  run("artefacts-remedies", rows, "artefacts_remedies_tables.py");
+  const CliRun t = run("artefacts", rows, "artefacts_tables.py");
+  EXPECT_NE(t.output.find("—"), std::string::npos) << t.output;
+  std::ofstream(dir + "/points/p1/render.json")
+      << R"({"timings_ms": {"svo_build": "undefined"}, "extra": {}})";
+  run("svo", {row("vct dense", bunny, "vct"), row("vct svo", bunny, "vct")}, "svo_tables.py");
+  std::ofstream(dir + "/points/p1/render.json") << "[1, 2";
+  const CliRun torn = test::shell("cd " + scripts + "/.. && python3 scripts/svo_tables.py " + dir);
+  EXPECT_EQ(torn.code, 2) << torn.output;
+  EXPECT_NE(torn.output.find("render.json"), std::string::npos) << torn.output;
+  EXPECT_EQ(torn.output.find("Traceback"), std::string::npos) << torn.output;
+}
+
+// Issue 63, class 3: a light and a camera on keys at the ends of float's range, rendered between them:
+// the light stands where the keys put it (the interpolation overflowed to inf / inf: a black image).
+TEST(BadInputCli, KeysAtTheEndsOfFloatsRangeGiveTheLitImage) {
+  const std::string stem = tmp("extreme_keys");
+  const CliRun r = vgi("render --scene '" + dataPath("bad/extreme_key_times.json") +
+                       "' --time 1e38 --size 16x16 --spp 1 --quiet -o " + stem + ".exr");
+  expectRendered(r, stem);
+  const nlohmann::json s = nlohmann::json::parse(std::ifstream(stem + ".json"));
+  ASSERT_TRUE(s["lights"][0]["position"][0].is_number()) << s["lights"].dump();
+  EXPECT_NEAR(s["lights"][0]["position"][0].get<double>(), 0.2 + 0.2 * 2.0 / 3.0, 1e-6);
+  EXPECT_NEAR(s["camera"]["position"][2].get<double>(), -0.8 + 0.1 * 2.0 / 3.0, 1e-6);
+  EXPECT_GT(test::meanOf(readImage(stem + ".exr")), 1e-3);  // lit
+}
+
+// Issue 63, class 4: vgi's environment variables. A value it cannot use is refused naming the variable
+// and the value (VGI_CACHE_LIMIT_MB=0 and =2GB rendered with the default 2 GiB, without a word), or, where
+// the run can go on, warned about once.
+TEST(BadInputCli, EnvironmentVariablesAreRefusedOrWarnedAboutByName) {
+  const std::string vgiPath = VGI_BINARY, out = " --size 8x8 --spp 1 --quiet -o " + tmp("env.exr");
+  for (const char* v : {"0", "2GB", "-1", "", "1e3", " 5", "99999999999999999999"})
+    expectRefused(test::shell("VGI_CACHE_LIMIT_MB='" + std::string(v) + "' " + vgiPath + " render" + out),
+                  {"VGI_CACHE_LIMIT_MB", "'" + std::string(v) + "'"});
+  EXPECT_EQ(test::shell("VGI_CACHE_LIMIT_MB=64 " + vgiPath + " render" + out).code, 0);
+  expectRefused(test::shell("VGI_SHADER_DIR=" + tmp("") + " " + vgiPath + " render" + out),
+                {"VGI_SHADER_DIR", tmp("")});
+  expectRefused(test::shell("VGI_SHADER_DIR= " + vgiPath + " --version"), {"VGI_SHADER_DIR", "''"});
+  // A cache folder that cannot be made: the render goes on, warned once, and is the cache-off image.
+  const std::string blocker = tmp("env_cache_blocker");
+  std::filesystem::remove_all(blocker);
+  std::ofstream(blocker) << "a file";
+  const CliRun cached =
+      test::shell("VGI_CACHE_DIR=" + blocker + " " + vgiPath + " render --method voxelpath" + out);
+  EXPECT_EQ(cached.code, 0) << cached.output;
+  const size_t warned = cached.output.find("vgi: warning: the set-up cache folder '" + blocker + "'");
+  EXPECT_NE(warned, std::string::npos) << cached.output;
+  EXPECT_EQ(cached.output.find("vgi: warning: the set-up cache", warned + 1), std::string::npos)
+      << cached.output;
+  expectRefused(test::shell("VK_ICD_FILENAMES=/no/such/icd.json " + vgiPath + " render --gl zink" + out),
+                {"VK_ICD_FILENAMES", "/no/such/icd.json"});
+  // The scripts' own: gpu_bench.sh's VGI_SCENES.
+  const CliRun scenes = test::shell("cd " + dataPath("../..") +
+                                    " && VGI_SCENES=/no/such/scenes bash scripts/gpu_bench.sh --vgi " +
+                                    vgiPath + " " + tmp("env_gpu_bench"));
+  EXPECT_EQ(scenes.code, 2) << scenes.output;
+  EXPECT_NE(scenes.output.find("VGI_SCENES '/no/such/scenes'"), std::string::npos) << scenes.output;
+}
+
+// Issue 63, class 5: an option's empty value. CLI11 read "--help-module=" as the option without a
+// value and took the next argument for it (the message was about 16x16), and "--help-module ''" as
+// not given (a render ran); each is refused naming the option.
+TEST(BadInputCli, EmptyOptionValuesAreRefusedNamingTheOption) {
+  for (const std::string& args :
+       {std::string("render --help-module= --size 16x16"),
+        std::string("render --help-module '' --size 16x16"), std::string("render --method= -o x.exr"),
+        std::string("render --spp= -o x.exr"), std::string("render --scene '' -o x.exr"),
+        std::string("render -o ''"), std::string("voxelize --voxelizer= --voxels 128"),
+        std::string("bench traverse --tracers="), std::string("compare --reference= --spp 1"),
+        std::string("view --script=")}) {
+    const std::string option =
+        args.substr(args.find(" -") + 1, args.find_first_of("= ", args.find(" -") + 1) - args.find(" -") - 1);
+    expectRefused(vgi(args), {option + " was given an empty value"});
+  }
+  expectRefused(vgi("diff '' b.exr"), {"empty argument"});
+  expectRefused(vgi("sweep '' -o " + tmp("empty_sweep")), {"empty argument"});
+  // A flag's '=' is CLI11's business; a value that is not empty is what it was.
+  EXPECT_EQ(vgi("render --method=direct --size 8x8 --spp 1 --quiet -o " + tmp("eq.exr")).code, 0);
+}
+
 }  // namespace vgi

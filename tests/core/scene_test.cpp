@@ -248,4 +248,31 @@ TEST(Scene, BadCameraPathsAndCutAwaysAreNamed) {
       {"bad_keys.json", "camera.keyframes", "non-empty"});
 }
 
+// Issue 63, class 3: keys at the ends of float's range. (t − a) / (b − a) in float is inf / inf there,
+// and the NaN placed the light nowhere (a black image, exit 0); the fraction is computed in double.
+TEST(Scene, KeysAtTheEndsOfFloatsRangeInterpolateFinitely) {
+  EXPECT_FLOAT_EQ(keyFraction(1e38f, -3e38f, 3e38f), 2.0f / 3.0f);
+  EXPECT_EQ(keyFraction(3.4e38f, -3.4e38f, 3.4e38f), 1.0f);
+  EXPECT_EQ(keyFraction(-3.4e38f, -3.4e38f, 3.4e38f), 0.0f);
+  EXPECT_EQ(keyFraction(5.0f, 1.0f, 1.0f), 0.0f);  // one instant: the first key
+  EXPECT_EQ(keyFraction(-1e30f, 0.0f, 1e-30f), 0.0f);
+  Scene s = loadScene(cornellWithLights("light_extreme_keys", R"([
+      {"type": "point", "position": [0, 1, 0], "intensity": 1, "keyframes": [
+        {"time": -3e38, "position": [0, 1, 0]}, {"time": 3e38, "position": [0.6, 1, 0]}]}])"));
+  s.placeLightsAt(1e38f);
+  EXPECT_NEAR(s.lights[0].position.x, 0.4f, 1e-6f);
+  const Scene c =
+      loadScene(cornellWithCamera("camera_extreme_keys", R"({"position": [0, 0, 1], "target": [0, 0, 0],
+      "keyframes": [{"time": -3e38, "position": [0, 0, 1]}, {"time": 3e38, "position": [0, 0, 4]}]})"));
+  EXPECT_NEAR(c.cameraAt(1e38f).position.z, 3.0f, 1e-6f);
+  Mesh m;
+  m.dynamic = true;
+  Keyframe a, b;
+  a.time = -3e38f;
+  b.time = 3e38f;
+  b.translation = glm::vec3(6, 0, 0);
+  m.keyframes = {a, b};
+  EXPECT_NEAR(m.objectToWorld(1e38f)[3].x, 4.0f, 1e-5f);
+}
+
 }  // namespace vgi

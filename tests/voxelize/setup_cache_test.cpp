@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/cli_util.h"
+#include "core/error.h"
 #include "core/image.h"
 #include "test_util.h"
 
@@ -85,9 +86,10 @@ TEST(SetupCache, TheFolderIsTrimmedOldestFirst) {
   EXPECT_EQ(trimSetupCache(dir, 3 * entry), 0u);
   setenv("VGI_CACHE_LIMIT_MB", "5", 1);
   EXPECT_EQ(setupCacheLimit(), 5ull << 20);
-  setenv("VGI_CACHE_LIMIT_MB", "lots", 1);
-  EXPECT_EQ(setupCacheLimit(), 2ull << 30);
+  setenv("VGI_CACHE_LIMIT_MB", "lots", 1);  // refused, not read as the default (issue 63)
+  EXPECT_THROW(setupCacheLimit(), Error);
   unsetenv("VGI_CACHE_LIMIT_MB");
+  EXPECT_EQ(setupCacheLimit(), 2ull << 30);
 }
 
 TEST(SetupCache, FilesDigestFollowsNamesAndBytes) {
