@@ -98,8 +98,9 @@ TEST(MeshSimplify, ASphereStaysWithinTheToleranceBothWays) {
   EXPECT_EQ(far, 0) << "original vertices farther than the tolerance from the simplified sphere";
 }
 
-// A flat open sheet of 50 × 50 quads: its outline is locked, so the bounding
-// box, every boundary vertex and the area stay; the interior collapses.
+// A flat open sheet of 50 × 50 quads simplified to 8 triangles: its outline stays where it was —
+// the four corners kept, every vertex left on the outline still on it, the area whole — while the
+// interior collapses and then (the outline pass) the straight edges' inner vertices go.
 TEST(MeshSimplify, AnOpenSheetKeepsItsOutline) {
   std::vector<glm::vec3> pos;
   std::vector<glm::uvec3> tri;
@@ -114,15 +115,13 @@ TEST(MeshSimplify, AnOpenSheetKeepsItsOutline) {
     }
   const SimplifiedMesh s = simplifyMesh(pos, tri, 8, 1e-3f, nearSurfaceByEmbree()(pos, tri, 1e-3f));
   EXPECT_TRUE(s.simplified);
-  EXPECT_LT(s.triangles.size(), tri.size() / 4);
+  EXPECT_LE(s.triangles.size(), 8u);  // the budget holds: the outline's 196 inner vertices went too
   EXPECT_NEAR(area(s.positions, s.triangles), 1.0, 1e-5);
-  int boundaryKept = 0, boundary = 0;
-  for (const glm::vec3& p : pos) {
-    if (p.x > 0 && p.x < 1 && p.z > 0 && p.z < 1) continue;
-    ++boundary;
-    boundaryKept += std::count(s.positions.begin(), s.positions.end(), p) == 1;
-  }
-  EXPECT_EQ(boundaryKept, boundary);
+  for (const glm::vec3& corner :
+       {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 0, 1), glm::vec3(1, 0, 1)})
+    EXPECT_EQ(std::count(s.positions.begin(), s.positions.end(), corner), 1) << corner.x << " " << corner.z;
+  for (const glm::vec3& p : s.positions)
+    EXPECT_TRUE(p.x == 0 || p.x == 1 || p.z == 0 || p.z == 1) << p.x << " " << p.z;
   for (const glm::vec3& p : s.positions) EXPECT_EQ(p.y, 0.0f);
 }
 
@@ -199,16 +198,18 @@ TEST(Occluders, DynamicMeshesMoveWithTheScene) {
 // of surface points that see each other in the scene — the first lifted off
 // its surface as avg lifts its VPLs (0.015 × diagonal, one AVG cell at 64³) —
 // are tested through the simplified scene with the gather's bias (the
-// tolerance over the receiver's cosine, ≥ 0.2). Measured: 1.7 % of them
-// blocked; with ModHausdorff alone (no test of the new faces against the
-// original surface) 23 %, which is why the two-sided test is there.
+// tolerance over the receiver's cosine, ≥ 0.2). Measured: 1.8 % of them
+// blocked (1.7 % with every outline locked); with ModHausdorff alone (no test
+// of the new faces against the original surface) 47 %, which is why the
+// two-sided test is there. Pairs the scene hides: 12.8 % seen through the
+// simplified scene, 10.9 % through the scene itself with the same slack.
 TEST(MeshSimplify, SibenikPairsThatSeeEachOtherStillDo) {
   if (test::sharedScene("sibenik/sibenik.obj").empty()) GTEST_SKIP() << "../shared/scenes not present";
   const Scene scene = loadScene(std::string(VGI_TEST_DATA) + "/../../scenes/sibenik.json");
   const float diag = scene.bounds().diagonal(), tolerance = 0.002f * diag;
   const FlatScene orig = flatten(scene);
   const EmbreeTracer exact(orig);
-  auto blockedFraction = [&](const std::vector<SimplifiedMesh>& s, size_t& triangles) {
+  auto blockedFraction = [&](const std::vector<SimplifiedMesh>& s, size_t& triangles, double& leaked) {
     triangles = 0;
     for (const SimplifiedMesh& m : s) triangles += m.triangles.size();
     const EmbreeTracer simplified(flatOf(s, scene));
@@ -225,7 +226,7 @@ TEST(MeshSimplify, SibenikPairsThatSeeEachOtherStillDo) {
       n = glm::length(c) > 0 ? glm::normalize(c) : glm::vec3(0.0f);
     };
     const float eps = 1e-4f * diag, lift = 0.015f * diag;
-    int visible = 0, blocked = 0;
+    int visible = 0, blocked = 0, hidden = 0, seenThrough = 0;
     for (int i = 0; i < 60000; ++i) {
       glm::vec3 p0, n, q, m;
       surfacePoint(p0, n);
@@ -237,23 +238,42 @@ TEST(MeshSimplify, SibenikPairsThatSeeEachOtherStillDo) {
       d /= len;
       if (!(glm::dot(d, n) > 0) || !(glm::dot(-d, m) > 0)) continue;  // the surfaces' front sides face
       if (exact.occluded(p0, n, eps, lift)) continue;                 // lifted into something
-      if (exact.occluded(p, d, eps, len - eps)) continue;
-      ++visible;
       const float bias =
           shared::vplShadowSlack(0.0f, 0.0f, len, tolerance, glm::dot(-d, m)) + eps;  // the gather's
+      if (exact.occluded(p, d, eps, len - eps)) {  // hidden: does the simplified scene let it through?
+        ++hidden;
+        seenThrough += !simplified.occluded(p, d, eps, len - bias);
+        continue;
+      }
+      ++visible;
       blocked += simplified.occluded(p, d, eps, len - bias);
     }
     EXPECT_GT(visible, 2000);
+    EXPECT_GT(hidden, 2000);
+    leaked = double(seenThrough) / double(hidden);
     return double(blocked) / double(visible);
   };
   size_t twoSided = 0, oneSided = 0;
-  const double withTest =
-      blockedFraction(simplifySceneMeshes(scene, 8192, tolerance, nearSurfaceByEmbree()), twoSided);
-  const double without = blockedFraction(simplifySceneMeshes(scene, 8192, tolerance, {}), oneSided);
-  std::printf("Sibenik %zu triangles: two-sided %zu (%.4f of visible pairs blocked), one-sided %zu (%.4f)\n",
-              scene.triangleCount(), twoSided, withTest, oneSided, without);
-  EXPECT_LT(twoSided, scene.triangleCount() / 2);
+  double leakTwoSided = 0, leakOneSided = 0;
+  const double withTest = blockedFraction(simplifySceneMeshes(scene, 8192, tolerance, nearSurfaceByEmbree()),
+                                          twoSided, leakTwoSided);
+  const double without =
+      blockedFraction(simplifySceneMeshes(scene, 8192, tolerance, {}), oneSided, leakOneSided);
+  // The same test through the scene itself: what the gather's slack alone lets through.
+  size_t all = 0;
+  double leakScene = 0;
+  blockedFraction(simplifySceneMeshes(scene, scene.triangleCount(), tolerance, {}), all, leakScene);
+  std::printf("the scene itself: %.4f of hidden pairs seen\n", leakScene);
+  std::printf(
+      "Sibenik %zu triangles: two-sided %zu (%.4f of visible pairs blocked, %.4f of hidden ones seen), "
+      "one-sided %zu (%.4f, %.4f)\n",
+      scene.triangleCount(), twoSided, withTest, leakTwoSided, oneSided, without, leakOneSided);
+  EXPECT_LT(twoSided, scene.triangleCount() / 3);
   EXPECT_LT(withTest, 0.03);
+  // The outlines may move by the tolerance, no more: measured 0.1283 of the hidden pairs seen through
+  // the simplified scene against 0.1087 through the scene itself with the gather's slack (0.1228 with
+  // every outline locked, at 27 904 triangles instead of 22 461).
+  EXPECT_LT(leakTwoSided, leakScene + 0.03);
   EXPECT_GT(without, 5 * withTest) << "the test of the new faces is what keeps the pairs visible";
 }
 
