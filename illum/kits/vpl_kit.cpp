@@ -40,7 +40,6 @@ void checkVplMemory(const VplSettings& s) {
 }
 
 glm::uvec2 vplRotation(int k, uint32_t seed) {
-  if (k == 0) return glm::uvec2(0u);
   const uint32_t h = shared::pcgHash(uint32_t(k) ^ shared::pcgHash(seed));
   return glm::uvec2(h, shared::pcgHash(h));
 }

@@ -729,6 +729,7 @@ TEST(BadInputCli, MeasurementScriptsCheckTheirArgumentsAndPassOnVgisReason) {
   refused(py + "svo_tables.py /no/such/dir", {"/no/such/dir", "does not exist"});
   refused(py + "sweep_report.py " + empty, {empty, "results.json"});
   refused(py + "make_leak_walls.py extra", {"usage", "extra"});
+  refused(py + "make_atrium.py extra", {"usage", "extra"});
   {  // results of another experiment
     std::ofstream(empty + "/results.json") << R"({"experiment": "other", "rows": [{"role": "point"}]})";
     refused(py + "svo_tables.py " + empty, {"'other'", "svo.json"});

@@ -228,16 +228,21 @@ TEST(Vpl, ADirectionalLightsVplsCarryItsReflectedFlux) {
 
 // 1024 chains in one subset: 1024 per pixel, far past llvmpipe's 65535 loop
 // iterations per invocation if the gather ran in one dispatch (it dropped
-// ~60 % of them); batched, the indirect light equals 64 samples of 16 chains.
+// ~60 % of them); batched, the indirect light equals that of 16 chains at the
+// same samples (the same camera jitters: one sample against 64 differed by 4 %
+// at this gather size, whatever the chains), eight seeds' mean (each within about 2 %).
 TEST(Vpl, ManyChainsPerPixelAreAllGathered) {
-  auto run = [&](int n, int spp) {
-    return indirectMean(test::render(
+  auto run = [&](int n, uint32_t seed) {
+    RenderOptions o = test::options(
         "builtin:cornell", "vpl",
         {"vpls=" + std::to_string(n), "interleave=1", "tracer=dda", "shadow_res=256", "resolution=0.25"}, 32,
-        spp, {"indirect"}));
+        16, {"indirect"});
+    o.seed = seed;
+    return indirectMean(runRender(o));
   };
-  const double all = run(1024, 1), few = run(16, 64);
-  EXPECT_NEAR(all / few, 1.0, 0.03);
+  double few = 0;
+  for (uint32_t seed = 1; seed <= 8; ++seed) few += run(16, seed) / 8.0;
+  EXPECT_NEAR(run(1024, 1) / few, 1.0, 0.03);
 }
 
 }  // namespace vgi
