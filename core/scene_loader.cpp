@@ -3,6 +3,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <filesystem>
@@ -615,6 +616,22 @@ struct AssimpReader {
     }
   }
 
+  // assimp's default material stands for the faces that name none; where every face names one
+  // (Sibenik's OBJ, a glTF with materials) nothing uses it, and it is not kept (`vgi info` listed a
+  // material more than the model has, issue 64).
+  void dropUnusedDefault() {
+    const std::string name = fs::path(path).stem().string() + "_default";
+    for (int i = int(scene.materials.size()) - 1; i >= materialBase; --i) {
+      if (scene.materials[size_t(i)].name != name) continue;
+      if (std::any_of(scene.meshes.begin(), scene.meshes.end(),
+                      [&](const Mesh& m) { return m.material == i; }))
+        continue;
+      scene.materials.erase(scene.materials.begin() + i);
+      for (Mesh& m : scene.meshes)
+        if (m.material > i) --m.material;
+    }
+  }
+
   void node(const aiNode* n, const glm::mat4& parent) {
     glm::mat4 local = glm::transpose(glm::make_mat4(&n->mTransformation.a1));
     glm::mat4 M = parent * local;
@@ -782,6 +799,7 @@ size_t appendModelFile(const std::string& path, Scene& scene) {
   AssimpReader r{ai, path, fs::path(path).parent_path(), scene, int(scene.materials.size()), {}, 0};
   r.materials();
   if (ai->mRootNode) r.node(ai->mRootNode, glm::mat4(1.0f));
+  r.dropUnusedDefault();
   if (r.appended == 0) fail("model '", path, "' has no (non-degenerate) triangles");
   return r.appended;
 }

@@ -53,6 +53,18 @@ TEST(Scene, GltfLoadsWithNodeTransformAndBaseColour) {
   ASSERT_EQ(s.triangleCount(), 1u);
   EXPECT_NEAR(s.bounds().lo.z, 2.0f, 1e-6f);  // node translation applied
   EXPECT_NEAR(s.materials[size_t(s.meshes[0].material)].albedo.x, 0.8f, 1e-6f);
+  // Its one material and no other: assimp's default stood beside it, unused (issue 64).
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].name, "red");
+}
+
+// A bare OBJ (no MTL): its faces use the default material, which is kept.
+TEST(Scene, AModelWithoutMaterialsKeepsTheDefault) {
+  const std::string path = testing::TempDir() + "/bare.obj";
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const Scene s = loadScene(path);
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[size_t(s.meshes[0].material)].name, "bare_default");
 }
 
 TEST(Scene, JsonSceneWithDynamicMeshAndPresets) {
