@@ -12,6 +12,9 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "apps/commands.h"
 #include "core/build_info.h"
@@ -50,36 +53,6 @@ std::string closest(const std::string& word, const std::vector<std::string>& kno
   return best;
 }
 
-// The word a parse error is about, and the closest known option or command.
-std::string suggestion(CLI::App& app, int argc, char** argv) {
-  std::vector<std::string> commands;
-  CLI::App* sub = nullptr;
-  for (CLI::App* s : app.get_subcommands([](CLI::App*) { return true; })) {
-    commands.push_back(s->get_name());
-    if (argc > 1 && s->get_name() == argv[1]) sub = s;
-  }
-  if (!sub) {
-    if (argc < 2) return "";
-    std::string c = closest(argv[1], commands);
-    return c.empty() ? "" : " (did you mean 'vgi " + c + "'?)";
-  }
-  std::vector<std::string> options;
-  for (const CLI::Option* o : sub->get_options()) {
-    for (auto& l : o->get_lnames()) options.push_back("--" + l);
-    for (auto& s : o->get_snames()) options.push_back("-" + s);
-  }
-  for (int i = 2; i < argc; ++i) {
-    std::string w = argv[i];
-    if (w.size() < 2 || w[0] != '-') continue;
-    w = w.substr(0, w.find('='));
-    if (std::find(options.begin(), options.end(), w) != options.end()) continue;
-    std::string c = closest(w, options);
-    return " ('" + w + "' is not an option of 'vgi " + sub->get_name() + "'" +
-           (c.empty() ? "" : "; did you mean '" + c + "'?") + " see vgi " + sub->get_name() + " --help)";
-  }
-  return "";
-}
-
 // The subcommand argv names (`vgi bench motion`: motion), and the index of its first argument.
 CLI::App* commandOf(CLI::App& app, int argc, char** argv, int& first) {
   CLI::App* cmd = &app;
@@ -95,6 +68,49 @@ CLI::App* commandOf(CLI::App& app, int argc, char** argv, int& first) {
   return cmd;
 }
 
+// The words that name it: "render", "bench motion".
+std::string commandName(char** argv, int first) {
+  std::string name;
+  for (int i = 1; i < first; ++i) name += (i > 1 ? " " : "") + std::string(argv[i]);
+  return name;
+}
+
+// Every spelling of every option of `cmd` ("--scene", "-o"), with its option.
+std::vector<std::pair<std::string, const CLI::Option*>> optionWords(const CLI::App* cmd) {
+  std::vector<std::pair<std::string, const CLI::Option*>> words;
+  for (const CLI::Option* o : cmd->get_options()) {
+    for (auto& l : o->get_lnames()) words.emplace_back("--" + l, o);
+    for (auto& n : o->get_snames()) words.emplace_back("-" + n, o);
+  }
+  return words;
+}
+
+// The word a parse error is about, and the closest known option or command.
+std::string suggestion(CLI::App& app, int argc, char** argv) {
+  int first = 1;
+  CLI::App* sub = commandOf(app, argc, argv, first);
+  if (sub == &app) {
+    if (argc < 2) return "";
+    std::vector<std::string> commands;
+    for (CLI::App* s : app.get_subcommands([](CLI::App*) { return true; })) commands.push_back(s->get_name());
+    std::string c = closest(argv[1], commands);
+    return c.empty() ? "" : " (did you mean 'vgi " + c + "'?)";
+  }
+  const std::string name = commandName(argv, first);
+  std::vector<std::string> options;
+  for (auto& [word, o] : optionWords(sub)) options.push_back(word);
+  for (int i = first; i < argc; ++i) {
+    std::string w = argv[i];
+    if (w.size() < 2 || w[0] != '-') continue;
+    w = w.substr(0, w.find('='));
+    if (std::find(options.begin(), options.end(), w) != options.end()) continue;
+    std::string c = closest(w, options);
+    return " ('" + w + "' is not an option of 'vgi " + name + "'" +
+           (c.empty() ? "" : "; did you mean '" + c + "'?") + " see vgi " + name + " --help)";
+  }
+  return "";
+}
+
 // An empty value ("--help-module=", "--scene ''", an empty positional argument). CLI11 reads
 // "--opt=" as the option without a value and takes the next argument for it ("--spp= -o x.exr" became
 // "--spp = -o"; "--help-module= --size 16x16" complained about 16x16), and "--opt ''" as not given: no
@@ -103,27 +119,20 @@ std::string emptyValue(CLI::App& app, int argc, char** argv) {
   int first = 1;
   CLI::App* cmd = commandOf(app, argc, argv, first);
   if (cmd == &app) return "";
-  auto option = [&](const std::string& word) -> const CLI::Option* {
-    for (const CLI::Option* o : cmd->get_options()) {
-      for (auto& l : o->get_lnames())
-        if (word == "--" + l) return o;
-      for (auto& n : o->get_snames())
-        if (word == "-" + n) return o;
-    }
-    return nullptr;
-  };
+  const std::string see = " (see vgi " + commandName(argv, first) + " --help)";
+  const auto words = optionWords(cmd);
   for (int i = first; i < argc; ++i) {
     const std::string w = argv[i];
     if (w == "--") break;
-    if (w.empty()) return "an empty argument (argument " + std::to_string(i) + " of the command line)";
+    if (w.empty()) return "an empty argument (argument " + std::to_string(i) + " of the command line)" + see;
     if (w[0] != '-') continue;
     const size_t eq = w.find('=');
-    const CLI::Option* o = option(w.substr(0, eq));
-    if (!o || o->get_type_size_max() == 0) continue;  // not an option, or a flag
     const std::string name = w.substr(0, eq);
-    if (eq != std::string::npos && eq + 1 == w.size()) return name + " was given an empty value";
+    const auto it = std::find_if(words.begin(), words.end(), [&](const auto& p) { return p.first == name; });
+    if (it == words.end() || it->second->get_type_size_max() == 0) continue;  // not an option, or a flag
+    if (eq != std::string::npos && eq + 1 == w.size()) return name + " was given an empty value" + see;
     if (eq == std::string::npos && i + 1 < argc && argv[i + 1][0] == 0)
-      return name + " was given an empty value";
+      return name + " was given an empty value" + see;
     if (eq == std::string::npos) ++i;  // its value
   }
   return "";
@@ -147,7 +156,7 @@ int main(int argc, char** argv) {
   vgi::app::addVoxelizeCommand(app);
   vgi::app::addBenchCommand(app);
   if (const std::string empty = emptyValue(app, argc, argv); !empty.empty()) {
-    std::fprintf(stderr, "vgi: error: %s (see vgi %s --help)\n", empty.c_str(), argc > 1 ? argv[1] : "");
+    std::fprintf(stderr, "vgi: error: %s\n", empty.c_str());
     return 2;
   }
   try {

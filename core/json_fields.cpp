@@ -27,10 +27,6 @@ void JsonFields::bad(const std::string& key, const std::string& what) const {
   fail(origin_, ": '", key, "' = ", has(key) ? jsonExcerpt(j_[key]) : std::string("(missing)"), " ", what);
 }
 
-void JsonFields::require(const std::string& key) const {
-  if (!has(key)) fail(origin_, ": '", key, "' is missing");
-}
-
 std::string JsonFields::text(const std::string& key, const std::string& def) const {
   if (!has(key)) return def;
   if (!j_[key].is_string()) bad(key, "must be a string");

@@ -2,7 +2,7 @@
 // benchmark — each checked as it is read: a value of the wrong type or outside its range is a
 // vgi::Error naming the origin, the key and what was found ("job 'a.json': 'spp' = \"1\" must be an
 // integer in [1, 1048576]"), never nlohmann's type_error (an internal error, exit 3). A key that is
-// absent (or null) gives the default; `required` reads refuse it.
+// absent (or null) gives the default.
 #pragma once
 #include <nlohmann/json.hpp>
 #include <string>
@@ -17,7 +17,6 @@ class JsonFields {
   JsonFields(const nlohmann::json& j, std::string origin);
 
   bool has(const std::string& key) const { return j_.contains(key) && !j_[key].is_null(); }
-  const nlohmann::json& json() const { return j_; }
   const std::string& origin() const { return origin_; }
 
   std::string text(const std::string& key, const std::string& def) const;
@@ -33,7 +32,6 @@ class JsonFields {
   // The object at `key` as fields of their own, named "ORIGIN key".
   JsonFields fields(const std::string& key) const;
 
-  void require(const std::string& key) const;  // refused where absent or null
   [[noreturn]] void bad(const std::string& key, const std::string& what) const;
 
  private:

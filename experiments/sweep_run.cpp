@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "core/error.h"
 #include "core/json_fields.h"
@@ -27,14 +26,10 @@ namespace sweep_detail {
 std::string stemOfRender(const SweepRender& r) { return fs::path(r.stem).replace_extension("").string(); }
 
 nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return nullptr;
-  std::stringstream text;
-  text << in.rdbuf();
   try {
-    return parseJsonText(text.str(), path);
+    return readJsonFile(path, "stats");
   } catch (const Error&) {
-    return nullptr;  // a render killed while writing it
+    return nullptr;  // not there yet, or a render killed while writing it
   }
 }
 

@@ -29,6 +29,12 @@ def fmt(x, digits=4):
     return sa.fmt(x, f".{digits}f")
 
 
+def mib(b):
+    """Bytes as MiB, or "undefined" / "—" as fmt has it."""
+    v = sa.number(b)
+    return sa.fmt(b if v is None else v / 2**20, ".1f")
+
+
 def main(out):
     res = sa.sweep_results("DIR", out, "svo")
     rows = [r for r in res["rows"] if r.get("role") == "point"]
@@ -70,7 +76,6 @@ def main(out):
             t = s.get("timings_ms", {})
             spp = max(sa.number(s.get("spp_completed", s.get("spp", 1))) or 1, 1)
             ms = {k: sum(sa.number(t.get(n, 0.0)) or 0.0 for n in names) for k, names in PASSES.items()}
-            mib = lambda b: sa.fmt(sa.number(b) / 2**20 if sa.number(b) is not None else b, ".1f")
             print(f"| {r['label']} | {v}³ | {fmt(err)} | {fmt(ratio, 3)} | "
                   f"{mib(vol.get('bytes', 0))} | {mib((s.get('memory') or {}).get('peak_rss_bytes'))} | "
                   f"{vol.get('nodes', '—')} | {ms['build']:.0f} | {ms['inject']:.0f} | {ms['filter']:.0f} | "

@@ -79,27 +79,23 @@ bool readSetupCache(const std::string& dir, const std::string& kind, uint64_t ke
 bool writeSetupCache(const std::string& dir, const std::string& kind, uint64_t key, const void* payload,
                      size_t bytes) {
   if (dir.empty()) return false;
+  // A folder that cannot be used costs only time, but the person is told (once).
+  auto unusable = [&](const std::string& why) {
+    printWarning("the set-up cache folder '" + dir + "' " + why +
+                 ": nothing is kept for the next render (VGI_CACHE_DIR moves it; empty turns it off)");
+    return false;
+  };
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (!fs::is_directory(dir, ec)) {
-    printWarning("the set-up cache folder '" + dir + "' cannot be made (" +
-                 (ec ? ec.message() : std::string("a file stands there")) +
-                 "): nothing is kept for the next render (VGI_CACHE_DIR moves it; empty turns it off)");
-    return false;
-  }
+  if (!fs::is_directory(dir, ec))
+    return unusable("cannot be made (" + (ec ? ec.message() : std::string("a file stands there")) + ")");
   const fs::path file = setupCacheFile(dir, kind, key);
   // A temporary of this process' own: two processes (parallel tests, two renders) building the same
   // entry must not write into one file, or one could rename the other's half-written file into place.
   fs::path tmp = file;
   tmp += "." + std::to_string(getpid()) + ".tmp";
   std::ofstream out(tmp, std::ios::binary);
-  if (!out) {
-    printWarning(
-        "the set-up cache folder '" + dir +
-        "' cannot be written: nothing is kept for the next render (VGI_CACHE_DIR moves it; empty turns "
-        "it off)");
-    return false;
-  }
+  if (!out) return unusable("cannot be written");
   const Header h = headerFor(kind, key, bytes, fnv1a(payload, bytes));
   out.write(reinterpret_cast<const char*>(&h), sizeof h);
   out.write(static_cast<const char*>(payload), std::streamsize(bytes));
