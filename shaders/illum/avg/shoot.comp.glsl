@@ -8,7 +8,7 @@
 // holds triangles (other than the one it starts in, and passing the cells of
 // the surface it starts on: march()). The VPL is pushed a
 // random distance (up to half a cell) further into that cell, takes the
-// cell's mean normal (turned to face the ray) and carries the ray's flux
+// cell's mean normal made to face the ray (shared/avg.glsl: avgVplNormal) and carries the ray's flux
 // times the cell's mean albedo (what it reflects). The next ray leaves it
 // cosine-distributed from a voxel diagonal along the normal; Russian roulette
 // on the mean reflectance after every VPL, up to uBounces VPLs per chain.
@@ -103,8 +103,7 @@ void main() {
       uint n = avgCells[base + 6u];
       vec3 nsum = avgMean(ivec3(int(avgCells[base]), int(avgCells[base + 1u]), int(avgCells[base + 2u])), n);
       vec3 albedo = avgMean(ivec3(uvec3(avgCells[base + 3u], avgCells[base + 4u], avgCells[base + 5u])), n);
-      vec3 normal = length(nsum) > 1e-3f ? normalize(nsum) : -d;
-      if (dot(normal, d) > 0.0f) normal = -normal;
+      vec3 normal = avgVplNormal(nsum, d);
       vec3 p = o + d * (t + rngNext(rng) * 0.5f * length(g.axisX.xyz) / g.axisX.w);
       Vpl vpl;
       vpl.position = vec4(p, 1.0f);
