@@ -49,6 +49,8 @@ Occluders::Occluders(const Scene& scene, size_t budget, float tolerance, float t
   stats_ = {{"scene_triangles", scene.triangleCount()},
             {"triangles", triangles_},
             {"budget", budget},
+            // Within 10 %: a mesh's share of the budget is rounded up, and a few triangles are kept whole.
+            {"budget_met", double(triangles_) <= 1.1 * double(budget)},
             {"tolerance", tolerance_},
             {"faces_split_off", splitOff},
             {"simplify_ms", ms}};

@@ -33,7 +33,8 @@ class Occluders {
   // The distance the drawn triangles may be from the scene's: the need's
   // tolerance where a mesh was simplified, else 0 (a shadow test's bias).
   float tolerance() const { return tolerance_; }
-  // triangles (scene, drawn), budget, tolerance, faces kept apart, the simplification's ms.
+  // triangles (scene, drawn), budget, budget_met (drawn within 10 % of the budget), tolerance,
+  // faces kept apart, the simplification's ms.
   nlohmann::json stats() const { return stats_; }
 
  private:

@@ -110,7 +110,7 @@ TEST(Avg, TracingTheGridAgreesWithTracingTheTriangles) {
   EXPECT_NEAR(double(placedGrid) / placedExact, 1.0, 0.05) << "first hits: the same rays leave the open box";
 }
 
-// Shadow maps (cube and paraboloid) against Embree occlusion rays from the
+// Shadow maps (hemicube, cube and paraboloid) against Embree occlusion rays from the
 // same VPLs (their end lifted as the maps' centres are).
 TEST(Avg, ShadowMapVisibilityAgreesWithExactVisibility) {
   auto run = [](const std::vector<std::string>& set) {
@@ -118,9 +118,12 @@ TEST(Avg, ShadowMapVisibilityAgreesWithExactVisibility) {
     s.push_back("shadow_res=256");
     return indirectMean(test::render("builtin:cornell", "avg", s, 48, 4, {"indirect"}));
   };
-  const double exact = run({"visibility=exact"}), cube = run({"shadow_map=cube"}),
-               para = run({"shadow_map=paraboloid"}), none = run({"visibility=none"});
-  std::printf("avg visibility: exact %.5f, cube %.5f, paraboloid %.5f, none %.5f\n", exact, cube, para, none);
+  const double exact = run({"visibility=exact"}), hemicube = run({"shadow_map=hemicube"}),
+               cube = run({"shadow_map=cube"}), para = run({"shadow_map=paraboloid"}),
+               none = run({"visibility=none"});
+  std::printf("avg visibility: exact %.5f, hemicube %.5f, cube %.5f, paraboloid %.5f, none %.5f\n", exact,
+              hemicube, cube, para, none);
+  EXPECT_NEAR(hemicube / exact, 1.0, 0.05);
   EXPECT_NEAR(cube / exact, 1.0, 0.05);
   EXPECT_NEAR(para / exact, 1.0, 0.07);  // the box's large triangles warp in paraboloids (measured 0.96)
   EXPECT_GT(none, 1.05 * exact) << "the blocks occlude some VPLs";
@@ -136,6 +139,7 @@ TEST(Avg, OccludersWithinTheBudgetAreTheScene) {
   EXPECT_EQ(occ.result.image.pixels, full.result.image.pixels);
   EXPECT_EQ(occ.stats["extra"]["vpl_shadow_triangles"]["triangles"], 30);
   EXPECT_EQ(occ.stats["extra"]["vpl_shadow_triangles"]["tolerance"], 0.0);
+  EXPECT_EQ(occ.stats["extra"]["vpl_shadow_triangles"]["budget_met"], true);
   EXPECT_NE(std::find(occ.stats["built"].begin(), occ.stats["built"].end(), "occluders"),
             occ.stats["built"].end());
   EXPECT_EQ(std::find(full.stats["built"].begin(), full.stats["built"].end(), "occluders"),
@@ -205,6 +209,15 @@ TEST(Avg, TheRimOfAnOpeningAgainstTheSkyHasNoHotSpot) {
     EXPECT_NEAR(maps.first / exact.first, 1.0, 0.03) << "seed " << seed;
     EXPECT_LT(maps.second, 1.5 * exact.second) << "seed " << seed;
   }
+}
+
+// A budget the meshes cannot meet (the box's meshes are below kKeptTriangles: a box stays a box) is
+// reported as not met — the render warns once, naming the parameter — and the maps draw what is left.
+TEST(Avg, AnOccluderBudgetNotMetIsReported) {
+  const RenderOutput r =
+      test::render("builtin:cornell", "avg", {"vpl_shadow_triangles=1"}, 32, 1, {"indirect"});
+  EXPECT_EQ(r.stats["extra"]["vpl_shadow_triangles"]["budget_met"], false);
+  EXPECT_EQ(r.stats["extra"]["vpl_shadow_triangles"]["triangles"], 30);
 }
 
 // Bad parameters are refused naming the key.

@@ -31,14 +31,17 @@ layout(binding = TEXUNIT_VPL_SHADOW) uniform sampler2D uVplShadow;
 bool shadowMapSees(Vpl v, uint slot, vec3 p, vec3 n) {
   vec3 w = p - vplShadowCentre(v);
   float dist = length(w);
-  int f = vplShadow.cube != 0 ? vplShadowFaceOf(w) : 0;
+  int f = vplShadowCubeFaces() ? vplShadowFaceOf(vplShadowFrame(v, w)) : 0;
+  // Behind a hemicube (a receiver within the lift of the VPL's plane, right under its centre) or a
+  // paraboloid: nothing was drawn there.
+  if (vplShadow.kind == VPL_MAP_HEMICUBE && f == 5) return true;
   vec4 c = vplShadowClip(v, f, w);
-  if (c.w <= 0.0f || (vplShadow.cube == 0 && c.z <= 0.0f)) return true;
+  if (c.w <= 0.0f || (vplShadow.kind == VPL_MAP_PARABOLOID && c.z <= 0.0f)) return true;
   vec2 uv = c.xy / c.w;
   ivec2 t = vplShadowFaceOrigin(slot, f) + clamp(ivec2(floor((uv * 0.5f + 0.5f) * float(vplShadow.res))), ivec2(0),
                                                  ivec2(vplShadow.res - 1));
   float stored = texelFetch(uVplShadow, t, 0).x * vplShadow.far;
-  float texel = (vplShadow.cube != 0 ? 2.0f : 2.0f * (1.0f + c.z)) / float(vplShadow.res);
+  float texel = (vplShadowCubeFaces() ? 2.0f : 2.0f * (1.0f + c.z)) / float(vplShadow.res);
   float cosine = abs(dot(n, w)) / max(dist, 1e-30f);
   return dist - vplShadowSlack(vplShadow.bias, texel, dist, vplShadow.tolerance, cosine) <= stored;
 }

@@ -13,6 +13,10 @@ SHARED_BEGIN
 const int VPL_VISIBILITY_NONE = 0;         // every VPL is seen
 const int VPL_VISIBILITY_VOXELS = 1;       // the two-point test through the voxel grid
 const int VPL_VISIBILITY_SHADOW_MAPS = 2;  // the VPL's shadow map in the atlas
+// A VPL shadow map's projection (VplShadowParams::kind; illum/vpl/vpl_shadow.glsl).
+const int VPL_MAP_PARABOLOID = 0;  // one paraboloid over the VPL's hemisphere
+const int VPL_MAP_CUBE = 1;        // six cube faces along the world axes
+const int VPL_MAP_HEMICUBE = 2;    // five cube faces in the VPL's frame: its hemisphere
 
 struct VplGatherParams {
   uint chains;         // N
@@ -26,7 +30,7 @@ struct VplGatherParams {
 };
 
 struct VplShadowParams {
-  int cube;          // 1 cube maps, 0 paraboloids
+  int kind;          // VPL_MAP_*
   int res;           // r: a face's side in texels
   int tilesPerRow;   // slots per row of the atlas
   float far;         // the stored distance's unit

@@ -7,7 +7,7 @@ layout(location = 0) in vec3 inPosition;
 layout(std430, binding = BINDING_VPLS) readonly buffer Vpls { Vpl vpls[]; };
 out vec3 vWorld;
 flat out vec3 vCentre;
-out float gl_ClipDistance[5];
+out float gl_ClipDistance[6];
 void main() {
   int faces = vplShadowFaces();
   uint s = uint(gl_InstanceID / faces);
@@ -24,6 +24,9 @@ void main() {
   gl_ClipDistance[1] = c.w - c.x;
   gl_ClipDistance[2] = c.w + c.y;
   gl_ClipDistance[3] = c.w - c.y;
-  gl_ClipDistance[4] = vplShadow.cube != 0 ? c.w - 1e-4f * vplShadow.far : c.z + 1e-3f;
+  gl_ClipDistance[4] = vplShadowCubeFaces() ? c.w - 1e-4f * vplShadow.far : c.z + 1e-3f;
+  // A hemicube keeps what lies over the VPL's plane (through the VPL, not the lifted centre): a
+  // receiver the VPL lights lies there, and so does whatever hides it from the centre.
+  gl_ClipDistance[5] = vplShadow.kind == VPL_MAP_HEMICUBE ? dot(inPosition - v.position.xyz, v.normal.xyz) : 1.0f;
   if (v.position.w == 0.0f) gl_ClipDistance[4] = -1.0f;
 }
