@@ -75,7 +75,7 @@ void addCompareCommand(CLI::App& app) {
                 c.choice.device == "gl" ? "GL device" : "CPU", c.choice.sameDevice ? "the same" : "another",
                 opt->scene.c_str(), opt->width, opt->height);
     if (!c.choice.note.empty()) std::printf("  note: %s\n", c.choice.note.c_str());
-    std::printf("  %-10s%s\n", "channel", diffHeader());
+    std::printf("  %-10s%s\n", "channel", diffHeader(diffOptions->flip != FlipMode::Off).c_str());
     std::vector<std::string> channels = {"image"};
     channels.insert(channels.end(), c.counterpart.aovs.begin(), c.counterpart.aovs.end());
     for (auto& name : channels) std::printf("  %-10s%s\n", name.c_str(), diffLine(c.errors.at(name)).c_str());

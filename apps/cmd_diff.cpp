@@ -27,6 +27,24 @@ void addDiffOptions(CLI::App* cmd, DiffOptions& d) {
                   "leak: a pixel is dark where the reference's r+g+b is at most this x its mean (0: exactly "
                   "dark); leak = A's light there / the reference's light elsewhere")
       ->capture_default_str();
+  auto* flip = cmd->add_option_function<std::string>(
+      "--flip",
+      [&d](const std::string& v) {
+        d.flip = v == "off"   ? FlipMode::Off
+                 : v == "ldr" ? FlipMode::Ldr
+                 : v == "hdr" ? FlipMode::Hdr
+                              : FlipMode::Auto;
+      },
+      "FLIP (core/flip.h): auto (HDR-FLIP and LDR-FLIP of linear images, LDR-FLIP of sRGB PNG/JPEG), ldr "
+      "(linear values clamped to [0,1]), hdr or off");
+  flip->check(CLI::IsMember({"auto", "ldr", "hdr", "off"}))->default_str("auto");
+  d.flip = FlipMode::Auto;
+  cmd->add_option("--flip-distance", d.viewing.distance, "FLIP's viewing distance, metres")
+      ->capture_default_str();
+  cmd->add_option("--flip-display-width", d.viewing.displayWidth, "FLIP's display width, metres")
+      ->capture_default_str();
+  cmd->add_option("--flip-display-pixels", d.viewing.displayPixels, "FLIP's display width, pixels")
+      ->capture_default_str();
 }
 
 namespace {
@@ -43,14 +61,16 @@ std::string num(const char* spec, double v) {
 }  // namespace
 
 std::string diffLine(const ImageDiff& d) {
-  return num("%12.6g", d.relMse) + " " + num("%12.5f", d.relMae) + " " + num("%9.4f", d.ssim) + "   " +
-         num("%.4f", d.relMaeRgb[0]) + " " + num("%.4f", d.relMaeRgb[1]) + " " + num("%.4f", d.relMaeRgb[2]) +
-         "   " + num("%.3f", d.energyRgb[0]) + " " + num("%.3f", d.energyRgb[1]) + " " +
-         num("%.3f", d.energyRgb[2]) + "   " + num("%9.3g", d.leak) + " (" + num("%.2f", d.darkFraction) +
-         ")";
+  const bool flip = d.hasFlipHdr || d.hasFlipLdr;
+  return (flip ? num("%7.4f", d.flipMean()) + " " : std::string()) + num("%12.6g", d.relMse) + " " +
+         num("%12.5f", d.relMae) + " " + num("%9.4f", d.ssim) + "   " + num("%.4f", d.relMaeRgb[0]) + " " +
+         num("%.4f", d.relMaeRgb[1]) + " " + num("%.4f", d.relMaeRgb[2]) + "   " +
+         num("%.3f", d.energyRgb[0]) + " " + num("%.3f", d.energyRgb[1]) + " " + num("%.3f", d.energyRgb[2]) +
+         "   " + num("%9.3g", d.leak) + " (" + num("%.2f", d.darkFraction) + ")";
 }
-const char* diffHeader() {
-  return "      relMSE     rel. MAE      SSIM   rel. MAE r / g / b       energy r / g / b (A/B)   leak (dark "
+std::string diffHeader(bool flip) {
+  return std::string(flip ? "   FLIP " : "") +
+         "      relMSE     rel. MAE      SSIM   rel. MAE r / g / b       energy r / g / b (A/B)   leak (dark "
          "share)";
 }
 
@@ -65,12 +85,15 @@ void diffSequences(const std::string& a, const std::string& b, int frames, const
   };
   std::vector<Image> ia, ib;
   nlohmann::json perFrame = nlohmann::json::array();
-  if (!json) std::printf("frame %s\n", diffHeader());
+  if (!json) std::printf("frame %s\n", diffHeader(options.flip != FlipMode::Off).c_str());
   for (int t = 0; t < frames; ++t) {
     const std::string fa = frameFile(a, t), fb = frameFile(b, t);
-    ia.push_back(readImage(fa));
-    ib.push_back(readImage(fb));
-    ImageDiff d = compareImages(ia.back(), ib.back(), fa, fb, options);
+    bool encodedA = false, encodedB = false;
+    ia.push_back(readImage(fa, &encodedA));
+    ib.push_back(readImage(fb, &encodedB));
+    DiffOptions o = options;
+    o.displayEncoded = encodedA || encodedB;
+    ImageDiff d = compareImages(ia.back(), ib.back(), fa, fb, o);
     if (json)
       perFrame.push_back(d.toJson());
     else
@@ -111,6 +134,10 @@ void addDiffCommand(CLI::App& app) {
       "--signed-image", *signedImage,
       "write A - B to this .exr (signed) or .png (red: A > B, blue: A < B, full at the 99th percentile)");
   cmd->add_option("--exposure", *exposure, "exposure of the --image PNG")->capture_default_str();
+  auto flipMap = std::make_shared<std::string>();
+  cmd->add_option("--flip-map", *flipMap,
+                  "write the FLIP map to this .png (magma: black 0 ... light yellow 1) or .exr (its values); "
+                  "HDR-FLIP's where it is computed, else LDR-FLIP's");
   auto frames = std::make_shared<int>(1);
   cmd->add_option(
          "--frames", *frames,
@@ -125,13 +152,20 @@ void addDiffCommand(CLI::App& app) {
   cmd->callback([=] {
     if (!aov->empty() && *frames < 2)
       fail("--aov ", *aov, " picks an output of each frame: only with --frames N >= 2");
-    if (*frames > 1 && !(image->empty() && signedImage->empty()))
-      fail("--image and --signed-image write one frame's error: not with --frames ", *frames);
+    if (*frames > 1 && !(image->empty() && signedImage->empty() && flipMap->empty()))
+      fail("--image, --signed-image and --flip-map write one frame's error: not with --frames ", *frames);
+    if (!flipMap->empty() && options->flip == FlipMode::Off)
+      fail("--flip-map ", *flipMap, " needs FLIP: not with --flip off");
     if (*frames > 1) return diffSequences(*a, *b, *frames, *aov, *options, *json);
     if (!image->empty()) checkOutputFile(*image, "--image");
     if (!signedImage->empty()) checkOutputFile(*signedImage, "--signed-image");
-    Image ia = readImage(*a), ib = readImage(*b);
-    ImageDiff d = compareImages(ia, ib, *a, *b, *options);
+    if (!flipMap->empty()) checkOutputFile(*flipMap, "--flip-map");
+    bool encodedA = false, encodedB = false;
+    Image ia = readImage(*a, &encodedA), ib = readImage(*b, &encodedB);
+    DiffOptions o = *options;
+    o.displayEncoded = encodedA || encodedB;
+    ImageDiff d = compareImages(ia, ib, *a, *b, o);
+    if (!flipMap->empty()) writeFlipMap(d.hasFlipHdr ? d.flipHdr : d.flipLdr, *flipMap);
     Image e = signedDifference(ia, ib);
     if (!signedImage->empty()) writeSignedError(e, *signedImage);
     if (!image->empty()) {
@@ -153,6 +187,20 @@ void addDiffCommand(CLI::App& app) {
           num("%.4f", d.energyRgb[0]).c_str(), num("%.4f", d.energyRgb[1]).c_str(),
           num("%.4f", d.energyRgb[2]).c_str(), num("%.6f", d.ssim).c_str(), num("%.6g", d.leak).c_str(),
           num("%.4f", d.darkFraction).c_str());
+      auto flipLine = [](const char* name, const FlipResult& f) {
+        std::printf("flip %s    mean %.4f  median %.4f  quartiles %.4f %.4f  max %.4f at (%d, %d)", name,
+                    f.pooled.mean, f.pooled.median, f.pooled.q1, f.pooled.q3, f.pooled.max, f.pooled.maxX,
+                    f.pooled.maxY);
+        if (f.hdr)
+          std::printf("  (exposures %.2f to %.2f, %d)", f.startExposure, f.stopExposure, f.exposures);
+        std::printf("\n");
+      };
+      if (d.hasFlipLdr) flipLine("ldr", d.flipLdr);
+      if (d.hasFlipHdr) flipLine("hdr", d.flipHdr);
+      if (d.hasFlipLdr || d.hasFlipHdr)
+        std::printf("flip viewing %.3g m from %.3g m of %d pixels: %.2f pixels per degree\n",
+                    o.viewing.distance, o.viewing.displayWidth, o.viewing.displayPixels,
+                    o.viewing.pixelsPerDegree());
     }
   });
 }

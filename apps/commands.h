@@ -35,7 +35,7 @@ void applyRenderArgs(const RenderArgs& args, RenderOptions& opt);
 // diff for a table, and the table's header.
 void addDiffOptions(CLI::App* cmd, DiffOptions& options);
 std::string diffLine(const ImageDiff& d);
-const char* diffHeader();
+std::string diffHeader(bool flip);  // flip: the FLIP column first
 
 // Each adds its subcommand to the app; the callback runs it.
 void addRenderCommand(CLI::App& app);

@@ -15,6 +15,8 @@ float linearToSrgb(float x) {
   return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
 }
 
+float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
+
 float luminance(glm::vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 void writeImage(const Image& img, const std::string& path, float exposure) {
@@ -39,8 +41,9 @@ void writeImage(const Image& img, const std::string& path, float exposure) {
   }
 }
 
-Image readImage(const std::string& path) {
+Image readImage(const std::string& path, bool* displayEncoded) {
   Texture t = loadTexture(path, "image");
+  if (displayEncoded) *displayEncoded = t.srgb;
   // An image read to be measured (diff, compare --reference, a sweep's reference file): a metric over
   // pixels that are not numbers would mean nothing, and reading them as 0 would hide them.
   if (t.nonFiniteTexels > 0)

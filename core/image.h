@@ -18,10 +18,12 @@ struct Image {
 
 // Writes by extension: .exr (float, linear), .png (exposure·x, clamp, sRGB).
 void writeImage(const Image& img, const std::string& path, float exposure = 1.0f);
-// Reads EXR, PNG, JPEG, HDR, TGA, BMP, …; 8/16-bit files are linearised from sRGB.
-Image readImage(const std::string& path);
+// Reads EXR, PNG, JPEG, HDR, TGA, BMP, …; 8/16-bit files are linearised from sRGB (then
+// *displayEncoded, where given, is set: the file held display values in [0, 1], not linear HDR ones).
+Image readImage(const std::string& path, bool* displayEncoded = nullptr);
 
 float linearToSrgb(float x);
+float srgbToLinear(float x);
 float luminance(glm::vec3 c);
 
 }  // namespace vgi

@@ -16,18 +16,21 @@ namespace vgi {
 nlohmann::json ImageDiff::toJson() const {
   auto num = [](double v) { return finiteOrUndefined(v); };
   auto rgb = [&](const double* v) { return nlohmann::json{num(v[0]), num(v[1]), num(v[2])}; };
-  return {{"rmse", num(rmse)},
-          {"relmse", num(relMse)},
-          {"relmse_epsilon", num(epsilon)},
-          {"mae", num(mae)},
-          {"rel_mae", num(relMae)},
-          {"rel_mae_rgb", rgb(relMaeRgb)},
-          {"energy_rgb", rgb(energyRgb)},
-          {"mean_a_rgb", rgb(meanA)},
-          {"mean_b_rgb", rgb(meanB)},
-          {"ssim", num(ssim)},
-          {"leak", num(leak)},
-          {"dark_fraction", num(darkFraction)}};
+  nlohmann::json j = {{"rmse", num(rmse)},
+                      {"relmse", num(relMse)},
+                      {"relmse_epsilon", num(epsilon)},
+                      {"mae", num(mae)},
+                      {"rel_mae", num(relMae)},
+                      {"rel_mae_rgb", rgb(relMaeRgb)},
+                      {"energy_rgb", rgb(energyRgb)},
+                      {"mean_a_rgb", rgb(meanA)},
+                      {"mean_b_rgb", rgb(meanB)},
+                      {"ssim", num(ssim)},
+                      {"leak", num(leak)},
+                      {"dark_fraction", num(darkFraction)}};
+  if (hasFlipLdr) j["flip"]["ldr"] = flipLdr.toJson();
+  if (hasFlipHdr) j["flip"]["hdr"] = flipHdr.toJson();
+  return j;
 }
 
 nlohmann::json SequenceDiff::toJson() const {
@@ -163,7 +166,22 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
   }
   d.darkFraction = double(dark) / double(a.pixels.size());
   d.leak = ratio(leaked, lit);
+  const bool ldr = options.flip == FlipMode::Ldr || (options.flip == FlipMode::Auto),
+             hdr =
+                 options.flip == FlipMode::Hdr || (options.flip == FlipMode::Auto && !options.displayEncoded);
+  if (ldr) {
+    d.flipLdr = ldrFlip(a, b, options.viewing);
+    d.hasFlipLdr = true;
+  }
+  if (hdr) {
+    d.flipHdr = hdrFlip(a, b, options.viewing);
+    d.hasFlipHdr = true;
+  }
   return d;
+}
+
+double ImageDiff::flipMean() const {
+  return hasFlipHdr ? flipHdr.pooled.mean : (hasFlipLdr ? flipLdr.pooled.mean : NAN);
 }
 
 SequenceDiff compareSequences(const std::vector<Image>& a, const std::vector<Image>& b,

@@ -11,6 +11,11 @@
 //   energy   Σa / Σb per colour channel (1 = unbiased level; 1.16 = 16 % too bright)
 //   SSIM     Wang et al. 2004 on tone-mapped (clamped, sRGB) luminance, 8×8
 //            Gaussian-free box windows with stride 4 (mean SSIM).
+//   FLIP     the perceptual difference (core/flip.h): LDR-FLIP and HDR-FLIP, each pooled
+//            (mean, weighted median and quartiles, max and where), with `flip`: auto
+//            gives both for linear images and LDR-FLIP alone for display-encoded ones
+//            (an sRGB PNG or JPEG, decoded: `displayEncoded`); off (the library's
+//            default: the tests' thousands of comparisons do not need it) none.
 //   leak     Σ_dark (a_r + a_g + a_b) / Σ_lit (b_r + b_g + b_b): the light a puts
 //            where the reference is dark, as a fraction of the reference's light
 //            elsewhere. A pixel is dark where b_r + b_g + b_b ≤ τ · its mean over
@@ -42,14 +47,20 @@
 #include <string>
 #include <vector>
 
+#include "core/flip.h"
 #include "core/image.h"
 
 namespace vgi {
+
+enum class FlipMode { Off, Auto, Ldr, Hdr };
 
 struct DiffOptions {
   double epsilon = 0.01;       // relMSE's ε, used when relativeEpsilon is 0
   double relativeEpsilon = 0;  // > 0: ε = (relativeEpsilon · mean(b))²
   double darkTolerance = 0;    // leak: dark where b ≤ this × mean(b) (sum of the channels)
+  FlipMode flip = FlipMode::Off;
+  FlipViewing viewing;          // FLIP's viewing condition
+  bool displayEncoded = false;  // the images were read from display-encoded files (auto: LDR only)
 };
 
 struct ImageDiff {
@@ -60,6 +71,10 @@ struct ImageDiff {
   double energyRgb[3] = {1, 1, 1};
   double meanA[3] = {0, 0, 0}, meanB[3] = {0, 0, 0};  // per colour channel
   double leak = 0, darkFraction = 0;
+  bool hasFlipLdr = false, hasFlipHdr = false;
+  FlipResult flipLdr, flipHdr;  // with their maps
+  // HDR-FLIP's mean where it was computed, else LDR-FLIP's, else NaN: the one FLIP a table shows.
+  double flipMean() const;
   nlohmann::json toJson() const;
 };
 

@@ -16,6 +16,7 @@ struct Texture {
   int width = 0, height = 0;
   std::vector<glm::vec3> texels;  // row 0 = top of the image file
   size_t nonFiniteTexels = 0;     // NaN or Inf in the file (read as 0)
+  bool srgb = false;              // the file's 8/16-bit values were sRGB-decoded into texels
   // Bilinear; u always wraps, v wraps (albedo textures) or clamps (lat-long maps,
   // whose top and bottom rows are the poles, not neighbours).
   glm::vec3 lookup(glm::vec2 uv, bool wrapV = true) const;

@@ -16,6 +16,7 @@
 
 #include "core/builtin_scenes.h"
 #include "core/error.h"
+#include "core/image.h"
 #include "core/image_io.h"
 #include "core/json_text.h"
 #include "core/smooth_normals.h"
@@ -94,8 +95,6 @@ std::string lower(std::string s) {
   for (auto& c : s) c = char(std::tolower(c));
   return s;
 }
-
-float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 // albedo + ks > 1 reflects more light than arrives (and breaks the furnace
 // test); scale ks down so each channel sums to at most 1, and say so.
@@ -752,6 +751,7 @@ Texture loadTexture(const std::string& path, const std::string& what) {
   const bool srgb = in.srgb;
   Texture t;
   t.path = path;
+  t.srgb = srgb;
   t.width = in.width;
   t.height = in.height;
   t.texels.resize(size_t(t.width) * t.height);

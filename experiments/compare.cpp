@@ -185,6 +185,12 @@ std::vector<std::string> writeComparison(const Comparison& c, const std::string&
       files.push_back(stem + ".error" + (channel == "image" ? "" : "." + channel) + ext);
       writeSignedError(e, files.back());
     }
+    // The FLIP map beside it (HDR-FLIP where it was computed), in the papers' magma colours.
+    const ImageDiff& d = c.errors.at(channel);
+    if (d.hasFlipHdr || d.hasFlipLdr) {
+      files.push_back(stem + ".flip" + (channel == "image" ? "" : "." + channel) + ".png");
+      writeFlipMap(d.hasFlipHdr ? d.flipHdr : d.flipLdr, files.back());
+    }
   };
   writeError(c.approx.result.image, c.exact.result.image, "image");
   for (auto& a : c.counterpart.aovs) writeError(c.approx.result.aovs.at(a), c.exact.result.aovs.at(a), a);

@@ -208,6 +208,43 @@ TEST(Cli, DiffRefusesDifferentSizes) {
   EXPECT_NE(diff.output.find("different sizes"), std::string::npos) << diff.output;
 }
 
+// FLIP in `vgi diff`: HDR-FLIP and LDR-FLIP for EXRs (pooled, with the maximum's pixel), LDR-FLIP
+// alone for the PNGs `vgi render` writes beside them (sRGB-encoded), 0 for an image against itself,
+// the map written, the viewing condition's options checked.
+TEST(Cli, DiffReportsFlip) {
+  for (const char* n : {"fa", "fb"})
+    ASSERT_EQ(vgi(std::string("render --method reference --set integrator=ao --size 24x16 --spp ") +
+                  (n[1] == 'a' ? "1" : "16") + " --quiet -o " + tmp(std::string(n) + ".exr"))
+                  .code,
+              0);
+  CliRun exr = vgi("diff --json " + tmp("fa.exr") + " " + tmp("fb.exr") + " --flip-map " + tmp("fmap.png"));
+  ASSERT_EQ(exr.code, 0) << exr.output;
+  const nlohmann::json j = nlohmann::json::parse(exr.output);
+  for (const char* mode : {"ldr", "hdr"}) {
+    ASSERT_TRUE(j["flip"].contains(mode)) << exr.output;
+    EXPECT_GT(j["flip"][mode]["mean"].get<double>(), 0.0);
+    EXPECT_GE(j["flip"][mode]["max"].get<double>(), j["flip"][mode]["mean"].get<double>());
+    EXPECT_EQ(j["flip"][mode]["max_pixel"].size(), 2u);
+  }
+  EXPECT_GE(j["flip"]["hdr"]["exposures"].get<int>(), 2);
+  EXPECT_TRUE(std::filesystem::exists(tmp("fmap.png")));
+  CliRun png = vgi("diff --json " + tmp("fa.png") + " " + tmp("fb.png"));
+  ASSERT_EQ(png.code, 0) << png.output;
+  const nlohmann::json p = nlohmann::json::parse(png.output);
+  EXPECT_TRUE(p["flip"].contains("ldr"));
+  EXPECT_FALSE(p["flip"].contains("hdr")) << "an sRGB PNG holds display values";
+  CliRun same = vgi("diff --json " + tmp("fa.exr") + " " + tmp("fa.exr"));
+  EXPECT_EQ(nlohmann::json::parse(same.output)["flip"]["hdr"]["max"], 0.0);
+  CliRun off = vgi("diff --json --flip off " + tmp("fa.exr") + " " + tmp("fb.exr"));
+  EXPECT_FALSE(nlohmann::json::parse(off.output).contains("flip"));
+  for (const std::string& bad : {std::string("--flip-distance -1"), std::string("--flip-display-pixels 0"),
+                                 std::string("--flip-distance 1e6"), std::string("--flip sometimes")}) {
+    CliRun r = vgi("diff " + bad + " " + tmp("fa.exr") + " " + tmp("fb.exr"));
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.output.find(bad.substr(0, bad.find(' '))), std::string::npos) << r.output;
+  }
+}
+
 // `vgi diff --frames N` reads two animations as `vgi render --frames N -o X.exr` writes them and reports
 // the temporal error (core/image_metrics.h) besides each frame's metrics.
 TEST(Cli, DiffOfAnimationsReportsTheTemporalError) {

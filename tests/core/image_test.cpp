@@ -62,7 +62,9 @@ TEST(ImageMetrics, RelativeEpsilonPerChannelErrorsAndSignedDifference) {
   EXPECT_NEAR(d.energyRgb[2], 0.0, 1e-7);
   Image e = signedDifference(a, b);
   EXPECT_NEAR(e.pixels[1].z, -0.001f, 1e-9f);
-  test::expectError([&] { compareImages(a, b, "a", "b", DiffOptions{0.0, 0.0}); }, {"epsilon"});
+  DiffOptions zero;
+  zero.epsilon = 0.0;
+  test::expectError([&] { compareImages(a, b, "a", "b", zero); }, {"epsilon"});
 }
 
 TEST(ImageMetrics, RefusesDifferentSizesAndNaN) {
@@ -114,7 +116,9 @@ TEST(ImageMetrics, LeakIsTheLightWhereTheReferenceIsDark) {
   EXPECT_NEAR(t.leak, 0.05 / 1.0, 1e-6);
   test::expectError(
       [&] {
-        compareImages(a, b, "a", "b", DiffOptions{0.01, 0.0, -1.0});
+        DiffOptions o;
+        o.darkTolerance = -1.0;
+        compareImages(a, b, "a", "b", o);
       },
       {"dark tolerance", "-1"});
   // Nothing dark: the leak is 0 and says so through its dark share.
