@@ -16,6 +16,8 @@
 //     "epsilon": 0.01, "relative_epsilon": 0.1,   // relMSE's ε and the relative one (optional)
 //     "dark_tolerance": 0,                    // the leak's dark pixels: reference ≤ this × its mean
 //                                             // (core/image_metrics.h; optional, 0 = exactly dark)
+//     "flip": "auto",                         // FLIP per channel (core/flip.h): auto (HDR and LDR),
+//                                             // ldr, hdr or off (optional, auto)
 //     "time_budget_s": 10,                    // optional: every point stops after this wall time
 //                                             // (`vgi render --time-limit`; spp is then the most)
 //     "frames": 6, "time_step": 0.1, "time": 0,   // optional: the scenes' default animation
@@ -87,6 +89,13 @@ struct SweepPoint {
   int spp = 0;            // the method's "spp", or the experiment's
 };
 
+// The sweep's comparisons report FLIP (core/flip.h) unless the experiment says "flip": "off".
+inline DiffOptions withFlip() {
+  DiffOptions d;
+  d.flip = FlipMode::Auto;
+  return d;
+}
+
 struct Experiment {
   std::string name, path, dir;
   std::vector<std::string> scenes;
@@ -94,7 +103,7 @@ struct Experiment {
   uint32_t seed = 1;
   std::vector<int> checkpoints;   // sorted, < spp
   std::vector<std::string> aovs;  // besides the image
-  DiffOptions diff;               // relMSE's ε (absolute)
+  DiffOptions diff = withFlip();  // relMSE's ε (absolute); FLIP (the experiment's "flip", auto by default)
   double relativeEpsilon = 0.1;   // the second relMSE's relative ε
   double timeBudgetS = 0;         // > 0: each point's wall-time limit
   struct Animation {

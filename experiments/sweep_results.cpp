@@ -82,7 +82,8 @@ nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string
   relative.relativeEpsilon = e.relativeEpsilon;
   relative.darkTolerance = e.diff.darkTolerance;
   std::vector<Image> ia, ib;
-  double sum[7] = {0, 0, 0, 0, 0, 0, 0};
+  double sum[7] = {0, 0, 0, 0, 0, 0, 0}, flipLdr = 0, flipHdr = 0;
+  bool hasLdr = false, hasHdr = false;
   for (size_t t = 0; t < a.size(); ++t) {
     ia.push_back(readImage(a[t]));
     ib.push_back(readImage(b[t]));
@@ -92,11 +93,17 @@ nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string
         d.relMse, dr.relMse,     d.relMae, d.ssim, (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0,
         d.leak,   d.darkFraction};
     for (int k = 0; k < 7; ++k) sum[k] += v[k] / double(a.size());
+    hasLdr = d.hasFlipLdr;
+    hasHdr = d.hasFlipHdr;
+    if (hasLdr) flipLdr += d.flipLdr.pooled.mean / double(a.size());
+    if (hasHdr) flipHdr += d.flipHdr.pooled.mean / double(a.size());
   }
   // A metric without a value (against a black reference) is "undefined" in the row, the JSON and the CSV.
   nlohmann::json m;
   const char* names[7] = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy", "leak", "dark_fraction"};
   for (int k = 0; k < 7; ++k) m[names[k]] = finiteOrUndefined(sum[k]);
+  if (hasLdr) m["flip_ldr"] = flipLdr;  // the mean FLIP (over the frames of an animation)
+  if (hasHdr) m["flip_hdr"] = flipHdr;
   if (a.size() > 1) {
     const SequenceDiff s = compareSequences(ia, ib, a.front(), b.front());
     m["temporal_error"] = finiteOrUndefined(s.temporalError);
@@ -279,6 +286,12 @@ nlohmann::json writeSweepResults(const Experiment& e) {
                         {"epsilon", e.diff.epsilon},
                         {"relative_epsilon", e.relativeEpsilon},
                         {"dark_tolerance", e.diff.darkTolerance},
+                        {"flip",
+                         {{"mode", e.diff.flip == FlipMode::Off   ? "off"
+                                   : e.diff.flip == FlipMode::Ldr ? "ldr"
+                                   : e.diff.flip == FlipMode::Hdr ? "hdr"
+                                                                  : "auto"},
+                          {"pixels_per_degree", e.diff.viewing.pixelsPerDegree()}}},
                         {"time_budget_s", e.timeBudgetS},
                         {"animations", animations},
                         {"convergence", e.curveCounts},
@@ -295,6 +308,7 @@ nlohmann::json writeSweepResults(const Experiment& e) {
   channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
   std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy",
                                       "leak",   "dark_fraction"};
+  if (e.diff.flip != FlipMode::Off) metrics.insert(metrics.end(), {"flip_ldr", "flip_hdr"});
   if (!e.curveCounts.empty()) metrics.push_back("equal_error_time_ratio");
   if (e.animated()) metrics.insert(metrics.end(), {"temporal_error", "change", "change_reference"});
   std::ostringstream csv;

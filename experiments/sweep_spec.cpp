@@ -94,9 +94,10 @@ void checkAnimation(const Experiment::Animation& a, const std::string& scene) {
 
 // The experiment's own fields: name, scenes, size, spp, seed, checkpoints, aovs, ε, time budget.
 void readExperimentHead(const nlohmann::json& j, const std::string& path, Experiment& e) {
-  checkKeys(j, "the experiment",
-            {"name", "scenes", "size", "spp", "checkpoints", "seed", "aovs", "epsilon", "relative_epsilon",
-             "dark_tolerance", "time_budget_s", "frames", "time_step", "time", "reference", "methods"});
+  checkKeys(
+      j, "the experiment",
+      {"name", "scenes", "size", "spp", "checkpoints", "seed", "aovs", "epsilon", "relative_epsilon",
+       "dark_tolerance", "flip", "time_budget_s", "frames", "time_step", "time", "reference", "methods"});
   e.name = stringAt(j, "name", "name", fs::path(path).stem().string());
   for (const char* k : {"scenes", "size", "spp", "methods"})
     if (!j.contains(k)) fail("experiment file '", path, "': '", k, "' is missing");
@@ -146,6 +147,15 @@ void readExperimentHead(const nlohmann::json& j, const std::string& path, Experi
   if (j.contains("relative_epsilon")) e.relativeEpsilon = positive(j["relative_epsilon"], "relative_epsilon");
   if (j.contains("dark_tolerance"))
     e.diff.darkTolerance = positive(j["dark_tolerance"], "dark_tolerance", true);
+  if (j.contains("flip")) {
+    const std::string f = stringAt(j, "flip", "flip", "auto");
+    if (f != "auto" && f != "ldr" && f != "hdr" && f != "off")
+      fail("experiment: 'flip' = ", j["flip"].dump(), " must be \"auto\", \"ldr\", \"hdr\" or \"off\"");
+    e.diff.flip = f == "off"   ? FlipMode::Off
+                  : f == "ldr" ? FlipMode::Ldr
+                  : f == "hdr" ? FlipMode::Hdr
+                               : FlipMode::Auto;
+  }
   if (j.contains("time_budget_s")) e.timeBudgetS = positive(j["time_budget_s"], "time_budget_s");
   if (e.animated()) {  // an animation's row is per frame of its whole run
     for (const char* k : {"checkpoints", "time_budget_s"})

@@ -4,12 +4,12 @@
 Usage: sweep_report.py DIR   (vgi sweep runs it after writing DIR/results.json)
 
 Writes into DIR:
-  convergence_<scene>.png/.pdf  log-log error (rel. MAE, and relMSE with the relative ε, of the
-                                image and of each AOV) against time, one line per point, a marker
+  convergence_<scene>.png/.pdf  log-log error (rel. MAE, relMSE with the relative ε and, where the
+                                sweep measured it, HDR-FLIP, of the image and of each AOV) against time, one line per point, a marker
                                 per checkpoint; the exact counterparts' own curves dashed
   passes_<scene>.png/.pdf       per-pass time of each point's final render (one frame)
   pareto.md, pareto.tex         per scene, the points on the error-vs-time Pareto front
-                                (Markdown and LaTeX booktabs), with each point's equal-error time
+                                (Markdown and LaTeX booktabs), with FLIP beside relMSE and each point's equal-error time
                                 ratio to its counterpart where the experiment has its curve
   report.html                   the tables, the plots and, per point, its image, the
                                 reference and the error map with an A/B slider and a crop; in an
@@ -88,6 +88,15 @@ def pareto(rows, channel):
     return front
 
 
+def flip_metric(rows, chans):
+    """The FLIP the rows carry: HDR-FLIP where measured, else LDR-FLIP, else None (a sweep run with
+    "flip": "off", or one from before FLIP)."""
+    for key in ("flip_hdr", "flip_ldr"):
+        if any(num(r[c].get(key)) is not None for r in rows for c in chans if c in r):
+            return key
+    return None
+
+
 def main(out):
     res = sa.sweep_results("DIR", out)
     import_pyplot()
@@ -109,6 +118,10 @@ def main(out):
             p.sort(key=lambda r: r["spp"])
         # Convergence: error vs time, one line per point (the counterparts' own curves dashed).
         metrics = [("rel_mae", "rel. MAE"), ("relmse_relative", f"relMSE (ε {res['relative_epsilon']} × mean)")]
+        # FLIP against time where the sweep measured it (core/flip.h: HDR-FLIP of the EXRs).
+        flip_key = flip_metric(srows, chans)
+        if flip_key:
+            metrics.append((flip_key, "HDR-FLIP" if flip_key == "flip_hdr" else "LDR-FLIP"))
         fig, axes = plt.subplots(len(metrics), len(chans), figsize=(5.5 * len(chans), 4.0 * len(metrics)),
                                  squeeze=False)
         # One style per point in every panel (a point missing from a channel keeps its colour elsewhere).
@@ -203,8 +216,10 @@ def main(out):
             md.append("Equal-error time ratio: the exact counterpart's time to the same relMSE (relative ε) "
                       "over the point's time (> 1: the method is faster; ~ extrapolated at 1/samples).\n")
         cols = []
+        flip_name = {"flip_hdr": "HDR-FLIP", "flip_ldr": "LDR-FLIP"}.get(flip_key)
         for c in chans:
-            cols += [f"{c} rel. MAE", f"{c} relMSE"] + ([f"{c} equal-error time ratio"] if ratio else [])
+            cols += [f"{c} rel. MAE", f"{c} relMSE"] + ([f"{c} {flip_name}"] if flip_key else []) + \
+                ([f"{c} equal-error time ratio"] if ratio else [])
         cols = ["Pareto"] + cols
         md.append("| point | spp | time ms | " + " | ".join(cols) + " |")
         md.append("|" + "---|" * (3 + len(cols)))
@@ -217,12 +232,14 @@ def main(out):
             for c in chans:
                 if c in r:
                     cells += [fmt(r[c].get("rel_mae"), ".4f"), fmt(r[c].get("relmse"), ".5f")]
+                    if flip_key:
+                        cells.append(fmt(r[c].get(flip_key), ".4f"))
                     if ratio:
                         q = r[c].get("equal_error_time_ratio")
                         cells.append("" if q is None else
                                      ("~" if r[c].get("equal_error_extrapolated") else "") + fmt(q, ".3g"))
                 else:
-                    cells += ["", ""] + ([""] if ratio else [])
+                    cells += ["", ""] + ([""] if flip_key else []) + ([""] if ratio else [])
             tcells = [x.replace("~", "$\\sim$").replace("*", "$\\bullet$") for x in cells]
             md.append(f"| {point_name(r)} | {r['spp']} | {r['time_ms']:.0f} | " + " | ".join(cells) + " |")
             name = point_name(r).replace("_", "\\_").replace("&", "\\&").replace("%", "\\%")
