@@ -19,6 +19,45 @@ std::string joined(const std::vector<std::string>& v) {
   for (auto& x : v) s += (s.empty() ? "" : " ") + x;
   return s;
 }
+// Each metric's mean ± standard deviation over the seeds (the model error: once, as the
+// counterpart and the full reference render once).
+void printSeedTable(const Comparison& c, const std::vector<std::string>& channels) {
+  std::string seeds;
+  for (auto& r : c.runs) seeds += (seeds.empty() ? "" : ", ") + std::to_string(r.seed);
+  std::printf("  over %zu seeds (%s), mean ± standard deviation:\n", c.runs.size(), seeds.c_str());
+  std::printf("  %-10s%-8s", "channel", "error");
+  for (const char* h : {"relMSE", "relMSE (top 0.1 % out)", "rel. MAE", "energy", "FLIP"})
+    std::printf("%-24s", h);
+  std::printf("\n");
+  for (const std::string& ch : channels)
+    for (const char* kind : {"approx", "total", "model"}) {
+      const bool total = std::string(kind) == "total", model = std::string(kind) == "model";
+      if ((total || model) && !c.split) continue;
+      std::printf("  %-10s%-8s", std::string(kind) == "approx" ? ch.c_str() : "", kind);
+      for (const std::string& metric : seedMetricNames()) {
+        char cellText[64];
+        if (model) {
+          std::snprintf(cellText, sizeof cellText, "%.4g (once)", seedMetric(c.modelErrors.at(ch), metric));
+        } else {
+          std::vector<double> v;
+          for (auto& r : c.runs) v.push_back(seedMetric((total ? r.totalErrors : r.errors).at(ch), metric));
+          const SeedStat s = seedStat(v);
+          std::snprintf(cellText, sizeof cellText, "%.4g ± %.2g", s.mean, s.sd);
+        }
+        std::printf(model ? "%-24s" : "%-25s", cellText);  // (± is two bytes, one column)
+      }
+      std::printf("\n");
+    }
+  // A method whose samples follow the sample index alone (nearfield, voxel_ao, vct) renders the
+  // same image for every seed: its spread is 0 because nothing is random across runs, not noise-free.
+  bool same = true;
+  for (auto& r : c.runs) same = same && r.errors.at("image").relMse == c.runs[0].errors.at("image").relMse;
+  if (same)
+    std::printf(
+        "  note: the method renders the same image with every seed (its samples follow the sample "
+        "index, not the seed): a standard deviation of 0 says nothing about its noise\n");
+}
+
 }  // namespace
 
 void addCompareCommand(CLI::App& app) {
@@ -31,6 +70,8 @@ void addCompareCommand(CLI::App& app) {
   auto reference = std::make_shared<std::string>();
   auto diffOptions = std::make_shared<DiffOptions>();
   auto exactDevice = std::make_shared<std::string>("same");
+  auto split = std::make_shared<bool>(true);
+  auto seeds = std::make_shared<int>(1);
   opt->method = "nearfield";
   args->size = "256x256";
   // (--spp and --set are the method's; the counterpart gets --ref-spp and the
@@ -46,6 +87,18 @@ void addCompareCommand(CLI::App& app) {
          "so the times compare algorithms on one device) or cpu (reference, Embree)")
       ->check(CLI::IsMember({"same", "cpu"}))
       ->capture_default_str();
+  cmd->add_flag("--split,!--no-split", *split,
+                "also render the full reference (every bounce, every lobe, the environment: the registry's "
+                "Counterpart::full) with --ref-spp samples and seed + 2, and split each channel's error "
+                "into total (method vs full), model (the model-matched counterpart vs full) and "
+                "approximation (method vs model-matched); --no-split: the counterpart alone")
+      ->capture_default_str();
+  cmd->add_option("--seeds", *seeds,
+                  "render the method with N seeds (seed, seed + 3, …) against the one counterpart and "
+                  "report every error metric's mean and standard deviation over them (stem.json's "
+                  "\"seeds\"); the images written are the first seed's")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   addDiffOptions(cmd, *diffOptions);
   cmd->add_option("-o,--output", *out,
                   "stem.exr: writes stem.<method>.*, stem.exact.* (images, AOVs, stats) and stem.json (the "
@@ -56,8 +109,9 @@ void addCompareCommand(CLI::App& app) {
     opt->methodGiven = true;  // compare is about this method: a preset written for another one is an error
     checkOutputPath(*out);
     installInterruptHandler();
-    const Comparison c = compareWithCounterpart(*opt, *refSpp, *diffOptions, *reference,
-                                                *exactDevice == "cpu" ? ExactDevice::Cpu : ExactDevice::Same);
+    const Comparison c =
+        compareWithCounterpart(*opt, *refSpp, *diffOptions, *reference,
+                               *exactDevice == "cpu" ? ExactDevice::Cpu : ExactDevice::Same, *split, *seeds);
     if (!c.complete) {
       std::fprintf(stderr, "interrupted before both renders had a full sample: nothing written\n");
       throw Interrupted{};
@@ -75,10 +129,30 @@ void addCompareCommand(CLI::App& app) {
                 c.choice.device == "gl" ? "GL device" : "CPU", c.choice.sameDevice ? "the same" : "another",
                 opt->scene.c_str(), opt->width, opt->height);
     if (!c.choice.note.empty()) std::printf("  note: %s\n", c.choice.note.c_str());
-    std::printf("  %-10s%s\n", "channel", diffHeader(diffOptions->flip != FlipMode::Off).c_str());
     std::vector<std::string> channels = {"image"};
     channels.insert(channels.end(), c.counterpart.aovs.begin(), c.counterpart.aovs.end());
-    for (auto& name : channels) std::printf("  %-10s%s\n", name.c_str(), diffLine(c.errors.at(name)).c_str());
+    const std::string header = diffHeader(diffOptions->flip != FlipMode::Off);
+    if (!c.split) {
+      std::printf("  %-10s%s\n", "channel", header.c_str());
+      for (auto& name : channels)
+        std::printf("  %-10s%s\n", name.c_str(), diffLine(c.errors.at(name)).c_str());
+    } else {
+      std::printf("  full reference: %s %s, %d spp, seed %u, on the %s\n",
+                  c.fullChoice.counterpart.method.c_str(), joined(c.fullChoice.counterpart.set).c_str(),
+                  c.refSpp, c.fullSeed, c.fullChoice.device == "gl" ? "GL device" : "CPU");
+      if (!c.fullChoice.note.empty()) std::printf("  note: %s\n", c.fullChoice.note.c_str());
+      std::printf("  %-10s%-8s%s\n", "channel", "error", header.c_str());
+      for (auto& name : channels) {
+        std::printf("  %-10s%-8s%s\n", name.c_str(), "total", diffLine(c.totalErrors.at(name)).c_str());
+        std::printf("  %-10s%-8s%s\n", "", "model", diffLine(c.modelErrors.at(name)).c_str());
+        std::printf("  %-10s%-8s%s\n", "", "approx", diffLine(c.errors.at(name)).c_str());
+      }
+      std::printf(
+          "  (total: %s vs full; model: the model-matched counterpart vs full; approx: %s vs the "
+          "model-matched counterpart)\n",
+          opt->method.c_str(), opt->method.c_str());
+    }
+    if (c.runs.size() > 1) printSeedTable(c, channels);
     std::printf(
         "  time: %s %.1f ms per frame + %.0f ms set-up (%d frames, timed passes; wall %.0f ms) on %s\n",
         opt->method.c_str(), perFrame, setup, frames, approx.stats["wall_ms"].get<double>(),
@@ -88,6 +162,9 @@ void addCompareCommand(CLI::App& app) {
                   exact.stats["wall_ms"].get<double>(), reference->empty() ? "" : ", when it was rendered");
     else
       std::printf("        exact: the reference image %s\n", reference->c_str());
+    if (c.split)
+      std::printf("        full %.0f ms (wall %.0f ms)\n", c.full.stats["total_ms"].get<double>(),
+                  c.full.stats["wall_ms"].get<double>());
     std::fflush(stdout);
     std::fprintf(stderr, "wrote %s and %zu image/stat files\n", json.c_str(), files.size() - 1);
     if (c.interrupted) throw Interrupted{};

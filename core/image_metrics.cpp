@@ -19,6 +19,7 @@ nlohmann::json ImageDiff::toJson() const {
   nlohmann::json j = {{"rmse", num(rmse)},
                       {"relmse", num(relMse)},
                       {"relmse_epsilon", num(epsilon)},
+                      {"relmse_trimmed", num(relMseTrimmed)},
                       {"mae", num(mae)},
                       {"rel_mae", num(relMae)},
                       {"rel_mae_rgb", rgb(relMaeRgb)},
@@ -127,19 +128,29 @@ ImageDiff compareImages(const Image& a, const Image& b, const std::string& nameA
     d.epsilon = std::max(1e-30, options.relativeEpsilon * options.relativeEpsilon * mean * mean);
   }
   double se = 0, rel = 0;
+  std::vector<double> relPixel(a.pixels.size());  // per pixel: the sum over its channels
   for (size_t i = 0; i < a.pixels.size(); ++i)
     for (int k = 0; k < 3; ++k) {
       double r = b.pixels[i][k], e = a.pixels[i][k] - r;
       se += e * e;
-      rel += e * e / (r * r + d.epsilon);
+      const double q = e * e / (r * r + d.epsilon);
+      rel += q;
+      relPixel[i] += q;
     }
+  // The trimmed relMSE: the top 0.1 % of the pixels' errors dropped (none below 1000 pixels).
+  const size_t dropped = relPixel.size() / 1000, kept = relPixel.size() - dropped;
+  std::nth_element(relPixel.begin(), relPixel.begin() + std::ptrdiff_t(kept - 1), relPixel.end());
+  double relKept = 0;
+  for (size_t i = 0; i < kept; ++i) relKept += relPixel[i];
+  d.relMseTrimmed = relKept / (double(kept) * 3);
   const double ae = absErr[0] + absErr[1] + absErr[2], level = sumB[0] + sumB[1] + sumB[2];
   d.rmse = std::sqrt(se / n);
   d.relMse = rel / n;
+  if (dropped == 0) d.relMseTrimmed = d.relMse;  // the same sum, not one rounded another way
   // ε relative to a black reference's mean is 0: relMSE has no scale (it was 1e27 through the floor).
   if (options.relativeEpsilon > 0 && level == 0) {
     d.epsilon = NAN;
-    d.relMse = se == 0 ? 0.0 : NAN;
+    d.relMse = d.relMseTrimmed = se == 0 ? 0.0 : NAN;
   }
   d.mae = ae / n;
   d.relMae = ratio(ae, level);

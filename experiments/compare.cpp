@@ -69,9 +69,54 @@ CounterpartChoice counterpartOnDevice(const RenderOptions& method, const Counter
   return c;
 }
 
+SeedStat seedStat(const std::vector<double>& values) {
+  SeedStat s;
+  s.values = values;
+  if (values.empty()) return s;
+  for (double v : values) s.mean += v / double(values.size());
+  if (std::all_of(values.begin(), values.end(), [&](double v) { return v == values[0]; })) {
+    s.mean = values[0];  // one value, or a render the seed does not change: exactly, no rounding
+    return s;
+  }
+  double ss = 0;
+  for (double v : values) ss += (v - s.mean) * (v - s.mean);
+  s.sd = values.size() > 1 ? std::sqrt(ss / double(values.size() - 1)) : 0.0;
+  return s;
+}
+
+const std::vector<std::string>& seedMetricNames() {
+  static const std::vector<std::string> names = {"relmse", "relmse_trimmed", "rel_mae", "energy", "flip"};
+  return names;
+}
+
+double seedMetric(const ImageDiff& d, const std::string& name) {
+  if (name == "relmse") return d.relMse;
+  if (name == "relmse_trimmed") return d.relMseTrimmed;
+  if (name == "rel_mae") return d.relMae;
+  if (name == "energy") return (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0;
+  return d.flipMean();
+}
+
+namespace {
+// The passes of a method's render that ran per sample, per frame, and the rest (set-up).
+void splitTimes(const RenderOutput& o, double& msPerFrame, double& setupMs) {
+  msPerFrame = setupMs = 0;
+  const int frames = std::max(1, o.result.sppCompleted);
+  const std::vector<std::string>& sample = o.result.samplePasses;
+  const nlohmann::json timings = o.stats["timings_ms"];  // items() must not outlive its object
+  for (auto& [pass, ms] : timings.items()) {
+    const bool each = sample.empty() || std::find(sample.begin(), sample.end(), pass) != sample.end();
+    (each ? msPerFrame : setupMs) += ms.get<double>();
+  }
+  msPerFrame /= frames;
+}
+}  // namespace
+
 Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const DiffOptions& diff,
-                                  const std::string& referenceFile, ExactDevice device) {
+                                  const std::string& referenceFile, ExactDevice device, bool split,
+                                  int seeds) {
   if (refSpp < 1 || refSpp > 1 << 20) fail("--ref-spp ", refSpp, ": must be in [1, 1048576]");
+  if (seeds < 1 || seeds > 1000) fail("--seeds ", seeds, ": must be in [1, 1000]");
   const MethodInfo& info = findMethod(opt.method);
   if (!info.counterpart)
     fail("--method ", opt.method,
@@ -83,6 +128,16 @@ Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const Di
   // depend on the scene included, e.g. the radius).
   c.choice = counterpartOnDevice(opt, info.counterpart(resolveParameters(opt)), device);
   c.counterpart = c.choice.counterpart;
+  c.split = split;
+  if (split) {
+    if (c.counterpart.full.empty())
+      fail("--method ", opt.method,
+           ": its registry row names no full reference, so its error cannot be split");
+    Counterpart full = info.counterpart(resolveParameters(opt));
+    full.set = full.full;
+    full.note.clear();
+    c.fullChoice = counterpartOnDevice(opt, full, device);
+  }
   if (!referenceFile.empty()) {
     // The counterpart given as an image: read (and size-checked) before the method renders.
     const std::string stem = std::filesystem::path(referenceFile).replace_extension("").string();
@@ -130,23 +185,60 @@ Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const Di
   r.spp = refSpp;
   r.aovs = c.counterpart.aovs;
   if (referenceFile.empty() && !interruptRequested()) c.exact = runRender(r);
-  c.refSpp = refSpp;
-  c.complete = c.approx.result.sppCompleted > 0 && c.exact.result.sppCompleted > 0;
-  if (!c.complete) return c;
-  c.interrupted = c.approx.result.interrupted || c.exact.result.interrupted;
-
-  c.errors["image"] = compareImages(c.approx.result.image, c.exact.result.image, opt.method, "exact", diff);
-  for (auto& a : c.counterpart.aovs)
-    c.errors[a] = compareImages(c.approx.result.aovs.at(a), c.exact.result.aovs.at(a), opt.method + "." + a,
-                                "exact." + a, diff);
-  c.frames = std::max(1, c.approx.result.sppCompleted);
-  const std::vector<std::string>& sample = c.approx.result.samplePasses;
-  const nlohmann::json timings = c.approx.stats["timings_ms"];  // items() must not outlive its object
-  for (auto& [pass, ms] : timings.items()) {
-    const bool each = sample.empty() || std::find(sample.begin(), sample.end(), pass) != sample.end();
-    (each ? c.msPerFrame : c.setupMs) += ms.get<double>();
+  if (split && !interruptRequested()) {
+    RenderOptions f = r;
+    f.method = c.fullChoice.counterpart.method;
+    f.set = c.fullChoice.counterpart.set;
+    f.spp = c.refSpp;
+    f.seed = c.fullSeed = opt.seed + kFullReferenceSeedOffset;
+    c.full = runRender(f);
   }
-  c.msPerFrame /= c.frames;
+  c.refSpp = refSpp;
+  c.complete = c.approx.result.sppCompleted > 0 && c.exact.result.sppCompleted > 0 &&
+               (!split || c.full.result.sppCompleted > 0);
+  if (!c.complete) return c;
+  c.interrupted = c.approx.result.interrupted || c.exact.result.interrupted || c.full.result.interrupted;
+
+  std::vector<std::string> channels = {"image"};
+  channels.insert(channels.end(), c.counterpart.aovs.begin(), c.counterpart.aovs.end());
+  auto channel = [](const RenderOutput& o, const std::string& a) -> const Image& {
+    return a == "image" ? o.result.image : o.result.aovs.at(a);
+  };
+  auto suffix = [](const std::string& a) { return a == "image" ? std::string() : "." + a; };
+  // One seed's run of the method against the counterpart (and the full reference).
+  auto addRun = [&](const RenderOutput& o, uint32_t seed) {
+    SeedRun run;
+    run.seed = seed;
+    for (const std::string& a : channels) {
+      run.errors[a] = compareImages(channel(o, a), channel(c.exact, a), opt.method + suffix(a),
+                                    "exact" + suffix(a), diff);
+      if (split)
+        run.totalErrors[a] = compareImages(channel(o, a), channel(c.full, a), opt.method + suffix(a),
+                                           "full" + suffix(a), diff);
+    }
+    splitTimes(o, run.msPerFrame, run.setupMs);
+    c.runs.push_back(std::move(run));
+  };
+  addRun(c.approx, opt.seed);
+  if (split)
+    for (const std::string& a : channels)
+      c.modelErrors[a] = compareImages(channel(c.exact, a), channel(c.full, a), "exact" + suffix(a),
+                                       "full" + suffix(a), diff);
+  for (int k = 1; k < seeds && !interruptRequested(); ++k) {
+    RenderOptions mk = m;
+    mk.seed = opt.seed + kSeedStride * uint32_t(k);
+    const RenderOutput o = runRender(mk);
+    if (o.result.interrupted || o.result.sppCompleted == 0) {
+      c.interrupted = true;
+      break;
+    }
+    addRun(o, mk.seed);
+  }
+  c.errors = c.runs[0].errors;
+  c.totalErrors = c.runs[0].totalErrors;
+  c.frames = std::max(1, c.approx.result.sppCompleted);
+  c.msPerFrame = c.runs[0].msPerFrame;
+  c.setupMs = c.runs[0].setupMs;
   return c;
 }
 
@@ -162,6 +254,15 @@ nlohmann::json Comparison::summary() const {
   s["gl_renderer"] = approx.stats["gl_renderer"];
   s["git_revision"] = approx.stats["git_revision"];
   for (auto& [name, d] : errors) s["error"][name] = d.toJson();
+  if (split) {
+    s["full"] = fullChoice.toJson();
+    s["full"]["spp"] = refSpp;
+    s["full"]["seed"] = fullSeed;
+    for (auto& [name, d] : errors)
+      s["split"][name] = {{"total", totalErrors.at(name).toJson()},
+                          {"model", modelErrors.at(name).toJson()},
+                          {"approximation", d.toJson()}};
+  }
   if (exact.stats.contains("reference_file")) s["exact"]["file"] = exact.stats["reference_file"];
   s["time"] = {{"method_total_ms", approx.stats["total_ms"]},
                {"method_ms_per_frame", msPerFrame},
@@ -170,7 +271,35 @@ nlohmann::json Comparison::summary() const {
                {"method_timings_ms", approx.stats["timings_ms"]},
                {"exact_total_ms", exact.stats.value("total_ms", nlohmann::json())},
                {"exact_wall_ms", exact.stats.value("wall_ms", nlohmann::json())}};
+  if (split) {
+    s["time"]["full_total_ms"] = full.stats.value("total_ms", nlohmann::json());
+    s["time"]["full_wall_ms"] = full.stats.value("wall_ms", nlohmann::json());
+  }
   s["interrupted"] = interrupted;
+  if (runs.size() > 1) {
+    // Every metric's mean and standard deviation over the seeds, per channel (and split).
+    nlohmann::json& j = s["seeds"];
+    j["count"] = runs.size();
+    for (auto& r : runs) j["seeds"].push_back(r.seed);
+    auto stat = [&](const std::string& channel, const std::string& metric, bool total) {
+      std::vector<double> v;
+      for (auto& r : runs) v.push_back(seedMetric((total ? r.totalErrors : r.errors).at(channel), metric));
+      const SeedStat st = seedStat(v);
+      nlohmann::json values = nlohmann::json::array();
+      for (double x : v) values.push_back(finiteOrUndefined(x));
+      return nlohmann::json{
+          {"mean", finiteOrUndefined(st.mean)}, {"sd", finiteOrUndefined(st.sd)}, {"values", values}};
+    };
+    std::vector<double> times;
+    for (auto& r : runs) times.push_back(r.msPerFrame);
+    const SeedStat t = seedStat(times);
+    j["method_ms_per_frame"] = {{"mean", t.mean}, {"sd", t.sd}, {"values", times}};
+    for (auto& [channel, d] : errors)
+      for (const std::string& metric : seedMetricNames()) {
+        j["error"][channel][metric] = stat(channel, metric, false);
+        if (split) j["total"][channel][metric] = stat(channel, metric, true);
+      }
+  }
   return s;
 }
 
@@ -178,6 +307,8 @@ std::vector<std::string> writeComparison(const Comparison& c, const std::string&
   const std::string method = c.approx.stats["method"].get<std::string>();
   std::vector<std::string> files = writeRenderOutputs(c.approx, stem + "." + method + ".exr", 1.0f);
   for (auto& f : writeRenderOutputs(c.exact, stem + ".exact.exr", 1.0f)) files.push_back(f);
+  if (c.split)
+    for (auto& f : writeRenderOutputs(c.full, stem + ".full.exr", 1.0f)) files.push_back(f);
   // Signed error images (method − exact) per channel: where it is too bright (red) or too dark (blue).
   auto writeError = [&](const Image& a, const Image& b, const std::string& channel) {
     const Image e = signedDifference(a, b);

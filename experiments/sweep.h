@@ -12,6 +12,10 @@
 //     "size": "32x32",
 //     "spp": 16, "checkpoints": [1, 4],       // checkpoints below spp (optional)
 //     "seed": 1,                              // optional (1)
+//     "seeds": 4,                             // optional (1): each point renders with this many
+//                                             // seeds (seed + 3k, compare.h kSeedStride), a row
+//                                             // each ("seed"), against the one reference: the
+//                                             // report's mean ± standard deviation over them
 //     "aovs": ["indirect"],                   // channels compared besides the image (optional)
 //     "epsilon": 0.01, "relative_epsilon": 0.1,   // relMSE's ε and the relative one (optional)
 //     "dark_tolerance": 0,                    // the leak's dark pixels: reference ≤ this × its mean
@@ -30,6 +34,11 @@
 //     "reference": {"spp": 256,               // each method's registry counterpart (default),
 //                   "convergence": [1, 4, 16],   // optional: the counterpart's own curve (next seed)
 //                                             // at these counts → each row's equal-error time ratio
+//                   "split": true,            // optional: also the full reference (the registry's
+//                                             // Counterpart::full, seed + 2) of each point whose
+//                                             // reference is its model-matched counterpart; rows
+//                                             // then carry per channel total_* (the point against
+//                                             // it) and model_* (the counterpart against it)
 //                   "device": "same"}         // optional: the curve runs on each method's device
 //                                             // (a GL method's: reference_gl) — or "cpu": the
 //                                             // CPU counterpart (a reference_gl reference's curve
@@ -87,6 +96,8 @@ struct SweepPoint {
   size_t reference = 0;   // index into Experiment::references
   int curve = -1;         // index into Experiment::curves: its counterpart's convergence, or −1
   int spp = 0;            // the method's "spp", or the experiment's
+  uint32_t seed = 0;      // this render's seed (with "seeds": the k-th of the point's)
+  int full = -1;          // "split": index into Experiment::references of its full reference, or −1
 };
 
 // The sweep's comparisons report FLIP (core/flip.h) unless the experiment says "flip": "off".
@@ -101,6 +112,8 @@ struct Experiment {
   std::vector<std::string> scenes;
   int width = 0, height = 0, spp = 0;
   uint32_t seed = 1;
+  int seeds = 1;                  // renders per point (seed + kSeedStride·k)
+  bool split = false;             // reference.split: each point's full reference too
   std::vector<int> checkpoints;   // sorted, < spp
   std::vector<std::string> aovs;  // besides the image
   DiffOptions diff = withFlip();  // relMSE's ε (absolute); FLIP (the experiment's "flip", auto by default)

@@ -155,6 +155,21 @@ ReferenceChoice chooseReference(const Experiment& e, const nlohmann::json& ref, 
   return rc;
 }
 
+// The index of reference render `r` in e.references: the one already there with its id, or `r`
+// added, its parameters checked (a refusal names `what`).
+size_t referenceIndex(Experiment& e, const SweepRender& r, const std::string& what) {
+  auto same = std::find_if(e.references.begin(), e.references.end(),
+                           [&](const SweepRender& x) { return x.id == r.id; });
+  if (same != e.references.end()) return size_t(same - e.references.begin());
+  try {
+    resolveParameters(r.options);
+  } catch (const Error& ex) {
+    fail("experiment: ", what, ": ", ex.what());
+  }
+  e.references.push_back(r);
+  return e.references.size() - 1;
+}
+
 // Registers the reference render of point `pt` (one per distinct render) and its convergence curve:
 // the same integral with the next seed, against the reference, on the point's device (reference's GL
 // twin for a GL method, unless reference.device is "cpu"), what each point's equal-error time is read
@@ -166,22 +181,9 @@ void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const R
   const std::string &scene = o.scene, &method = o.method, &dir = e.dir;
   const std::string& rmethod = rc.method;
   const std::vector<std::string>&rset = rc.set, &raovs = rc.aovs;
-  SweepRender r;
-  r = makeRender(dir, "references", rmethod,
-                 sweepRenderOptions(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
-  auto same = std::find_if(e.references.begin(), e.references.end(),
-                           [&](const SweepRender& x) { return x.id == r.id; });
-  if (same == e.references.end()) {
-    try {
-      resolveParameters(r.options);
-    } catch (const Error& ex) {
-      fail("experiment: reference of ", where, " (", rmethod, " on ", scene, "): ", ex.what());
-    }
-    e.references.push_back(r);
-    pt.reference = e.references.size() - 1;
-  } else {
-    pt.reference = size_t(same - e.references.begin());
-  }
+  const SweepRender r = makeRender(dir, "references", rmethod,
+                                   sweepRenderOptions(e, scene, rmethod, rset, refSpp, raovs, {}, e.seed, 0));
+  pt.reference = referenceIndex(e, r, "reference of " + where + " (" + rmethod + " on " + scene + ")");
   // Its own convergence: the same integral with the next seed, against the reference,
   // on the point's device (reference's GL twin for a GL method, unless reference.device
   // is "cpu"): what each point's equal-error time is read off. The reference image may
@@ -219,6 +221,27 @@ void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const R
     }
     pt.curve = int(c - e.curves.begin());
   }
+}
+
+// "split": the full reference of point `pt` (Counterpart::full of the method whose counterpart
+// the reference is, on the reference's device, seed + kFullReferenceSeedOffset), shared like
+// the references.
+void addFullReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const ReferenceChoice& rc,
+                      int refSpp, const std::string& where, const MethodInfo& of) {
+  RenderOptions oo = o;
+  if (oo.method != of.name) {
+    oo.method = of.name;
+    oo.set.clear();
+  }
+  const Counterpart cp = of.counterpart(resolveParameters(oo));
+  if (cp.full.empty())
+    fail("experiment: 'reference.split': ", where, " (", of.name,
+         ") names no full reference in its registry row");
+  SweepRender r = makeRender(e.dir, "references", rc.method,
+                             sweepRenderOptions(e, o.scene, rc.method, cp.full, refSpp, rc.aovs, {},
+                                                e.seed + kFullReferenceSeedOffset, 0));
+  pt.full =
+      int(referenceIndex(e, r, "full reference of " + where + " (" + rc.method + " on " + o.scene + ")"));
 }
 
 }  // namespace
@@ -276,6 +299,7 @@ void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref,
         pt.params[k] = v;
       }
       RenderOptions o = sweepRenderOptions(e, scene, method, set, spp, {}, checkpoints, seed, e.timeBudgetS);
+      pt.seed = seed;
       nlohmann::json resolved;
       std::vector<std::string> outputs;
       try {
@@ -295,10 +319,21 @@ void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref,
       if (ref.contains("file") && !m.contains("reference")) {
         pt.reference = 0;
       } else {
-        addReference(e, pt, o, chooseReference(e, ref, mref, where, info, o, resolved), refSpp, where,
-                     curveMethods);
+        const ReferenceChoice rc = chooseReference(e, ref, mref, where, info, o, resolved);
+        addReference(e, pt, o, rc, refSpp, where, curveMethods);
+        if (e.split && !mref.contains("method") && !mref.contains("variant"))
+          addFullReference(
+              e, pt, o, rc, refSpp, where,
+              mref.contains("counterpart_of") ? findMethod(mref["counterpart_of"].get<std::string>()) : info);
       }
-      e.points.push_back(std::move(pt));
+      // With "seeds": the same point with the next seeds, against the same references.
+      e.points.push_back(pt);
+      for (int k = 1; k < e.seeds; ++k) {
+        RenderOptions ok = o;
+        ok.seed = pt.seed = seed + kSeedStride * uint32_t(k);
+        pt.render = makeRender(dir, "points", method, ok);
+        e.points.push_back(pt);
+      }
     }
 }
 

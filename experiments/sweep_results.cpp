@@ -82,17 +82,22 @@ nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string
   relative.relativeEpsilon = e.relativeEpsilon;
   relative.darkTolerance = e.diff.darkTolerance;
   std::vector<Image> ia, ib;
-  double sum[7] = {0, 0, 0, 0, 0, 0, 0}, flipLdr = 0, flipHdr = 0;
+  double sum[8] = {0, 0, 0, 0, 0, 0, 0, 0}, flipLdr = 0, flipHdr = 0;
   bool hasLdr = false, hasHdr = false;
   for (size_t t = 0; t < a.size(); ++t) {
     ia.push_back(readImage(a[t]));
     ib.push_back(readImage(b[t]));
     const ImageDiff d = compareImages(ia.back(), ib.back(), a[t], b[t], e.diff),
                     dr = compareImages(ia.back(), ib.back(), a[t], b[t], relative);
-    const double v[7] = {
-        d.relMse, dr.relMse,     d.relMae, d.ssim, (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0,
-        d.leak,   d.darkFraction};
-    for (int k = 0; k < 7; ++k) sum[k] += v[k] / double(a.size());
+    const double v[8] = {d.relMse,
+                         dr.relMse,
+                         d.relMae,
+                         d.ssim,
+                         (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0,
+                         d.leak,
+                         d.darkFraction,
+                         d.relMseTrimmed};
+    for (int k = 0; k < 8; ++k) sum[k] += v[k] / double(a.size());
     hasLdr = d.hasFlipLdr;
     hasHdr = d.hasFlipHdr;
     if (hasLdr) flipLdr += d.flipLdr.pooled.mean / double(a.size());
@@ -100,8 +105,9 @@ nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string
   }
   // A metric without a value (against a black reference) is "undefined" in the row, the JSON and the CSV.
   nlohmann::json m;
-  const char* names[7] = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy", "leak", "dark_fraction"};
-  for (int k = 0; k < 7; ++k) m[names[k]] = finiteOrUndefined(sum[k]);
+  const char* names[8] = {"relmse", "relmse_relative", "rel_mae",       "ssim", "energy",
+                          "leak",   "dark_fraction",   "relmse_trimmed"};
+  for (int k = 0; k < 8; ++k) m[names[k]] = finiteOrUndefined(sum[k]);
   if (hasLdr) m["flip_ldr"] = flipLdr;  // the mean FLIP (over the frames of an animation)
   if (hasHdr) m["flip_hdr"] = flipHdr;
   if (a.size() > 1) {
@@ -113,12 +119,18 @@ nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string
   return m;
 }
 
+// The metrics the split reports beside a row's own (total_* and model_*).
+const char* const kSplitMetrics[] = {"relmse", "relmse_relative", "rel_mae",
+                                     "energy", "flip_ldr",        "flip_hdr"};
+
 // The rows of one render (a point or a counterpart curve): one per checkpoint
 // it reached and one for its last image, each against the reference (an
-// animation: one row, its frames against the reference's).
+// animation: one row, its frames against the reference's). `full`: the point's full reference
+// ("split"), or null: then each channel also has total_* (the render against it) and model_* (the
+// reference against it).
 void addRows(const Experiment& e, const SweepRender& render, const std::vector<int>& checkpoints,
              const SweepRender& ref, const nlohmann::json& base, const std::string& machine,
-             nlohmann::json& rows) {
+             nlohmann::json& rows, const SweepRender* full = nullptr) {
   const std::string lastPath = stemOfRender(render) + ".json";
   const nlohmann::json last = readJson(lastPath);
   const int frames = render.options.frames;
@@ -136,6 +148,18 @@ void addRows(const Experiment& e, const SweepRender& render, const std::vector<i
   if (completed > 0) images.emplace_back(completed, stemOfRender(render));
   std::vector<std::string> channels = {"image"};
   channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
+  auto frameFiles = [&](const SweepRender& r, const std::string& stem, const std::string& suffix) {
+    std::vector<std::string> f;
+    for (int t = 0; t < frames; ++t) f.push_back((frames > 1 ? sweepFrameStem(r, t) : stem) + suffix);
+    return f;
+  };
+  std::map<std::string, nlohmann::json> model;  // per channel: the reference against the full one
+  if (full)
+    for (auto& ch : channels) {
+      const std::string suffix = ch == "image" ? ".exr" : "." + ch + ".exr";
+      model[ch] = channelMetrics(e, frameFiles(ref, stemOfRender(ref), suffix),
+                                 frameFiles(*full, stemOfRender(*full), suffix));
+    }
   for (auto& [spp, stem] : images) {
     const nlohmann::json stats = readJson(stem + ".json");
     if (!stats.is_object() || (frames == 1 && !fs::exists(stem + ".exr"))) continue;
@@ -162,8 +186,16 @@ void addRows(const Experiment& e, const SweepRender& render, const std::vector<i
         a.push_back((frames > 1 ? sweepFrameStem(render, t) : stem) + suffix);
         b.push_back(sweepFrameStem(ref, t) + suffix);
       }
-      const nlohmann::json m = channelMetrics(e, a, b);
-      if (!m.is_null()) row[ch] = m;
+      nlohmann::json m = channelMetrics(e, a, b);
+      if (m.is_null()) continue;
+      if (full) {
+        const nlohmann::json total = channelMetrics(e, a, frameFiles(*full, stemOfRender(*full), suffix));
+        for (const char* k : kSplitMetrics) {
+          if (total.is_object() && total.contains(k)) m[std::string("total_") + k] = total[k];
+          if (model[ch].is_object() && model[ch].contains(k)) m[std::string("model_") + k] = model[ch][k];
+        }
+      }
+      row[ch] = m;
     }
     rows.push_back(row);
   }
@@ -231,12 +263,15 @@ nlohmann::json collectSweep(const Experiment& e) {
     const SweepRender& ref = e.references[p.reference];
     if (ref.file.empty() && !readJson(stemOfRender(ref) + ".json").is_object()) continue;  // not rendered yet
     const nlohmann::json base = {{"scene", p.scene}, {"method", p.method}, {"label", p.label},
-                                 {"role", "point"},  {"params", p.params}, {"point", p.render.id}};
+                                 {"role", "point"},  {"params", p.params}, {"point", p.render.id},
+                                 {"seed", p.seed}};
     nlohmann::json mine = nlohmann::json::array();
     std::vector<int> checkpoints;
     for (int k : e.checkpoints)
       if (k < p.spp) checkpoints.push_back(k);
-    addRows(e, p.render, checkpoints, ref, base, machine, mine);
+    const SweepRender* full = p.full >= 0 ? &e.references[size_t(p.full)] : nullptr;
+    if (full && !readJson(stemOfRender(*full) + ".json").is_object()) continue;  // not rendered yet
+    addRows(e, p.render, checkpoints, ref, base, machine, mine, full);
     for (auto& row : mine) {
       // The time the exact counterpart takes to reach this row's error (relMSE, relative ε).
       for (auto& ch : channels) {
@@ -270,8 +305,15 @@ nlohmann::json writeSweepResults(const Experiment& e) {
       const std::string a = sweepFrameStem(p.render, t) + ".exr",
                         b = sweepFrameStem(e.references[p.reference], t) + ".exr";
       if (!sweepRenderDone(p.render, p.spp) || !fs::exists(b)) break;
-      const Image d = signedDifference(readImage(a), readImage(b));
+      const Image ia = readImage(a), ib = readImage(b);
+      const Image d = signedDifference(ia, ib);
       if (t == 0) writeSignedError(d, p.render.dir + "/error.png");
+      // The FLIP map beside it (HDR-FLIP where the sweep computes it), in the papers' magma colours.
+      if (t == 0 && e.diff.flip != FlipMode::Off) {
+        const ImageDiff f = compareImages(ia, ib, a, b, e.diff);
+        if (f.hasFlipHdr || f.hasFlipLdr)
+          writeFlipMap(f.hasFlipHdr ? f.flipHdr : f.flipLdr, p.render.dir + "/flip.png");
+      }
       if (frames > 1) writeSignedError(d, frameStem(p.render.dir + "/error", t) + ".png");
     }
   }
@@ -293,6 +335,8 @@ nlohmann::json writeSweepResults(const Experiment& e) {
                                                                   : "auto"},
                           {"pixels_per_degree", e.diff.viewing.pixelsPerDegree()}}},
                         {"time_budget_s", e.timeBudgetS},
+                        {"seeds", e.seeds},
+                        {"split", e.split},
                         {"animations", animations},
                         {"convergence", e.curveCounts},
                         {"exact_device", e.exactDevice == ExactDevice::Same ? "same" : "cpu"},
@@ -306,13 +350,18 @@ nlohmann::json writeSweepResults(const Experiment& e) {
     for (auto& [k, v] : p.params.items()) keys.insert(k);
   std::vector<std::string> channels = {"image"};
   channels.insert(channels.end(), e.aovs.begin(), e.aovs.end());
-  std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae", "ssim", "energy",
-                                      "leak",   "dark_fraction"};
+  std::vector<std::string> metrics = {"relmse", "relmse_relative", "rel_mae",       "ssim", "energy",
+                                      "leak",   "dark_fraction",   "relmse_trimmed"};
   if (e.diff.flip != FlipMode::Off) metrics.insert(metrics.end(), {"flip_ldr", "flip_hdr"});
+  if (e.split)
+    for (const char* prefix : {"total_", "model_"})
+      for (const char* k : kSplitMetrics)
+        if (e.diff.flip != FlipMode::Off || std::string(k).rfind("flip", 0) != 0)
+          metrics.push_back(std::string(prefix) + k);
   if (!e.curveCounts.empty()) metrics.push_back("equal_error_time_ratio");
   if (e.animated()) metrics.insert(metrics.end(), {"temporal_error", "change", "change_reference"});
   std::ostringstream csv;
-  csv << "scene,method,label,role,point";
+  csv << "scene,method,label,role,point,seed";
   for (auto& k : keys) csv << "," << k;
   csv << ",spp,time_ms,sample_ms,setup_ms,time_limited";
   for (auto& ch : channels)
@@ -326,7 +375,8 @@ nlohmann::json writeSweepResults(const Experiment& e) {
   };
   for (auto& r : rows) {
     csv << field(r["scene"]) << "," << field(r["method"]) << "," << field(r["label"]) << ","
-        << field(r["role"]) << "," << field(r["point"]);
+        << field(r["role"]) << "," << field(r["point"]) << ","
+        << (r.contains("seed") ? std::to_string(r["seed"].get<uint32_t>()) : std::string());
     for (auto& k : keys) csv << "," << field(r["params"].value(k, ""));
     csv << "," << r["spp"].get<int>() << "," << r["time_ms"].get<double>() << ","
         << r["sample_ms"].get<double>() << "," << r["setup_ms"].get<double>() << ","

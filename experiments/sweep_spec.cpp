@@ -96,7 +96,7 @@ void checkAnimation(const Experiment::Animation& a, const std::string& scene) {
 void readExperimentHead(const nlohmann::json& j, const std::string& path, Experiment& e) {
   checkKeys(
       j, "the experiment",
-      {"name", "scenes", "size", "spp", "checkpoints", "seed", "aovs", "epsilon", "relative_epsilon",
+      {"name", "scenes", "size", "spp", "checkpoints", "seed", "seeds", "aovs", "epsilon", "relative_epsilon",
        "dark_tolerance", "flip", "time_budget_s", "frames", "time_step", "time", "reference", "methods"});
   e.name = stringAt(j, "name", "name", fs::path(path).stem().string());
   for (const char* k : {"scenes", "size", "spp", "methods"})
@@ -127,6 +127,7 @@ void readExperimentHead(const nlohmann::json& j, const std::string& path, Experi
   parseSize(j["size"].get<std::string>(), e.width, e.height);
   e.spp = intIn(j["spp"], "spp", 1, 1 << 20);
   if (j.contains("seed")) e.seed = uint32_t(intIn(j["seed"], "seed", 0, 1 << 30));
+  if (j.contains("seeds")) e.seeds = intIn(j["seeds"], "seeds", 1, 1000);
   if (j.contains("checkpoints")) {
     if (!j["checkpoints"].is_array()) fail("experiment: 'checkpoints' must be a list of sample counts");
     std::set<int> c;
@@ -182,7 +183,16 @@ void checkOutputFolder(const std::string& dir) {
 
 // The experiment's "reference": its spp (returned), the convergence counts, the device, or an image file.
 int readReference(const nlohmann::json& ref, const std::string& path, Experiment& e) {
-  checkKeys(ref, "'reference'", {"spp", "method", "set", "file", "convergence", "device"});
+  checkKeys(ref, "'reference'", {"spp", "method", "set", "file", "convergence", "device", "split"});
+  if (ref.contains("split")) {
+    if (!ref["split"].is_boolean())
+      fail("experiment: 'reference.split' = ", jsonExcerpt(ref["split"]), " must be true or false");
+    e.split = ref["split"].get<bool>();
+    if (e.split && (ref.contains("file") || ref.contains("method")))
+      fail(
+          "experiment: 'reference.split' splits an error against the registry's model-matched counterpart "
+          "and full reference; it does not go with a reference 'file' or 'method'");
+  }
   if (ref.contains("device")) {
     const std::string d = stringAt(ref, "device", "reference.device");
     if (d != "same" && d != "cpu")

@@ -6,13 +6,17 @@ Usage: sweep_report.py DIR   (vgi sweep runs it after writing DIR/results.json)
 Writes into DIR:
   convergence_<scene>.png/.pdf  log-log error (rel. MAE, relMSE with the relative ε and, where the
                                 sweep measured it, HDR-FLIP, of the image and of each AOV) against time, one line per point, a marker
-                                per checkpoint; the exact counterparts' own curves dashed
+                                per checkpoint; the exact counterparts' own curves dashed; a point rendered
+                                with several seeds ("seeds") is one line, their mean, in a band of ±1
+                                standard deviation
+  seeds.md                      with "seeds": per point and sample count the mean ± standard deviation
+                                over its seeds of every error metric and of the equal-error time ratio
   passes_<scene>.png/.pdf       per-pass time of each point's final render (one frame)
   pareto.md, pareto.tex         per scene, the points on the error-vs-time Pareto front
                                 (Markdown and LaTeX booktabs), with FLIP beside relMSE and each point's equal-error time
                                 ratio to its counterpart where the experiment has its curve
   report.html                   the tables, the plots and, per point, its image, the
-                                reference and the error map with an A/B slider and a crop; in an
+                                reference, the error map and the FLIP map with an A/B slider and a crop; in an
                                 animation experiment ("frames"), per point a strip of its frames
                                 above the reference's and the error maps, with its temporal error
 Needs Debian's python3-matplotlib (scripts/setup.sh installs it).
@@ -67,6 +71,52 @@ def point_name(row):
     return row["label"] + (f" ({params})" if params else "")
 
 
+def mean_sd(values):
+    """The mean and the sample standard deviation (0 for one value) of the numbers among values."""
+    v = [x for x in values if x is not None]
+    if not v:
+        return None, None
+    if all(x == v[0] for x in v):
+        return v[0], 0.0  # one value, or a render the seed does not change: exactly, no rounding
+    m = sum(v) / len(v)
+    return m, (math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1)) if len(v) > 1 else 0.0)
+
+
+def seed_groups(order):
+    """The points grouped by name (one group per point rendered with several seeds), in order."""
+    groups = {}
+    for pid, p in order:
+        groups.setdefault((is_curve(p[0]), point_name(p[0])), []).append((pid, p))
+    return list(groups.values())
+
+
+def seed_table(rows, chans, flip_key):
+    """seeds.md's lines for one scene: per point and sample count, mean ± sd over the seeds."""
+    groups = {}
+    for r in rows:
+        if not is_curve(r):
+            groups.setdefault((point_name(r), r["spp"]), []).append(r)
+    metrics = [("rel_mae", "rel. MAE"), ("relmse", "relMSE"), ("relmse_trimmed", "relMSE (top 0.1 % out)")]
+    if flip_key:
+        metrics.append((flip_key, "HDR-FLIP" if flip_key == "flip_hdr" else "LDR-FLIP"))
+    metrics.append(("equal_error_time_ratio", "equal-error time ratio"))
+    if any(c in r and "total_relmse" in r[c] for r in rows for c in chans):  # "split"
+        metrics += [("total_relmse", "total relMSE"), ("model_relmse", "model relMSE")]
+    lines = ["| point | spp | seeds | time ms | " + " | ".join(f"{c} {n}" for c in chans for _, n in metrics) + " |",
+             "|" + "---|" * (4 + len(chans) * len(metrics))]
+    for (name, spp), g in sorted(groups.items()):
+        if len(g) < 2:
+            continue
+        t, ts = mean_sd([r["time_ms"] for r in g])
+        cells = []
+        for c in chans:
+            for k, _ in metrics:
+                m, s = mean_sd([num(r[c].get(k)) if c in r else None for r in g])
+                cells.append("" if m is None else f"{m:.4g} ± {s:.2g}")
+        lines.append(f"| {name} | {spp} | {len(g)} | {t:.0f} ± {ts:.0f} | " + " | ".join(cells) + " |")
+    return lines if len(lines) > 2 else []
+
+
 def channels_of(rows):
     chans = []
     for r in rows:
@@ -106,6 +156,7 @@ def main(out):
         if r["scene"] not in scenes:
             scenes.append(r["scene"])
     md = [f"# {res['experiment']}: error against time\n"]
+    seeds_md = [f"# {res['experiment']}: mean ± standard deviation over {res.get('seeds', 1)} seeds\n"]
     tex = ["% vgi sweep " + res["experiment"] + " (booktabs)"]
     sections = []
     for scene in scenes:
@@ -139,22 +190,38 @@ def main(out):
                 styles[pid] = dict(color=cmap(ncolor % cmap.N), marker="o")
                 ncolor += 1
         handles = {}
+        groups = seed_groups(order)
         for mi, (metric, mname) in enumerate(metrics):
             for ax, ch in zip(axes[mi], chans):
-                for pid, p in order:
-                    shown = [r for r in p if ch in r and num(r[ch].get(metric)) is not None]
-                    xs = [r["time_ms"] for r in shown]
-                    ys = [max(num(r[ch][metric]), 1e-9) for r in shown]
+                for group in groups:
+                    pid, p = group[0]
+                    # Per sample count: the mean over the group's seeds (one seed: the point itself).
+                    by_spp = {}
+                    for _, q in group:
+                        for r in q:
+                            if ch in r and num(r[ch].get(metric)) is not None:
+                                by_spp.setdefault(r["spp"], []).append(r)
+                    xs, ys, lo, hi = [], [], [], []
+                    for spp in sorted(by_spp):
+                        t, _ = mean_sd([r["time_ms"] for r in by_spp[spp]])
+                        m, s = mean_sd([num(r[ch][metric]) for r in by_spp[spp]])
+                        xs.append(t)
+                        ys.append(max(m, 1e-9))
+                        lo.append(max(m - s, 1e-9))
+                        hi.append(max(m + s, 1e-9))
                     if xs:
-                        (line,) = ax.plot(xs, ys, ms=3, label=point_name(p[0]), **styles[pid])
-                        handles.setdefault(pid, line)
+                        label = point_name(p[0]) + (f" ({len(group)} seeds, ±1 sd)" if len(group) > 1 else "")
+                        (line,) = ax.plot(xs, ys, ms=3, label=label, **styles[pid])
+                        if len(group) > 1:
+                            ax.fill_between(xs, lo, hi, color=styles[pid]["color"], alpha=0.2, lw=0)
+                        handles.setdefault(pid, (line, label))
                 ax.set_xscale("log")
                 ax.set_yscale("log")
                 ax.set_xlabel("time (ms, set-up + samples)")
                 ax.set_ylabel(f"{mname} ({ch})")
                 ax.set_title(f"{scene}: {ch}")
                 ax.grid(True, which="both", alpha=0.3)
-        legend = [(handles[pid], point_name(p[0])) for pid, p in order if pid in handles]
+        legend = [handles[pid] for pid, p in order if pid in handles]
         ncol = 2 if len(chans) > 1 else 1
         rows_legend = (len(legend) + ncol - 1) // ncol
         fig.legend([h for h, _ in legend], [n for _, n in legend], loc="lower center", ncol=ncol, fontsize=7,
@@ -247,10 +314,14 @@ def main(out):
             table.append((point_name(r), r["spp"], r["time_ms"], cells))
         tex.append("\\bottomrule\n\\end{tabular}\n")
         sections.append((scene, conv, bars, (cols, table), images))
+        seeds_md += [f"\n## {scene}\n"] + seed_table(srows, chans, flip_key) if res.get("seeds", 1) > 1 else []
     with open(os.path.join(out, "pareto.md"), "w") as f:
         f.write("\n".join(md) + "\n")
     with open(os.path.join(out, "pareto.tex"), "w") as f:
         f.write("\n".join(tex) + "\n")
+    if res.get("seeds", 1) > 1:
+        with open(os.path.join(out, "seeds.md"), "w") as f:
+            f.write("\n".join(seeds_md) + "\n")
     write_html(out, res, sections)
 
 
@@ -328,8 +399,9 @@ def write_html(out, res, sections):
             h.append(f"<tr><td>{html.escape(name)}</td><td>{spp}</td><td>{ms:.0f}</td>"
                      + "".join(f"<td>{html.escape(x)}</td>" for x in cells) + "</tr>")
         h.append("</table><h3>Images</h3><p>Drag the slider: left of it the first image, right of it the "
-                 "second; choose either from the method, the reference and the error map (red = too bright, "
-                 "blue = too dark). Right: a 4× crop of the centre.</p>")
+                 "second; choose either from the method, the reference, the error map (red = too bright, "
+                 "blue = too dark) and the FLIP map (magma: black = no visible difference, bright = large). "
+                 "Right: a 4× crop of the centre.</p>")
         anim = res.get("animations", {}).get(scene, {})
         frames = anim.get("frames", 1)
         for r in finals:
@@ -340,6 +412,9 @@ def write_html(out, res, sections):
             ref = f"references/{r['reference']}/ref{first}.png"
             err = f"points/{r['point']}/error.png"
             opts = [("method", img), ("reference", ref), ("error", err)]
+            flip = f"points/{r['point']}/flip.png"  # the FLIP map, where the sweep computed FLIP
+            if os.path.exists(os.path.join(out, flip)):
+                opts.append(("FLIP", flip))
             sel = lambda which, default: (  # noqa: E731
                 f"<select onchange=\"pick('{pid}','{which}',this.value)\">"
                 + "".join(f"<option value='{src}'{' selected' if name == default else ''}>{name}</option>"

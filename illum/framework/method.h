@@ -113,7 +113,12 @@ class Method {
 
 // The exact computation of the integral an approximate method estimates
 // (`vgi compare` renders both): a method, its parameters, and the extra
-// outputs both write (compared too).
+// outputs both write (compared too). `set` is the model-matched counterpart: the exact
+// integrator with exactly the method's omissions (a bounce limit, a radius, the environment,
+// glossy bounces: reference's maxdepth, radius, env, glossy); `full` the full reference of the
+// same quantity (the whole scene's light, every bounce, every lobe), with the same channel
+// bookkeeping (env_channel), so that an error splits into the model's (model-matched against
+// full) and the approximation's (the method against the model-matched).
 struct Counterpart {
   std::string method;
   std::vector<std::string> set;  // key=value
@@ -121,7 +126,14 @@ struct Counterpart {
   // What both sides leave out or count differently from the counterpart's defaults (e.g. "neither
   // side integrates the environment light"): printed by --help-module and compare, kept in results.
   std::string note = {};
+  std::vector<std::string> full = {};  // key=value for `method`: the full reference
 };
+
+// The full reference of a method whose image stands for the scene's light: `reference` path
+// tracing at its defaults (every bounce to maxdepth 8, the environment, every lobe), the
+// environment seen from the first surface counted as `envChannel` ("direct" or "indirect") as
+// the model-matched counterpart counts it.
+std::vector<std::string> fullPathReference(const std::string& envChannel = "direct");
 
 struct MethodInfo {
   std::string name;

@@ -110,6 +110,17 @@ ExactParams readExactParams(ParamSet& params, const Scene& scene, const char* me
         params.getString("env_channel", "direct", envChannelDoc, {"direct", "indirect"}) == "indirect";
   else
     params.declare("env_channel", "string", "direct", envChannelDoc);
+  const char* glossyDoc =
+      "path/nearfield: the surfaces that reflect by their Phong lobe: all; first (the visible surface "
+      "only, every bounce surface diffuse: the cone methods' model); direct (only the visible surface's "
+      "direct light: the indirect light it reflects and every bounce surface diffuse: the model of the "
+      "methods that bounce diffusely)";
+  if (check(usesDepth || nearField, "glossy")) {
+    const std::string g = params.getString("glossy", "all", glossyDoc, {"all", "first", "direct"});
+    e.glossy = g == "all" ? GlossyModel::All : g == "first" ? GlossyModel::First : GlossyModel::Direct;
+  } else {
+    params.declare("glossy", "string", "all", glossyDoc);
+  }
   readVisibility(params, e, method, voxelsSupported, check);
   const char* emDoc = "path/direct/nearfield: area lights sampled by mis (light + BRDF), light or brdf";
   if (check(e.integrator != ExactIntegrator::Ao, "emitter_sampling")) {

@@ -12,6 +12,12 @@ struct Scene;
 
 enum class ExactIntegrator { Path, Direct, NearField, Ao };
 enum class EmitterSampling { Mis, Light, Brdf };
+// The surfaces that reflect by their Phong lobe (a model-matched counterpart's omission,
+// DESIGN.md "Exact counterparts"): All; First — the visible surface only, every bounce surface
+// diffuse (the cone methods' model); Direct — only the visible surface's direct light, the
+// indirect light it reflects and every bounce surface diffuse (the diffuse-bounce methods').
+// The values are shared with the GL twin (shaders/illum/reference_gl/params.glsl, GLOSSY_*).
+enum class GlossyModel { All = 0, First = 1, Direct = 2 };
 
 struct ExactParams {
   ExactIntegrator integrator = ExactIntegrator::Path;
@@ -24,13 +30,14 @@ struct ExactParams {
   glm::uvec3 voxels{128};
   float offset = 1.0f;
   EmitterSampling emitterSampling = EmitterSampling::Mis;
+  GlossyModel glossy = GlossyModel::All;  // path / nearfield
   // The integrators that split their estimate into "direct" and "indirect" outputs.
   bool splitsDirectIndirect() const {
     return integrator == ExactIntegrator::NearField || integrator == ExactIntegrator::Path;
   }
 };
 
-// Reads and documents integrator, maxdepth, rr_depth, radius, env, env_channel, visibility,
+// Reads and documents integrator, maxdepth, rr_depth, radius, env, env_channel, glossy, visibility,
 // voxels, offset and emitter_sampling; only the integrator's own are read (a
 // key of another integrator is an error naming both). `method`: the module
 // name in messages; `voxelsSupported`: whether visibility=voxels is offered

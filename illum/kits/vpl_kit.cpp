@@ -196,10 +196,12 @@ void VplKit::stats(Frame& f) const {
 Counterpart vplChainsCounterpart(const nlohmann::json& p) {
   return Counterpart{
       "reference",
-      {"integrator=path", "maxdepth=" + std::to_string(p.at("bounces").get<int>() + 1), "env=false"},
+      {"integrator=path", "maxdepth=" + std::to_string(p.at("bounces").get<int>() + 1), "env=false",
+       "glossy=direct"},
       {"direct", "indirect"},
       "neither side integrates the environment light (the VPLs come from the lights' maps); the "
-      "environment is the background only"};
+      "environment is the background only; VPLs and receivers reflect diffusely (glossy=direct)",
+      fullPathReference()};
 }
 
 }  // namespace vgi

@@ -66,7 +66,8 @@ MethodInfo directMethod() {
                 {"integrator=direct", "env=false"},
                 {},
                 "neither side integrates the environment light (shadow maps cannot see the sky); "
-                "the environment is the background only"};
+                "the environment is the background only",
+                fullPathReference()};
           }};
 }
 

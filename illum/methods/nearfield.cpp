@@ -198,8 +198,11 @@ MethodInfo nearFieldMethod() {
           [](const nlohmann::json& p) {
             return Counterpart{"reference",
                                {"integrator=nearfield", "radius=" + counterpartText(p.at("radius")),
-                                "env=" + counterpartText(p.at("env"))},
-                               {"direct", "indirect"}};
+                                "env=" + counterpartText(p.at("env")), "glossy=direct"},
+                               {"direct", "indirect"},
+                               "the model: one bounce from within the radius, reflected diffusely "
+                               "(glossy=direct)",
+                               fullPathReference("indirect")};
           }};
 }
 

@@ -15,6 +15,12 @@
 //   ao         ambient occlusion: fraction of cosine-weighted rays that travel
 //              `radius` unoccluded (camera misses are 0)
 //
+// glossy (path, nearfield): the surfaces that reflect by their Phong lobe — all; first (bounce
+// surfaces reflect diffusely); direct (also the indirect light the visible surface reflects goes
+// through its diffuse lobe alone; its direction is still drawn from the whole BRDF, so the direct
+// light and its MIS are glossy=all's). The omissions of a method's model, so that its
+// model-matched counterpart (MethodInfo::counterpart) leaves out what the method leaves out.
+//
 // Area lights (emissive meshes, core/emitters.h) are sampled by next-event
 // estimation and by the BRDF, combined by multiple importance sampling with
 // the power heuristic (Veach 1997, §9.2; `emitter_sampling=mis`); `light` and
@@ -248,6 +254,9 @@ float ReferenceRenderer::emissionWeight(const SurfacePoint& hit, float pdfBrdf) 
 
 vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const {
   vec3 L(0.0f), beta(1.0f);
+  // The throughput of the light that reaches x0 along one segment (the direct channel's terms met
+  // at depth 1): beta itself unless glossy=direct, where beta keeps x0's diffuse part only.
+  vec3 betaSegment(1.0f);
   float pdfBrdf = 0;  // of the direction that led to this vertex (none for the camera ray)
   // Light that reaches the first vertex x0 along one segment (its emission
   // and NEE, emitters and environment met by its bounce ray) is direct; the
@@ -273,14 +282,17 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const
     if (!found) {
       // The camera sees the environment as background always; as a light only with env.
       if (depth == 0 || p_.env) {
-        const vec3 e = beta * scene_->environmentRadiance(d);
+        const bool isIndirect = depth >= 2 || (depth == 1 && p_.envIndirect);
+        const vec3 e = (depth == 1 && !isIndirect ? betaSegment : beta) * scene_->environmentRadiance(d);
         L += e;
-        if (depth >= 2 || (depth == 1 && p_.envIndirect)) indirect += e;
+        if (isIndirect) indirect += e;
       }
       break;
     }
+    if (depth >= 1 && p_.glossy != GlossyModel::All) sp.brdf.ks = vec3(0.0f);  // bounce surfaces: diffuse
     if (sp.emission != vec3(0.0f)) {
-      const vec3 e = beta * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
+      const vec3 e =
+          (depth == 1 ? betaSegment : beta) * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
       L += e;
       if (depth >= 2) indirect += e;
     }
@@ -291,12 +303,19 @@ vec3 ReferenceRenderer::pathLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) const
     vec3 wi = sampleBrdf(sp.brdf, sp.n, sp.wo, rng.uniform3());
     float pdf = brdfPdf(sp.brdf, sp.n, sp.wo, wi);
     if (!(pdf > 0.0f) || dot(wi, sp.n) <= 0.0f || dot(wi, sp.ng) <= 0.0f) break;
-    beta *= evalBrdf(sp.brdf, sp.n, sp.wo, wi) * (dot(wi, sp.n) / pdf);
+    const float cosPdf = dot(wi, sp.n) / pdf;
+    betaSegment = beta * evalBrdf(sp.brdf, sp.n, sp.wo, wi) * cosPdf;
+    // glossy=direct: x0's indirect light through its diffuse lobe only (the direction still
+    // drawn from the whole BRDF, so the direct light's MIS is the same as glossy=all's).
+    beta = depth == 0 && p_.glossy == GlossyModel::Direct
+               ? beta * evalBrdf(diffusePart(sp.brdf), sp.n, sp.wo, wi) * cosPdf
+               : betaSegment;
     pdfBrdf = pdf;
     if (depth + 1 >= p_.rrDepth) {
-      const float q = russianRouletteQ(beta);
+      const float q = russianRouletteQ(betaSegment);
       if (rng.uniform() < q) break;
       beta /= 1.0f - q;
+      betaSegment /= 1.0f - q;
     }
     o = offsetOrigin(sp, wi);
     d = wi;
@@ -312,12 +331,17 @@ vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) 
   vec3 wi = sampleBrdf(x.brdf, x.n, x.wo, rng.uniform3());
   float pdf = brdfPdf(x.brdf, x.n, x.wo, wi);
   if (!(pdf > 0.0f) || dot(wi, x.n) <= 0.0f || dot(wi, x.ng) <= 0.0f) return L;
-  vec3 weight = evalBrdf(x.brdf, x.n, x.wo, wi) * (dot(wi, x.n) / pdf);
+  const vec3 weight = evalBrdf(x.brdf, x.n, x.wo, wi) * (dot(wi, x.n) / pdf);
+  // glossy=direct: the indirect light through x's diffuse lobe only (see pathLi).
+  const vec3 weightIndirect = p_.glossy == GlossyModel::Direct
+                                  ? evalBrdf(diffusePart(x.brdf), x.n, x.wo, wi) * (dot(wi, x.n) / pdf)
+                                  : weight;
   // The bounce surface y: its emission is direct light at x (the MIS share),
   // its direct light the one indirect bounce.
-  auto bounce = [&](const SurfacePoint& y) {
+  auto bounce = [&](SurfacePoint y) {
     if (y.emission != vec3(0.0f)) L += weight * y.emission * emissionWeight(y, pdf);
-    indirect = weight * directLight(y, rng, false);
+    if (p_.glossy != GlossyModel::All) y.brdf.ks = vec3(0.0f);
+    indirect = weightIndirect * directLight(y, rng, false);
   };
   SurfacePoint y;
   if (voxelTracer_) {
@@ -327,7 +351,7 @@ vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) 
     ray.tmax = p_.radius;
     TraceResult h = voxelTracer_->trace(ray);
     if (!h.hit) {
-      if (p_.env) indirect = weight * scene_->environmentRadiance(wi);
+      if (p_.env) indirect = weightIndirect * scene_->environmentRadiance(wi);
     } else if (intersect(ray.origin, wi, h.t + 2.0f * voxelDiagonal_, y)) {
       bounce(y);
     }
@@ -337,7 +361,7 @@ vec3 ReferenceRenderer::nearFieldLi(vec3 o, vec3 d, Pcg32& rng, vec3& indirect) 
   if (intersect(yo, wi, p_.radius, y))
     bounce(y);
   else if (p_.env)
-    indirect = weight * scene_->environmentRadiance(wi);
+    indirect = weightIndirect * scene_->environmentRadiance(wi);
   return L + indirect;
 }
 

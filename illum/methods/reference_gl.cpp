@@ -41,6 +41,10 @@
 
 namespace vgi {
 
+static_assert(int(GlossyModel::All) == GLOSSY_ALL && int(GlossyModel::First) == GLOSSY_FIRST &&
+                  int(GlossyModel::Direct) == GLOSSY_DIRECT,
+              "exact_params.h's GlossyModel is the shader's GLOSSY_*");
+
 namespace {
 
 class ReferenceGlMethod : public Method {
@@ -80,6 +84,7 @@ class ReferenceGlMethod : public Method {
                                                                          : shared::EMITTER_SAMPLING_BRDF;
       p.writeIndirect = f.wants("indirect") ? 1 : 0;
       p.writeDirect = f.wants("direct") ? 1 : 0;
+      p.glossy = int(p_.glossy);
     }
     p.radius = p_.radius;
     // The reference's start offset: 2e-5 of the scene's diagonal at this time (plus the coordinates' part).

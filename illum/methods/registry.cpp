@@ -25,6 +25,12 @@ std::string counterpartText(const nlohmann::json& v) {
   return buf;
 }
 
+std::vector<std::string> fullPathReference(const std::string& envChannel) {
+  std::vector<std::string> set = {"integrator=path"};
+  if (envChannel != "direct") set.push_back("env_channel=" + envChannel);
+  return set;
+}
+
 const std::vector<MethodInfo>& methodRegistry() {
   static const std::vector<MethodInfo> table = {
       directMethod(),    nearFieldMethod(), voxelAoMethod(),     voxelPathMethod(),

@@ -263,10 +263,13 @@ MethodInfo vctMethod() {
       [](const nlohmann::json& p) {
         return Counterpart{
             "reference",
-            {"integrator=path", "maxdepth=2", "env=" + counterpartText(p.at("env")), "env_channel=indirect"},
+            {"integrator=path", "maxdepth=2", "env=" + counterpartText(p.at("env")), "env_channel=indirect",
+             "glossy=first"},
             {"direct", "indirect"},
             "the environment seen through the cones is indirect on both sides (as nearfield counts "
-            "it)"};
+            "it); the model: one bounce, glossy at the visible surface only (the voxels' radiance is "
+            "diffuse: glossy=first)",
+            fullPathReference("indirect")};
       }};
 }
 

@@ -113,7 +113,9 @@ MethodInfo voxelAoMethod() {
         return std::make_unique<VoxelAoMethod>(p, s);
       },
       [](const nlohmann::json& p) {
-        return Counterpart{"reference", {"integrator=ao", "radius=" + counterpartText(p.at("radius"))}, {}};
+        // Occlusion within the radius is the quantity itself: the model leaves nothing out.
+        const std::vector<std::string> ao = {"integrator=ao", "radius=" + counterpartText(p.at("radius"))};
+        return Counterpart{"reference", ao, {}, "", ao};
       }};
 }
 

@@ -174,8 +174,11 @@ MethodInfo voxelPathMethod() {
             return Counterpart{"reference",
                                {"integrator=path", "maxdepth=" + std::to_string(p.at("maxdepth").get<int>()),
                                 "rr_depth=" + std::to_string(p.at("rr_depth").get<int>()),
-                                "env=" + counterpartText(p.at("env"))},
-                               {"direct", "indirect"}};
+                                "env=" + counterpartText(p.at("env")),
+                                p.at("glossy").get<bool>() ? "glossy=all" : "glossy=direct"},
+                               {"direct", "indirect"},
+                               "",
+                               fullPathReference()};
           }};
 }
 

@@ -56,9 +56,9 @@ std::string joined(const std::vector<std::string>& v, const std::string& empty =
   return s.empty() ? empty : s;
 }
 
-std::string counterpartText(const Counterpart& c) {
+std::string counterpartText(const Counterpart& c, const std::vector<std::string>& set) {
   std::string s = c.method;
-  for (auto& kv : c.set) s += " " + kv;
+  for (auto& kv : set) s += " " + kv;
   return s;
 }
 
@@ -81,8 +81,10 @@ std::string describeMethod(const std::string& name, const std::string& sceneSpec
     for (auto& d : h.params)
       os << "  " << d.key << " (" << d.type << ", default " << d.defaultValue << "): " << d.doc << "\n";
     if (h.hasCounterpart)
-      os << "exact counterpart (vgi compare): " << counterpartText(h.counterpart)
-         << (h.counterpart.note.empty() ? "" : " — " + h.counterpart.note) << "\n";
+      os << "exact counterpart (vgi compare), model-matched: "
+         << counterpartText(h.counterpart, h.counterpart.set)
+         << (h.counterpart.note.empty() ? "" : " — " + h.counterpart.note) << "\n"
+         << "full reference: " << counterpartText(h.counterpart, h.counterpart.full) << "\n";
   }
   return os.str();
 }
@@ -106,8 +108,10 @@ std::string describeMethodsMarkdown(const std::string& name, const std::string& 
        << "- outputs: image" << (h.outputs.empty() ? "" : ", " + joined(h.outputs))
        << " (`--aov NAME,...`)\n";
     if (h.hasCounterpart)
-      os << "- exact counterpart (`vgi compare`): `" << counterpartText(h.counterpart) << "`"
-         << (h.counterpart.note.empty() ? "" : " — " + h.counterpart.note) << "\n";
+      os << "- exact counterpart (`vgi compare`), model-matched: `"
+         << counterpartText(h.counterpart, h.counterpart.set) << "`"
+         << (h.counterpart.note.empty() ? "" : " — " + h.counterpart.note) << "\n"
+         << "- full reference: `" << counterpartText(h.counterpart, h.counterpart.full) << "`\n";
     os << "\n| key | type | default | meaning |\n|---|---|---|---|\n";
     for (auto& d : h.params)
       os << "| `" << d.key << "` | " << cell(d.type) << " | " << cell(d.defaultValue) << " | " << cell(d.doc)

@@ -16,6 +16,13 @@ struct BrdfParams {
   float exponent;
 };
 
+// The Lambert lobe alone (the Phong lobe's ks zero): what a model that reflects diffusely sees.
+SHARED_FN BrdfParams diffusePart(BrdfParams m) {
+  BrdfParams d = m;
+  d.ks = vec3(0.0f);
+  return d;
+}
+
 SHARED_FN vec3 reflectAbout(vec3 wo, vec3 n) { return 2.0f * dot(n, wo) * n - wo; }
 
 // f(wo, wi); both directions point away from the surface; zero below the horizon.

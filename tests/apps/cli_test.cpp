@@ -63,11 +63,22 @@ TEST(Cli, CompareRendersTheExactCounterpartWithTheSameParameters) {
   ASSERT_EQ(r.code, 0) << r.output;
   nlohmann::json s = nlohmann::json::parse(std::ifstream(tmp("cmp.json")));
   const std::vector<std::string> set = s["exact"]["set"];
-  ASSERT_EQ(set.size(), 3u);
+  ASSERT_EQ(set.size(), 4u);
   EXPECT_EQ(set[0], "integrator=nearfield");
   EXPECT_FLOAT_EQ(std::stof(set[1].substr(7)), s["method_params"]["radius"].get<float>());
   EXPECT_EQ(set[2], "env=false");
-  for (const char* k : {"image", "direct", "indirect"}) EXPECT_TRUE(s["error"].contains(k)) << k;
+  EXPECT_EQ(set[3], "glossy=direct");  // the model's omissions: its indirect light is reflected diffusely
+  for (const char* k : {"image", "direct", "indirect"}) {
+    EXPECT_TRUE(s["error"].contains(k)) << k;
+    // Split by default: total, model and approximation, the last the same as "error".
+    for (const char* e : {"total", "model", "approximation"})
+      EXPECT_TRUE(s["split"][k].contains(e)) << k << e;
+    EXPECT_EQ(s["split"][k]["approximation"], s["error"][k]);
+  }
+  EXPECT_EQ(s["full"]["method"], "reference_gl");
+  EXPECT_EQ(s["full"]["set"], nlohmann::json({"integrator=path", "env_channel=indirect"}));
+  EXPECT_EQ(s["full"]["seed"], s["seed"].get<int>() + 2);
+  EXPECT_NE(r.output.find("approx"), std::string::npos) << r.output;
   EXPECT_LT(s["error"]["image"]["rel_mae"].get<double>(), 0.3);  // 24², 2 frames: measured 0.15
   EXPECT_GT(s["time"]["method_ms_per_frame"].get<double>(), 0.0);
   EXPECT_GT(s["time"]["method_setup_ms"].get<double>(), 0.0);  // voxelization, RSMs: not per frame
@@ -75,7 +86,8 @@ TEST(Cli, CompareRendersTheExactCounterpartWithTheSameParameters) {
   EXPECT_LT(s["error"]["indirect"]["relmse_epsilon"].get<double>(), 1e-3);
   for (const char* k : {"rel_mae_rgb", "energy_rgb"}) EXPECT_EQ(s["error"]["indirect"][k].size(), 3u) << k;
   for (const char* f : {"cmp.nearfield.exr", "cmp.nearfield.indirect.exr", "cmp.exact.exr", "cmp.exact.json",
-                        "cmp.error.exr", "cmp.error.indirect.exr", "cmp.error.indirect.png"})
+                        "cmp.full.exr", "cmp.full.indirect.exr", "cmp.full.json", "cmp.error.exr",
+                        "cmp.error.indirect.exr", "cmp.error.indirect.png"})
     EXPECT_TRUE(std::filesystem::exists(tmp(f))) << f;
   nlohmann::json ex = nlohmann::json::parse(std::ifstream(tmp("cmp.exact.json")));
   EXPECT_EQ(ex["spp"], 64);
@@ -85,10 +97,14 @@ TEST(Cli, CompareRendersTheExactCounterpartWithTheSameParameters) {
   EXPECT_EQ(s["exact"]["device"], "gl");
   EXPECT_EQ(s["exact"]["same_device"], true);
   EXPECT_NE(r.output.find("same device"), std::string::npos) << r.output;
-  CliRun cpu = vgi("compare --method voxel_ao --size 8x8 --spp 1 --ref-spp 1 --exact-device cpu --quiet -o " +
-                   tmp("c.exr"));
+  CliRun cpu =
+      vgi("compare --method voxel_ao --size 8x8 --spp 1 --ref-spp 1 --exact-device cpu --no-split "
+          "--quiet -o " +
+          tmp("c.exr"));
   ASSERT_EQ(cpu.code, 0) << cpu.output;
   nlohmann::json c = nlohmann::json::parse(std::ifstream(tmp("c.json")));
+  EXPECT_FALSE(c.contains("split"));
+  EXPECT_FALSE(std::filesystem::exists(tmp("c.full.exr")));
   EXPECT_EQ(c["exact"]["method"], "reference");
   EXPECT_EQ(c["exact"]["device"], "cpu");
   EXPECT_EQ(c["exact"]["same_device"], false);

@@ -41,6 +41,25 @@ TEST(ImageMetrics, HandComputedValues) {
   EXPECT_NEAR(d.relMse, (0.25 / 1.01 + 0 + 1 / 0.01) / 3.0, 1e-5);
 }
 
+// The trimmed relMSE drops the top 0.1 % of the pixels' errors: two fireflies among 2000 pixels
+// of a uniform 10 % error are dropped; below 1000 pixels nothing is.
+TEST(ImageMetrics, TrimmedRelMseDropsTheTopTenthOfAPercentOfPixels) {
+  Image a(40, 50), b(40, 50);
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    b.pixels[i] = glm::vec3(1.0f);
+    a.pixels[i] = glm::vec3(1.1f);
+  }
+  a.pixels[7] = a.pixels[1500] = glm::vec3(50.0f);
+  const ImageDiff d = compareImages(a, b);
+  const double q = 0.01 / 1.01;  // (0.1)² / (1 + ε)
+  EXPECT_NEAR(d.relMseTrimmed, q, 1e-6);
+  EXPECT_GT(d.relMse, 1.0);  // the fireflies decide the untrimmed mean
+  Image small(20, 20), ref(20, 20);
+  small.pixels[3] = glm::vec3(9.0f);
+  const ImageDiff s = compareImages(small, ref);
+  EXPECT_DOUBLE_EQ(s.relMseTrimmed, s.relMse);
+}
+
 // A dim image (an indirect channel): the fixed ε hides a 50 % error, the
 // relative one does not; per-channel rel. MAE and energy are hand-computed.
 TEST(ImageMetrics, RelativeEpsilonPerChannelErrorsAndSignedDifference) {

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "apps/cli_util.h"
@@ -70,7 +71,7 @@ TEST(Sweep, SmokeExperimentRunsCollectsAndResumes) {
       std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(dir + "/results.csv")), {}));
   ASSERT_EQ(csv.size(), 1u + 2u * 3u + 4u * 4u)
       << "header + 2 counterpart curves x (1, 4, 16 spp) + 4 points x (checkpoints 1, 2, 4 and 8 spp)";
-  EXPECT_EQ(csv[0].rfind("scene,method,label,role,point,rays,voxels,spp,time_ms", 0), 0u) << csv[0];
+  EXPECT_EQ(csv[0].rfind("scene,method,label,role,point,seed,rays,voxels,spp,time_ms", 0), 0u) << csv[0];
   EXPECT_NE(csv[0].find("image_relmse,image_relmse_relative,image_rel_mae,image_ssim"), std::string::npos);
   EXPECT_NE(csv[0].find("indirect_rel_mae"), std::string::npos) << csv[0];
   EXPECT_NE(csv[0].find("image_equal_error_time_ratio"), std::string::npos) << csv[0];
@@ -184,6 +185,57 @@ TEST(Sweep, AMethodCanShareAnotherMethodsCounterpart) {
   EXPECT_EQ(lines(list.output).size(), 3u) << "one shared reference, two points: " << list.output;
   EXPECT_EQ(countOf(list.output, "/references/"), 1u) << list.output;
   EXPECT_EQ(countOf(list.output, "'--spp' '8'"), 2u) << "the reference and the second point: " << list.output;
+}
+
+// "seeds": each point renders with N seeds (seed + 3k), a row each against the one reference;
+// "split": each point's full reference (seed + 2) too, and each row's channels carry the total
+// error (the point against it) and the model's (the model-matched reference against it); the
+// report gets its seeds table and the points' FLIP maps.
+TEST(Sweep, SeedsGiveARowEachAndSplitAddsTheFullReference) {
+  const std::string file = tmp("sweep_seeds.json"), dir = tmp("sweep_seeds");
+  std::filesystem::remove_all(dir);
+  std::ofstream(file) << R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 2, "seed": 5, "seeds": 3,
+    "aovs": ["indirect"], "reference": {"spp": 8, "split": true}, "methods": [{"method": "nearfield"}]})";
+  CliRun list = vgi("sweep " + file + " -o " + dir + " --print-commands");
+  ASSERT_EQ(list.code, 0) << list.output;
+  EXPECT_EQ(lines(list.output).size(), 5u)
+      << "the reference, the full reference, three seeds: " << list.output;
+  EXPECT_EQ(countOf(list.output, "/references/"), 2u) << list.output;
+  for (const char* seed : {"'--seed' '8'", "'--seed' '11'", "'--seed' '7'"})  // two points; the full one
+    EXPECT_EQ(countOf(list.output, seed), 1u) << seed << " in " << list.output;
+  CliRun run = vgi("sweep " + file + " -o " + dir);
+  ASSERT_EQ(run.code, 0) << run.output;
+  const nlohmann::json res = nlohmann::json::parse(std::ifstream(dir + "/results.json"));
+  EXPECT_EQ(res["seeds"], 3);
+  EXPECT_EQ(res["split"], true);
+  std::set<int> seeds;
+  for (auto& r : res["rows"]) {
+    seeds.insert(r["seed"].get<int>());
+    for (const char* ch : {"image", "indirect"})
+      for (const char* k : {"total_relmse", "model_relmse", "total_energy", "model_energy", "relmse_trimmed"})
+        EXPECT_TRUE(r[ch].contains(k)) << ch << " " << k;
+    // The model's error is the reference's against the full one: the same in every row.
+    EXPECT_EQ(r["indirect"]["model_relmse"], res["rows"][0]["indirect"]["model_relmse"]);
+    // nearfield's model leaves out the far field and further bounces: its indirect light is darker.
+    EXPECT_LT(r["indirect"]["model_energy"].get<double>(), 0.99);
+  }
+  EXPECT_EQ(seeds, (std::set<int>{5, 8, 11}));
+  const std::vector<std::string> csv = lines(std::string(
+      std::istreambuf_iterator<char>(*std::make_unique<std::ifstream>(dir + "/results.csv")), {}));
+  EXPECT_NE(csv[0].find("image_total_relmse"), std::string::npos) << csv[0];
+  EXPECT_NE(csv[0].find("indirect_model_energy"), std::string::npos) << csv[0];
+  if (std::filesystem::exists(dir + "/report.html")) {  // (python3-matplotlib present)
+    EXPECT_TRUE(std::filesystem::exists(dir + "/seeds.md"));
+  }
+  size_t flipMaps = 0;
+  for (auto& f : std::filesystem::recursive_directory_iterator(dir + "/points"))
+    flipMaps += f.path().filename() == "flip.png";
+  EXPECT_EQ(flipMaps, 3u);
+  std::ofstream(tmp("sweep_split_bad.json")) << R"({"scenes": ["builtin:cornell"], "size": "16x16", "spp": 2,
+    "reference": {"split": "yes"}, "methods": [{"method": "nearfield"}]})";
+  CliRun bad = vgi("sweep " + tmp("sweep_split_bad.json") + " -o " + dir);
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("reference.split"), std::string::npos) << bad.output;
 }
 
 // An error split by stage: a point's reference is the point itself with some parameters changed

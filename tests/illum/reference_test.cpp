@@ -14,13 +14,14 @@
 namespace vgi {
 
 namespace {
-RenderResult renderRef(const Scene& s, std::initializer_list<std::string> set, int w, int h, int spp,
-                       uint32_t seed = 1, int threads = 0) {
+RenderResult renderRef(const Scene& s, std::vector<std::string> set, int w, int h, int spp, uint32_t seed = 1,
+                       int threads = 0, std::vector<std::string> aovs = {}) {
   ParamSet p;
   for (auto& kv : set) p.setFromString(kv);
   auto m = referenceMethod().create(p, s);
   p.checkAllUsed("reference");
   RenderRequest r;
+  r.aovs = aovs;
   r.scene = &s;
   r.width = w;
   r.height = h;
@@ -161,6 +162,69 @@ TEST(Reference, NearFieldWithInfiniteRadiusEqualsTwoBouncePath) {
   for (size_t i = 0; i < tiny.pixels.size(); ++i) EXPECT_NEAR(tiny.pixels[i].x, direct.pixels[i].x, 1e-6f);
 }
 
+// The Cornell box with a Phong lobe on every surface (albedo scaled so that albedo + ks ≤ 1).
+Scene glossyCornell(float ks) {
+  Scene s = loadScene("builtin:cornell");
+  for (Material& m : s.materials) {
+    m.albedo *= 1.0f - ks;
+    m.ks = glm::vec3(ks);
+    m.exponent = 20.0f;
+  }
+  return s;
+}
+
+// glossy=first|direct leave out exactly the Phong lobes they name (a model-matched counterpart's
+// omission): on a diffuse scene every mode is glossy=all bit for bit; on a glossy one the direct
+// channel is glossy=all's (the same random numbers reach it; to the rounding of image − indirect), and glossy=direct's
+// indirect channel is, in expectation, glossy=all's on the same scene with the lobes removed
+// (every surface of the indirect light then reflects diffusely): whole-image means over seeds
+// within 4 standard errors; glossy=first lies between.
+TEST(Reference, GlossyModelsLeaveOutExactlyThePhongLobesTheyName) {
+  const Scene diffuse = glossyCornell(0.0f), glossy = glossyCornell(0.3f);
+  Scene lobesRemoved = glossy;
+  for (Material& m : lobesRemoved.materials) m.ks = glm::vec3(0.0f);
+  const int W = 24, H = 24;
+  for (const char* integrator : {"integrator=path", "integrator=nearfield"}) {
+    const Image all = renderRef(diffuse, {integrator}, W, H, 4, 3).image;
+    for (const char* mode : {"glossy=first", "glossy=direct"})
+      EXPECT_EQ(renderRef(diffuse, {integrator, mode}, W, H, 4, 3).image.pixels, all.pixels)
+          << integrator << mode;
+    std::map<std::string, std::vector<double>> indirect;  // per mode, one whole-image mean per seed
+    const int seeds = 6;
+    for (int seed = 1; seed <= seeds; ++seed) {
+      const RenderResult a = renderRef(glossy, {integrator}, W, H, 32, seed, 0, {"direct", "indirect"});
+      for (const char* mode : {"glossy=first", "glossy=direct"}) {
+        const RenderResult m =
+            renderRef(glossy, {integrator, mode}, W, H, 32, seed, 0, {"direct", "indirect"});
+        // direct = image − indirect: the same to the rounding of that difference.
+        const Image &md = m.aovs.at("direct"), &ad = a.aovs.at("direct");
+        for (size_t i = 0; i < md.pixels.size(); ++i)
+          for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(md.pixels[i][c], ad.pixels[i][c], 1e-5f * (m.image.pixels[i][c] + 1e-6f))
+                << integrator << " " << mode << " pixel " << i;
+        indirect[mode].push_back(meanOf(m.aovs.at("indirect"), 1));
+      }
+      indirect["all"].push_back(meanOf(a.aovs.at("indirect"), 1));
+      const RenderResult d = renderRef(lobesRemoved, {integrator}, W, H, 32, seed + 100, 0, {"indirect"});
+      indirect["lobes removed"].push_back(meanOf(d.aovs.at("indirect"), 1));
+    }
+    std::map<std::string, double> mean, se;
+    for (auto& [mode, v] : indirect) {
+      double var;
+      test::meanAndVariance(v, mean[mode], var);
+      se[mode] = std::sqrt(var / seeds);
+    }
+    std::printf("%s indirect (green): all %.5f, first %.5f, direct %.5f, lobes removed %.5f (se %.5f)\n",
+                integrator, mean["all"], mean["glossy=first"], mean["glossy=direct"], mean["lobes removed"],
+                se["glossy=direct"]);
+    EXPECT_NEAR(mean["glossy=direct"], mean["lobes removed"],
+                4.0 * std::hypot(se["glossy=direct"], se["lobes removed"]))
+        << integrator;
+    EXPECT_LT(mean["glossy=direct"], mean["glossy=first"]) << integrator;
+    EXPECT_LT(mean["glossy=first"], mean["all"]) << integrator;
+  }
+}
+
 TEST(Reference, ParametersOfOtherIntegratorsAreRejected) {
   Scene s = loadScene("builtin:cornell");
   ParamSet p;
@@ -169,7 +233,7 @@ TEST(Reference, ParametersOfOtherIntegratorsAreRejected) {
   test::expectError([&] { referenceMethod().create(p, s); }, {"maxdepth", "integrator=ao"});
   ParamSet docs;
   referenceMethod().create(docs, s);
-  EXPECT_EQ(docs.docs().size(), 10u);                // all parameters documented
+  EXPECT_EQ(docs.docs().size(), 11u);                // all parameters documented
   EXPECT_FALSE(docs.resolved().contains("radius"));  // only the path integrator's resolved
   ParamSet q;
   q.setFromString("integrator=path");
@@ -223,16 +287,20 @@ namespace vgi {
 // (16 times less variance: a bias of a few per cent shows there) — in the image and, where the
 // integrator splits it, the indirect output, on the Cornell box, the glossy
 // box and CornellBox-Original (area lights: NEE + MIS) and Sibenik (textures,
-// a spot light), where those are present.
-void expectGlEqualsCpu(const std::string& integrator) {
-  std::vector<std::string> scenes = {"builtin:cornell"};
+// a spot light), where those are present. `glossy`: a glossy model (glossy=first|direct) on the
+// glossy box alone (where it differs from glossy=all).
+void expectGlEqualsCpu(const std::string& integrator, const std::string& glossy = "") {
+  std::vector<std::string> scenes;
+  if (glossy.empty()) scenes.push_back("builtin:cornell");
   // The project's scene files over ../shared/scenes, where those are present.
   const std::string projectScenes = std::string(VGI_TEST_DATA) + "/../../scenes/";
   if (!test::sharedScene("cornell-box/CornellBox-Glossy.obj").empty())
     scenes.push_back(projectScenes + "cornell-glossy.json");
-  if (!test::sharedScene("cornell-box/CornellBox-Original.obj").empty())
+  if (!glossy.empty() && scenes.empty()) GTEST_SKIP() << "the glossy Cornell box is absent";
+  if (glossy.empty() && !test::sharedScene("cornell-box/CornellBox-Original.obj").empty())
     scenes.push_back(projectScenes + "cornell-original.json");
-  if (!test::sharedScene("sibenik/sibenik.obj").empty()) scenes.push_back(projectScenes + "sibenik.json");
+  if (glossy.empty() && !test::sharedScene("sibenik/sibenik.obj").empty())
+    scenes.push_back(projectScenes + "sibenik.json");
   const bool split = integrator == "path" || integrator == "nearfield";
   const std::vector<std::string> channels =
       split ? std::vector<std::string>{"image", "indirect"} : std::vector<std::string>{"image"};
@@ -247,6 +315,7 @@ void expectGlEqualsCpu(const std::string& integrator) {
       o.seed = uint32_t(seed);
       o.spp = 16;
       o.set = {"integrator=" + integrator};
+      if (!glossy.empty()) o.set.push_back("glossy=" + glossy);
       if (split) o.aovs = {"indirect"};
       for (const char* method : {"reference_gl", "reference"}) {
         o.method = method;
@@ -272,8 +341,9 @@ void expectGlEqualsCpu(const std::string& integrator) {
         EXPECT_LT(std::abs(ma - mb), 5.0 * se + 1e-9)
             << scene << " " << integrator << " " << c << " block " << b << ": " << ma << " vs " << mb;
       }
-      std::printf("%s: reference_gl vs reference integrator=%s, %s: worst |t| %.2f over %zu blocks\n",
-                  scene.c_str(), integrator.c_str(), c.c_str(), worstT, gl[c].size());
+      std::printf("%s: reference_gl vs reference integrator=%s%s, %s: worst |t| %.2f over %zu blocks\n",
+                  scene.c_str(), integrator.c_str(), glossy.empty() ? "" : (" glossy=" + glossy).c_str(),
+                  c.c_str(), worstT, gl[c].size());
     }
   }
 }
@@ -282,6 +352,11 @@ TEST(ReferenceGl, AoEqualsTheCpuReferenceInBlockMeans) { expectGlEqualsCpu("ao")
 TEST(ReferenceGl, PathEqualsTheCpuReferenceInBlockMeans) { expectGlEqualsCpu("path"); }
 TEST(ReferenceGl, DirectEqualsTheCpuReferenceInBlockMeans) { expectGlEqualsCpu("direct"); }
 TEST(ReferenceGl, NearFieldEqualsTheCpuReferenceInBlockMeans) { expectGlEqualsCpu("nearfield"); }
+TEST(ReferenceGl, GlossyModelsEqualTheCpuReferenceInBlockMeans) {
+  expectGlEqualsCpu("path", "direct");
+  expectGlEqualsCpu("path", "first");
+  expectGlEqualsCpu("nearfield", "direct");
+}
 
 // The same parameters as reference, read by one kit: voxel visibility, which
 // runs on the CPU only, is refused by name.
@@ -293,7 +368,7 @@ TEST(ReferenceGl, RefusesVoxelVisibilityByName) {
                     {"visibility", "voxels", "reference_gl", "CPU"});
   ParamSet docs;
   findMethod("reference_gl").create(docs, s);
-  EXPECT_EQ(docs.docs().size(), 10u);  // the reference's parameters, all documented
+  EXPECT_EQ(docs.docs().size(), 11u);  // the reference's parameters, all documented
 }
 
 }  // namespace vgi

@@ -8,6 +8,11 @@
 
 SHARED_BEGIN
 
+// glossy (illum/kits/exact_params.h, GlossyModel): the surfaces that reflect by their Phong lobe.
+#define GLOSSY_ALL 0
+#define GLOSSY_FIRST 1
+#define GLOSSY_DIRECT 2
+
 struct ReferenceGlParams {
   vec4 eye;      // xyz: the reference's pinhole; w: the camera's cut-away distance (> 0: rays start on
                  // the near plane, PinholeView::origin)
@@ -27,7 +32,7 @@ struct ReferenceGlParams {
   int emitterSampling;  // EMITTER_SAMPLING_*
   int writeIndirect;    // 1: the indirect part to its output channel
   int writeDirect;      // … and the direct part to its own
-  int pad0;
+  int glossy;           // path, nearfield: GLOSSY_*
   int pad1;
   int pad2;
 };

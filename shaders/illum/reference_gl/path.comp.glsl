@@ -14,15 +14,16 @@
 //              one bounce to a surface within pass.radius, whose exact direct
 //              light is the indirect part; rays that leave the radius read the
 //              environment when pass.env is set
+// pass.glossy (GLOSSY_*): the surfaces that reflect by their Phong lobe, as the reference's glossy.
 // Materials, textures and delta lights come from the GPU scene
 // (shared/gpu_scene.glsl; the first pass.deltaLights entries of `lights` are the
 // scene's own, the rest the framework's per-sample emitter spots, not read
 // here), area lights from gpu_emitters (shared/emitters.glsl).
 #include "exact.glsl"
 #include "shared/brdf.glsl"
+#include "shared/emitters.glsl"
 #include "shared/environment.glsl"
 #include "shared/gpu_scene.glsl"
-#include "shared/emitters.glsl"
 layout(std430, binding = BINDING_EMITTERS) readonly buffer EmitterBuffer { PackedEmitter emitters[]; };
 layout(std430, binding = BINDING_EMITTER_OF) readonly buffer EmitterOfBuffer { int emitterOf[]; };
 layout(std430, binding = BINDING_SCENE_VERTICES) readonly buffer SceneVertices { float sceneVertices[]; };
@@ -31,7 +32,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform image2D uImage;
 layout(rgba32f, binding = IMAGE_SAMPLE_AOV0) uniform writeonly image2D uIndirectAov;
 layout(rgba32f, binding = IMAGE_SAMPLE_AOV1) uniform writeonly image2D uDirectAov;
-
 
 struct Surface {
   vec3 p, ng, n;  // ng and n face the incoming ray
@@ -71,7 +71,8 @@ bool intersectScene(vec3 o, vec3 d, float tmax, out Surface sp) {
   vec3 albedo = materials[m].albedoLayer.xyz;
   const float layer = materials[m].albedoLayer.w;
   if (layer >= 0.0f) {
-    const vec2 uv = (1.0f - h.u - h.v) * cornerUv(3u * t) + h.u * cornerUv(3u * t + 1u) + h.v * cornerUv(3u * t + 2u);
+    const vec2 uv =
+        (1.0f - h.u - h.v) * cornerUv(3u * t) + h.u * cornerUv(3u * t + 1u) + h.v * cornerUv(3u * t + 2u);
     albedo *= textureLod(albedoTextures, vec3(uv.x, 1.0f - uv.y, layer), 0.0f).xyz;
   }
   sp.brdf = gpuMaterialBrdf(m, albedo);
@@ -155,20 +156,24 @@ vec3 rng3(inout uint rng) {
 
 vec3 pathLi(vec3 o, vec3 d, inout uint rng, inout vec3 indirect) {
   vec3 L = vec3(0.0f), beta = vec3(1.0f);
-  float pdfBrdf = 0.0f;  // of the direction that led to this vertex (none for the camera ray)
+  vec3 betaSegment = vec3(1.0f);  // the direct channel's terms met at depth 1 (see the reference's pathLi)
+  float pdfBrdf = 0.0f;           // of the direction that led to this vertex (none for the camera ray)
   for (int depth = 0;; ++depth) {
     Surface sp;
     if (!intersectScene(o, d, 1e30f, sp)) {
       // The camera sees the environment as background always; as a light only with pass.env.
       if (depth == 0 || pass.env != 0) {
-        const vec3 e = beta * gpuEnvironmentRadiance(d);
+        const bool isIndirect = depth >= 2 || (depth == 1 && pass.envIndirect != 0);
+        const vec3 e = (depth == 1 && !isIndirect ? betaSegment : beta) * gpuEnvironmentRadiance(d);
         L += e;
-        if (depth >= 2 || (depth == 1 && pass.envIndirect != 0)) indirect += e;
+        if (isIndirect) indirect += e;
       }
       break;
     }
+    if (depth >= 1 && pass.glossy != GLOSSY_ALL) sp.brdf.ks = vec3(0.0f);  // bounce surfaces: diffuse
     if (sp.emission != vec3(0.0f)) {
-      const vec3 e = beta * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
+      const vec3 e =
+          (depth == 1 ? betaSegment : beta) * sp.emission * (depth == 0 ? 1.0f : emissionWeight(sp, pdfBrdf));
       L += e;
       if (depth >= 2) indirect += e;
     }
@@ -179,12 +184,17 @@ vec3 pathLi(vec3 o, vec3 d, inout uint rng, inout vec3 indirect) {
     const vec3 wi = sampleBrdf(sp.brdf, sp.n, sp.wo, rng3(rng));
     const float pdf = brdfPdf(sp.brdf, sp.n, sp.wo, wi);
     if (!(pdf > 0.0f) || dot(wi, sp.n) <= 0.0f || dot(wi, sp.ng) <= 0.0f) break;
-    beta *= evalBrdf(sp.brdf, sp.n, sp.wo, wi) * (dot(wi, sp.n) / pdf);
+    const float cosPdf = dot(wi, sp.n) / pdf;
+    betaSegment = beta * evalBrdf(sp.brdf, sp.n, sp.wo, wi) * cosPdf;
+    beta = depth == 0 && pass.glossy == GLOSSY_DIRECT
+               ? beta * evalBrdf(diffusePart(sp.brdf), sp.n, sp.wo, wi) * cosPdf
+               : betaSegment;
     pdfBrdf = pdf;
     if (depth + 1 >= pass.rrDepth) {
-      const float q = russianRouletteQ(beta);
+      const float q = russianRouletteQ(betaSegment);
       if (rngNext(rng) < q) break;
       beta /= 1.0f - q;
+      betaSegment /= 1.0f - q;
     }
     o = leaving(sp, wi);
     d = wi;
@@ -200,14 +210,18 @@ vec3 nearFieldLi(vec3 o, vec3 d, inout uint rng, inout vec3 indirect) {
   const float pdf = brdfPdf(x.brdf, x.n, x.wo, wi);
   if (!(pdf > 0.0f) || dot(wi, x.n) <= 0.0f || dot(wi, x.ng) <= 0.0f) return L;
   const vec3 weight = evalBrdf(x.brdf, x.n, x.wo, wi) * (dot(wi, x.n) / pdf);
+  const vec3 weightIndirect = pass.glossy == GLOSSY_DIRECT
+                                  ? evalBrdf(diffusePart(x.brdf), x.n, x.wo, wi) * (dot(wi, x.n) / pdf)
+                                  : weight;
   // The bounce surface y: its emission is direct light at x (the MIS share),
   // its direct light the one indirect bounce.
   Surface y;
   if (intersectScene(leaving(x, wi), wi, pass.radius, y)) {
     if (y.emission != vec3(0.0f)) L += weight * y.emission * emissionWeight(y, pdf);
-    indirect = weight * directLight(y, rng, false);
+    if (pass.glossy != GLOSSY_ALL) y.brdf.ks = vec3(0.0f);
+    indirect = weightIndirect * directLight(y, rng, false);
   } else if (pass.env != 0) {
-    indirect = weight * gpuEnvironmentRadiance(wi);
+    indirect = weightIndirect * gpuEnvironmentRadiance(wi);
   }
   return L + indirect;
 }
