@@ -82,22 +82,23 @@ nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string
   relative.relativeEpsilon = e.relativeEpsilon;
   relative.darkTolerance = e.diff.darkTolerance;
   std::vector<Image> ia, ib;
-  double sum[8] = {0, 0, 0, 0, 0, 0, 0, 0}, flipLdr = 0, flipHdr = 0;
+  double sum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, flipLdr = 0, flipHdr = 0;
   bool hasLdr = false, hasHdr = false;
   for (size_t t = 0; t < a.size(); ++t) {
     ia.push_back(readImage(a[t]));
     ib.push_back(readImage(b[t]));
     const ImageDiff d = compareImages(ia.back(), ib.back(), a[t], b[t], e.diff),
                     dr = compareImages(ia.back(), ib.back(), a[t], b[t], relative);
-    const double v[8] = {d.relMse,
+    const double v[9] = {d.relMse,
                          dr.relMse,
                          d.relMae,
                          d.ssim,
                          (d.energyRgb[0] + d.energyRgb[1] + d.energyRgb[2]) / 3.0,
                          d.leak,
                          d.darkFraction,
-                         d.relMseTrimmed};
-    for (int k = 0; k < 8; ++k) sum[k] += v[k] / double(a.size());
+                         d.relMseTrimmed,
+                         dr.relMseTrimmed};
+    for (int k = 0; k < 9; ++k) sum[k] += v[k] / double(a.size());
     hasLdr = d.hasFlipLdr;
     hasHdr = d.hasFlipHdr;
     if (hasLdr) flipLdr += d.flipLdr.pooled.mean / double(a.size());
@@ -105,9 +106,10 @@ nlohmann::json channelMetrics(const Experiment& e, const std::vector<std::string
   }
   // A metric without a value (against a black reference) is "undefined" in the row, the JSON and the CSV.
   nlohmann::json m;
-  const char* names[8] = {"relmse", "relmse_relative", "rel_mae",       "ssim", "energy",
-                          "leak",   "dark_fraction",   "relmse_trimmed"};
-  for (int k = 0; k < 8; ++k) m[names[k]] = finiteOrUndefined(sum[k]);
+  const char* names[9] = {"relmse",        "relmse_relative", "rel_mae",
+                          "ssim",          "energy",          "leak",
+                          "dark_fraction", "relmse_trimmed",  "relmse_relative_trimmed"};
+  for (int k = 0; k < 9; ++k) m[names[k]] = finiteOrUndefined(sum[k]);
   if (hasLdr) m["flip_ldr"] = flipLdr;  // the mean FLIP (over the frames of an animation)
   if (hasHdr) m["flip_hdr"] = flipHdr;
   if (a.size() > 1) {

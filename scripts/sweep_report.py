@@ -195,12 +195,14 @@ def main(out):
             for ax, ch in zip(axes[mi], chans):
                 for group in groups:
                     pid, p = group[0]
-                    # Per sample count: the mean over the group's seeds (one seed: the point itself).
+                    # Per checkpoint: the mean over the group's seeds (one seed: the point itself);
+                    # the seeds' last images (a time budget stops each at its own count) as one.
                     by_spp = {}
                     for _, q in group:
                         for r in q:
                             if ch in r and num(r[ch].get(metric)) is not None:
-                                by_spp.setdefault(r["spp"], []).append(r)
+                                last = len(group) > 1 and r is q[-1] and r["spp"] not in res["checkpoints"]
+                                by_spp.setdefault(math.inf if last else r["spp"], []).append(r)
                     xs, ys, lo, hi = [], [], [], []
                     for spp in sorted(by_spp):
                         t, _ = mean_sd([r["time_ms"] for r in by_spp[spp]])

@@ -726,6 +726,8 @@ TEST(BadInputCli, MeasurementScriptsCheckTheirArgumentsAndPassOnVgisReason) {
   refused(py + "artefacts_remedies_tables.py", {"usage"});
   refused(py + "artefacts_remedies_tables.py " + empty, {empty, "results.json"});
   refused(py + "svo_tables.py", {"usage"});
+  refused(py + "split_tables.py", {"usage"});
+  refused(py + "split_tables.py /no/such/dir", {"/no/such/dir", "does not exist"});
   refused(py + "svo_tables.py /no/such/dir", {"/no/such/dir", "does not exist"});
   refused(py + "sweep_report.py " + empty, {empty, "results.json"});
   refused(py + "make_leak_walls.py extra", {"usage", "extra"});
@@ -733,6 +735,7 @@ TEST(BadInputCli, MeasurementScriptsCheckTheirArgumentsAndPassOnVgisReason) {
   {  // results of another experiment
     std::ofstream(empty + "/results.json") << R"({"experiment": "other", "rows": [{"role": "point"}]})";
     refused(py + "svo_tables.py " + empty, {"'other'", "svo.json"});
+    refused(py + "split_tables.py " + empty, {"'other'", "equal-time-split.json"});
     refused(py + "artefacts_remedies_tables.py " + empty, {"'other'", "artefacts-remedies.json"});
     std::filesystem::remove(empty + "/results.json");
   }
