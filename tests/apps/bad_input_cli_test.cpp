@@ -727,6 +727,8 @@ TEST(BadInputCli, MeasurementScriptsCheckTheirArgumentsAndPassOnVgisReason) {
   refused(py + "artefacts_remedies_tables.py " + empty, {empty, "results.json"});
   refused(py + "svo_tables.py", {"usage"});
   refused(py + "split_tables.py", {"usage"});
+  refused(py + "check_doc_paths.py a b", {"usage"});
+  refused(py + "check_doc_paths.py /no/such/dir", {"/no/such/dir", "not a folder"});
   refused(py + "split_tables.py /no/such/dir", {"/no/such/dir", "does not exist"});
   refused(py + "svo_tables.py /no/such/dir", {"/no/such/dir", "does not exist"});
   refused(py + "sweep_report.py " + empty, {empty, "results.json"});
