@@ -48,14 +48,14 @@ void printSeedTable(const Comparison& c, const std::vector<std::string>& channel
       }
       std::printf("\n");
     }
-  // A method whose samples follow the sample index alone (nearfield, voxel_ao, vct) renders the
-  // same image for every seed: its spread is 0 because nothing is random across runs, not noise-free.
+  // A method that renders the same image for every seed (one without random numbers, as `direct`
+  // without area lights) has a spread of 0 because nothing is random across runs, not noise-free.
   bool same = true;
   for (auto& r : c.runs) same = same && r.errors.at("image").relMse == c.runs[0].errors.at("image").relMse;
   if (same)
     std::printf(
-        "  note: the method renders the same image with every seed (its samples follow the sample "
-        "index, not the seed): a standard deviation of 0 says nothing about its noise\n");
+        "  note: the method renders the same image with every seed (nothing in it is drawn from the "
+        "seed): a standard deviation of 0 says nothing about its error\n");
 }
 
 }  // namespace

@@ -96,10 +96,18 @@ void GatherKit::checkPass(const ComputePassBase& pass) {
   checkBlockLayout(pass.program(), "Gather", sizeof(shared::GatherParams), pass.files());
 }
 
-void GatherKit::setSample(int k) {
+glm::vec2 seedShift(uint32_t seed) {
+  const double n = double(seed - 1u);  // (seed 0 wraps to the 2³²−1-th point)
+  const double a1 = 0.75487766624669276, a2 = 0.56984029099805327;  // 1/φ₂, 1/φ₂² (the plastic number)
+  return glm::vec2(float(n * a1 - std::floor(n * a1)), float(n * a2 - std::floor(n * a2)));
+}
+
+void GatherKit::setSample(int k, uint32_t seed) {
   block_.value.frame = k;
-  // Sample 0 unrotated; later samples rotate by Halton (5, 7) points.
-  block_.value.rotation = k == 0 ? glm::vec4(0.0f) : glm::vec4(halton(k, 5), halton(k, 7), 0.0f, 0.0f);
+  // Sample 0 unrotated; later samples rotate by Halton (5, 7) points; all of them shifted by the seed.
+  const glm::vec2 base = k == 0 ? glm::vec2(0.0f) : glm::vec2(halton(k, 5), halton(k, 7));
+  const glm::vec2 r = glm::fract(base + seedShift(seed));
+  block_.value.rotation = glm::vec4(r, 0.0f, 0.0f);
 }
 
 void GatherKit::upload() {

@@ -47,6 +47,12 @@ GatherSettings readGatherParams(ParamSet& params, const std::string& what, bool 
 // whose gather pass compiles with GATHER_FIXUP).
 void readGatherWallParams(ParamSet& params, GatherSettings& s, bool visibilityByDefault, bool fixupByDefault);
 
+// A render's seed as a shift of its samples' pattern rotations (a Cranley–Patterson rotation of
+// the whole sequence): 0 for seed 1, the default, so its images stay what they were; for another seed
+// the (seed − 1)-th point of the R2 sequence (Roberts 2018), so that `--seed` (and `vgi compare
+// --seeds`) draw other directions from methods whose samples otherwise follow the sample index.
+glm::vec2 seedShift(uint32_t seed);
+
 class GatherKit {
  public:
   // Once per frame: the gather buffers (the frame's scratch textures) and programs. With
@@ -57,8 +63,9 @@ class GatherKit {
   // Throws unless a gather pass's block Gather (shaders/illum/gather/params.glsl) has the C++
   // layout; once per pass, after it is created.
   static void checkPass(const ComputePassBase& pass);
-  // This sample's directions (GATHER_DIRECTIONS): sample 0 unrotated, later ones rotated.
-  void setSample(int sample);
+  // This sample's directions (GATHER_DIRECTIONS): sample 0 unrotated, later ones rotated; the
+  // whole sequence shifted by the render's seed (seedShift).
+  void setSample(int sample, uint32_t seed);
   // Binds the gather buffer at IMAGE_OUTPUT and dispatches the program in use
   // over it, in batches of `perDispatch` of its `items` (rays, cones, VPL chains):
   // the kit's parameters (its block at UBO_GATHER) with each batch's range

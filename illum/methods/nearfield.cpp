@@ -164,7 +164,7 @@ bool NearFieldMethod::addSample(Frame& f, int k) {
     auto s = f.profiler.scope("indirect");
     indirect_.use(f);
     bindTracer(f.resources, f.shaders(), indirect_.program());
-    kit_.setSample(k);
+    kit_.setSample(k, f.request.seed);
     kit_.dispatchGather(kit_.settings().rays, GatherKit::kRaysPerDispatch);
   }
   const auto tracer = [&](unsigned program) { bindTracer(f.resources, f.shaders(), program); };

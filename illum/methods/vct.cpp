@@ -182,7 +182,9 @@ class VctMethod : public Method {
       direct_->shade(f.gbuffer(), f.resources.get<LightMaps>(), f.camera, f.sampleImage("image"));
     }
     const int ring = std::max(1, cones_ - 1);
-    const float turn = k == 0 ? 0.0f : 2.0f * float(M_PI) / float(ring) * halton(k, 3);
+    // The ring turns per sample (Halton 3), the whole sequence shifted by the seed (gather_kit.h).
+    const float turn = 2.0f * float(M_PI) / float(ring) *
+                       glm::fract((k == 0 ? 0.0f : halton(k, 3)) + seedShift(f.request.seed).x);
     {
       auto s = f.profiler.scope("diffuse_cones");
       diffusePass_.params().turn = turn;

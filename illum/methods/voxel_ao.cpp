@@ -77,7 +77,7 @@ class VoxelAoMethod : public Method {
       auto s = f.profiler.scope("ao");
       ao_.use(f);
       bindTracer(f.resources, f.shaders(), ao_.program());
-      kit_.setSample(k);
+      kit_.setSample(k, f.request.seed);
       kit_.dispatchGather(kit_.settings().rays, GatherKit::kRaysPerDispatch);
     }
     kit_.resolve(f);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "illum/kits/gather_kit.h"
 #include "test_util.h"
 
 namespace vgi {
@@ -119,6 +120,32 @@ TEST(Compare, SeedsKeepEveryRunsErrorAgainstTheOneCounterpart) {
   EXPECT_DOUBLE_EQ(j["seeds"]["error"]["image"]["relmse"]["sd"].get<double>(), s.sd);
   EXPECT_EQ(seedStat({2.0, 2.0, 2.0}).sd, 0.0);  // exactly, no rounding
   EXPECT_NEAR(seedStat({1.0, 2.0, 3.0}).sd, 1.0, 1e-12);
+}
+
+}  // namespace vgi
+
+namespace vgi {
+
+// The methods whose samples follow the sample index (the gather kit's interleaved directions, the
+// cone ring's turn) shift their whole sequence by the seed: seed 1 keeps the images they had,
+// another seed draws other directions, so `--seeds` gives them a spread too.
+TEST(Compare, SeedsDrawOtherDirectionsFromTheGatherAndConeMethods) {
+  EXPECT_EQ(seedShift(1), glm::vec2(0.0f));
+  EXPECT_NE(seedShift(2), glm::vec2(0.0f));
+  EXPECT_NE(seedShift(2), seedShift(3));
+  for (const char* method : {"nearfield", "voxel_ao", "vct"}) {
+    RenderOptions o;
+    o.method = method;
+    o.width = o.height = 24;
+    o.spp = 1;
+    o.progress = false;
+    const Comparison c = compareWithCounterpart(o, 16, {}, "", ExactDevice::Same, false, 2);
+    ASSERT_TRUE(c.complete) << method;
+    ASSERT_EQ(c.runs.size(), 2u);
+    const double a = c.runs[0].errors.at("image").relMse, b = c.runs[1].errors.at("image").relMse;
+    EXPECT_NE(a, b) << method << ": seed 4 renders another image than seed 1";
+    EXPECT_NEAR(a / b, 1.0, 0.5) << method << ": the same estimator, other directions";
+  }
 }
 
 }  // namespace vgi
