@@ -39,9 +39,7 @@ void printSeedTable(const Comparison& c, const std::vector<std::string>& channel
         if (model) {
           std::snprintf(cellText, sizeof cellText, "%.4g (once)", seedMetric(c.modelErrors.at(ch), metric));
         } else {
-          std::vector<double> v;
-          for (auto& r : c.runs) v.push_back(seedMetric((total ? r.totalErrors : r.errors).at(ch), metric));
-          const SeedStat s = seedStat(v);
+          const SeedStat s = c.overSeeds(ch, metric, total);
           std::snprintf(cellText, sizeof cellText, "%.4g ± %.2g", s.mean, s.sd);
         }
         std::printf(model ? "%-24s" : "%-25s", cellText);  // (± is two bytes, one column)

@@ -73,15 +73,23 @@ SeedStat seedStat(const std::vector<double>& values) {
   SeedStat s;
   s.values = values;
   if (values.empty()) return s;
-  for (double v : values) s.mean += v / double(values.size());
+  // One value, or a render the seed does not change: that value exactly, no rounding.
   if (std::all_of(values.begin(), values.end(), [&](double v) { return v == values[0]; })) {
-    s.mean = values[0];  // one value, or a render the seed does not change: exactly, no rounding
+    s.mean = values[0];
     return s;
   }
+  for (double v : values) s.mean += v / double(values.size());
   double ss = 0;
   for (double v : values) ss += (v - s.mean) * (v - s.mean);
-  s.sd = values.size() > 1 ? std::sqrt(ss / double(values.size() - 1)) : 0.0;
+  s.sd = std::sqrt(ss / double(values.size() - 1));
   return s;
+}
+
+SeedStat Comparison::overSeeds(const std::string& channel, const std::string& metric, bool total) const {
+  std::vector<double> v;
+  for (const SeedRun& r : runs)
+    v.push_back(seedMetric((total ? r.totalErrors : r.errors).at(channel), metric));
+  return seedStat(v);
 }
 
 const std::vector<std::string>& seedMetricNames() {
@@ -126,17 +134,16 @@ Comparison compareWithCounterpart(const RenderOptions& opt, int refSpp, const Di
   c.refSpp = refSpp;
   // The counterpart gets the method's resolved parameters (defaults that
   // depend on the scene included, e.g. the radius).
-  c.choice = counterpartOnDevice(opt, info.counterpart(resolveParameters(opt)), device);
+  const Counterpart registry = info.counterpart(resolveParameters(opt));
+  c.choice = counterpartOnDevice(opt, registry, device);
   c.counterpart = c.choice.counterpart;
   c.split = split;
   if (split) {
-    if (c.counterpart.full.empty())
+    if (registry.full.empty())
       fail("--method ", opt.method,
            ": its registry row names no full reference, so its error cannot be split");
-    Counterpart full = info.counterpart(resolveParameters(opt));
-    full.set = full.full;
-    full.note.clear();
-    c.fullChoice = counterpartOnDevice(opt, full, device);
+    c.fullChoice =
+        counterpartOnDevice(opt, Counterpart{registry.method, registry.full, registry.aovs}, device);
   }
   if (!referenceFile.empty()) {
     // The counterpart given as an image: read (and size-checked) before the method renders.
@@ -282,11 +289,9 @@ nlohmann::json Comparison::summary() const {
     j["count"] = runs.size();
     for (auto& r : runs) j["seeds"].push_back(r.seed);
     auto stat = [&](const std::string& channel, const std::string& metric, bool total) {
-      std::vector<double> v;
-      for (auto& r : runs) v.push_back(seedMetric((total ? r.totalErrors : r.errors).at(channel), metric));
-      const SeedStat st = seedStat(v);
+      const SeedStat st = overSeeds(channel, metric, total);
       nlohmann::json values = nlohmann::json::array();
-      for (double x : v) values.push_back(finiteOrUndefined(x));
+      for (double x : st.values) values.push_back(finiteOrUndefined(x));
       return nlohmann::json{
           {"mean", finiteOrUndefined(st.mean)}, {"sd", finiteOrUndefined(st.sd)}, {"values", values}};
     };

@@ -60,6 +60,11 @@ struct SeedStat {
 };
 SeedStat seedStat(const std::vector<double>& values);
 
+// The metrics a seed statistic is kept of, by name (relmse, relmse_trimmed, rel_mae, energy — the
+// mean over RGB —, flip — ImageDiff::flipMean —), and their values.
+const std::vector<std::string>& seedMetricNames();
+double seedMetric(const ImageDiff& d, const std::string& name);
+
 struct Comparison {
   RenderOutput approx, exact;
   Counterpart counterpart;
@@ -78,6 +83,9 @@ struct Comparison {
   std::map<std::string, ImageDiff> totalErrors, modelErrors;
   // Every seed's run (runs[0] is approx, errors and totalErrors above): `vgi compare --seeds N`.
   std::vector<SeedRun> runs;
+  // One metric (seedMetricNames) of one channel over the runs: against the counterpart, or with
+  // `total` against the full reference.
+  SeedStat overSeeds(const std::string& channel, const std::string& metric, bool total = false) const;
   // Per frame: the passes the method runs per sample (its sample_passes); the
   // rest (voxelization, light maps, uploads) is set-up, paid once per scene
   // or animation frame. A method that does not split counts all per frame.
@@ -99,11 +107,6 @@ struct Comparison {
 Comparison compareWithCounterpart(const RenderOptions& method, int refSpp, const DiffOptions& diff = {},
                                   const std::string& referenceFile = "",
                                   ExactDevice device = ExactDevice::Same, bool split = false, int seeds = 1);
-
-// The metrics a seed statistic is kept of, by name (relmse, relmse_trimmed, rel_mae, energy — the
-// mean over RGB —, flip — ImageDiff::flipMean —), and their values.
-const std::vector<std::string>& seedMetricNames();
-double seedMetric(const ImageDiff& d, const std::string& name);
 
 // Writes stem.<method>.*, stem.exact.* (images, AOVs, stats), with the split stem.full.*, the
 // signed error images stem.error[.<aov>].exr/.png (the approximation's) and stem.json; returns the

@@ -94,6 +94,8 @@ GridAxes readGrid(const nlohmann::json& grid, const std::string& where, size_t& 
 struct ReferenceChoice {
   std::string method;
   std::vector<std::string> set, aovs;
+  std::vector<std::string> full;  // a registry counterpart's full reference (Counterpart::full), else empty
+  bool counterpart = false;       // the reference is a registry counterpart (its own or counterpart_of)
 };
 ReferenceChoice chooseReference(const Experiment& e, const nlohmann::json& ref, const nlohmann::json& mref,
                                 const std::string& where, const MethodInfo& info, const RenderOptions& o,
@@ -132,6 +134,8 @@ ReferenceChoice chooseReference(const Experiment& e, const nlohmann::json& ref, 
     const Counterpart cp = oi.counterpart(resolveParameters(oo));
     rmethod = cp.method;
     rset = cp.set;
+    rc.full = cp.full;
+    rc.counterpart = true;
     for (auto& a : e.aovs)
       if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
   } else if (ref.contains("method")) {
@@ -149,6 +153,8 @@ ReferenceChoice chooseReference(const Experiment& e, const nlohmann::json& ref, 
     const Counterpart cp = info.counterpart(resolved);
     rmethod = cp.method;
     rset = cp.set;
+    rc.full = cp.full;
+    rc.counterpart = true;
     for (auto& a : e.aovs)
       if (std::find(cp.aovs.begin(), cp.aovs.end(), a) != cp.aovs.end()) raovs.push_back(a);
   }
@@ -227,18 +233,12 @@ void addReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const R
 // the reference is, on the reference's device, seed + kFullReferenceSeedOffset), shared like
 // the references.
 void addFullReference(Experiment& e, SweepPoint& pt, const RenderOptions& o, const ReferenceChoice& rc,
-                      int refSpp, const std::string& where, const MethodInfo& of) {
-  RenderOptions oo = o;
-  if (oo.method != of.name) {
-    oo.method = of.name;
-    oo.set.clear();
-  }
-  const Counterpart cp = of.counterpart(resolveParameters(oo));
-  if (cp.full.empty())
-    fail("experiment: 'reference.split': ", where, " (", of.name,
-         ") names no full reference in its registry row");
+                      int refSpp, const std::string& where) {
+  if (rc.full.empty())
+    fail("experiment: 'reference.split': ", where, " (", o.method,
+         "): its counterpart's registry row names no full reference");
   SweepRender r = makeRender(e.dir, "references", rc.method,
-                             sweepRenderOptions(e, o.scene, rc.method, cp.full, refSpp, rc.aovs, {},
+                             sweepRenderOptions(e, o.scene, rc.method, rc.full, refSpp, rc.aovs, {},
                                                 e.seed + kFullReferenceSeedOffset, 0));
   pt.full =
       int(referenceIndex(e, r, "full reference of " + where + " (" + rc.method + " on " + o.scene + ")"));
@@ -321,10 +321,7 @@ void expandMethod(const nlohmann::json& j, size_t mi, const nlohmann::json& ref,
       } else {
         const ReferenceChoice rc = chooseReference(e, ref, mref, where, info, o, resolved);
         addReference(e, pt, o, rc, refSpp, where, curveMethods);
-        if (e.split && !mref.contains("method") && !mref.contains("variant"))
-          addFullReference(
-              e, pt, o, rc, refSpp, where,
-              mref.contains("counterpart_of") ? findMethod(mref["counterpart_of"].get<std::string>()) : info);
+        if (e.split && rc.counterpart) addFullReference(e, pt, o, rc, refSpp, where);
       }
       // With "seeds": the same point with the next seeds, against the same references.
       e.points.push_back(pt);

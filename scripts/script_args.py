@@ -77,6 +77,18 @@ def sweep_results(arg, folder, experiment=None):
     return res
 
 
+def mean_sd(values):
+    """The mean and the sample standard deviation (0 for one value) of the numbers among values
+    (None, None for none); values that are all equal give that value and 0 exactly, no rounding."""
+    v = [x for x in values if x is not None]
+    if not v:
+        return None, None
+    if all(x == v[0] for x in v):
+        return v[0], 0.0
+    m = sum(v) / len(v)
+    return m, math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1))
+
+
 def number(x):
     """A metric as a float, or None where it has no value: vgi writes "undefined" for a ratio with no
     value (against a black reference; core/json_text.h), older files may hold null, and a row may lack

@@ -13,25 +13,13 @@ with —, the same with the top 0.1 % of the pixels' errors dropped, HDR-FLIP), 
 both render once), per channel (image, indirect), and the equal-error time ratio against the
 counterpart's curve on the same device. Metrics: core/image_metrics.h; the split: experiments/compare.h.
 """
-import math
 import sys
 
 import script_args as sa
 
 
-def mean_sd(values):
-    """Mean and sample standard deviation of the numbers among values (None, None for none)."""
-    v = [x for x in values if x is not None]
-    if not v:
-        return None, None
-    if all(x == v[0] for x in v):
-        return v[0], 0.0
-    m = sum(v) / len(v)
-    return m, (math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1)) if len(v) > 1 else 0.0)
-
-
 def cell(rows, channel, key, spec=".3g"):
-    m, s = mean_sd([sa.number(r.get(channel, {}).get(key)) for r in rows])
+    m, s = sa.mean_sd([sa.number(r.get(channel, {}).get(key)) for r in rows])
     if m is None:
         return ""
     return f"{m:{spec}}" + ("" if s == 0 else f" ± {s:.2g}")
@@ -61,8 +49,8 @@ def main(out):
     print("|" + "---|" * len(head))
     for (scene, method), by in sorted(finals.items(), key=lambda kv: (kv[0][0] != "builtin:cornell", kv[0])):
         rows = list(by.values())
-        spp, sps = mean_sd([r["spp"] for r in rows])
-        setup, _ = mean_sd([r["setup_ms"] for r in rows])
+        spp, sps = sa.mean_sd([r["spp"] for r in rows])
+        setup, _ = sa.mean_sd([r["setup_ms"] for r in rows])
         cells = [scene.split("/")[-1], f"`{method}`", f"{spp:.0f}" + ("" if sps == 0 else f" ± {sps:.1f}"),
                  f"{setup:.0f}"]
         for ch, _ in chans:

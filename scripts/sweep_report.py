@@ -71,17 +71,6 @@ def point_name(row):
     return row["label"] + (f" ({params})" if params else "")
 
 
-def mean_sd(values):
-    """The mean and the sample standard deviation (0 for one value) of the numbers among values."""
-    v = [x for x in values if x is not None]
-    if not v:
-        return None, None
-    if all(x == v[0] for x in v):
-        return v[0], 0.0  # one value, or a render the seed does not change: exactly, no rounding
-    m = sum(v) / len(v)
-    return m, (math.sqrt(sum((x - m) ** 2 for x in v) / (len(v) - 1)) if len(v) > 1 else 0.0)
-
-
 def seed_groups(order):
     """The points grouped by name (one group per point rendered with several seeds), in order."""
     groups = {}
@@ -107,11 +96,11 @@ def seed_table(rows, chans, flip_key):
     for (name, spp), g in sorted(groups.items()):
         if len(g) < 2:
             continue
-        t, ts = mean_sd([r["time_ms"] for r in g])
+        t, ts = sa.mean_sd([r["time_ms"] for r in g])
         cells = []
         for c in chans:
             for k, _ in metrics:
-                m, s = mean_sd([num(r[c].get(k)) if c in r else None for r in g])
+                m, s = sa.mean_sd([num(r[c].get(k)) if c in r else None for r in g])
                 cells.append("" if m is None else f"{m:.4g} ± {s:.2g}")
         lines.append(f"| {name} | {spp} | {len(g)} | {t:.0f} ± {ts:.0f} | " + " | ".join(cells) + " |")
     return lines if len(lines) > 2 else []
@@ -205,8 +194,8 @@ def main(out):
                                 by_spp.setdefault(math.inf if last else r["spp"], []).append(r)
                     xs, ys, lo, hi = [], [], [], []
                     for spp in sorted(by_spp):
-                        t, _ = mean_sd([r["time_ms"] for r in by_spp[spp]])
-                        m, s = mean_sd([num(r[ch][metric]) for r in by_spp[spp]])
+                        t, _ = sa.mean_sd([r["time_ms"] for r in by_spp[spp]])
+                        m, s = sa.mean_sd([num(r[ch][metric]) for r in by_spp[spp]])
                         xs.append(t)
                         ys.append(max(m, 1e-9))
                         lo.append(max(m - s, 1e-9))
