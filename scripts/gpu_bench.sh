@@ -9,7 +9,7 @@
 #                512³ and the Cornell box 256³ (2·10⁶ rays)
 #   methods      every GL method's per-pass time per sample at 1920×1080 and 1024×768 on the Cornell
 #                box and Sibenik at its defaults, and the papers' settings (VGI: nearfield at ¼
-#                resolution, 1024×768; voxelpath 64 spp with two bounces), set-up passes apart, and the
+#                resolution, 1024×768; voxelpath 64 spp with two bounces; SSDO: ssdo at 1600×1200), set-up passes apart, and the
 #                bytes each resource reports (light maps, grid, pyramid, value textures, cone volume,
 #                BVH) beside what the process measurably uses (peak resident memory; on NVIDIA the
 #                driver's used dedicated memory, GL_NVX_gpu_memory_info)
@@ -156,6 +156,11 @@ for s in "${method_scenes[@]}"; do
     --spp "$spp" --quiet -o "$out/raw/paper_${s}_nearfield.exr" || true
   run "paper_${s}_voxelpath" render --scene "$path" --method voxelpath --set maxdepth=3 --size "$psize" \
     --spp "$paper_spp" --quiet -o "$out/raw/paper_${s}_voxelpath.exr" || true
+  # SSDO's own figure (Ritschel et al. 2009: 20 fps at 1600×1200, 537 k polygons, on 2009 hardware).
+  ssize=1600x1200
+  [ $quick -eq 1 ] && ssize=${sizes[0]}
+  run "paper_${s}_ssdo" render --scene "$path" --method ssdo --size "$ssize" --spp "$spp" --quiet \
+    -o "$out/raw/paper_${s}_ssdo.exr" || true
 done
 
 note "svo"

@@ -105,6 +105,26 @@ inline Mesh& addMesh(Scene& s, std::vector<glm::vec3> positions, std::vector<glm
   return s.meshes.back();
 }
 
+// The mean pixel of an image.
+inline glm::dvec3 meanColor(const Image& im) {
+  glm::dvec3 s(0.0);
+  for (auto& p : im.pixels) s += glm::dvec3(p);
+  return s / double(im.pixels.size());
+}
+
+// One red triangle (albedo 0.8, 0.1, 0.1) facing the camera under a constant grey sky (0.5, 0.25, 1)
+// and no lights: every gathering ray escapes, so the indirect light is albedo × sky wherever the
+// triangle is seen (the centre 8×8 pixels of a 32² image see only it). Returns its path.
+inline std::string writeSkyTriangleScene() {
+  std::string path = testing::TempDir() + "/sky_triangle.json";
+  std::ofstream(path) << R"({
+    "meshes": [ {"path": ")"
+                      << dataPath("triangle.gltf") << R"("} ],
+    "environment": {"color": [0.5, 0.25, 1.0]},
+    "camera": {"position": [0.3, 0.3, 0], "target": [0.3, 0.3, 2], "fov_deg": 30} })";
+  return path;
+}
+
 // A scene JSON: the built-in Cornell box plus a small triangle (tests/data/triangle.gltf)
 // that moves by (0.3, 0.2, 0) between times 0 and 1. Returns its path.
 inline std::string writeMovingTriangleScene(const std::string& name) {

@@ -13,13 +13,19 @@ class ShaderLibrary;
 
 class DirectPass {
  public:
-  DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadowBias, float normalOffset);
-  void shade(const GBuffer& gbuffer, const LightMaps& maps, const FrameCamera& camera, unsigned targetImage);
+  // `sender`: shade also writes the senders of screen-space methods (shade.comp.glsl's DIRECT_SENDER).
+  DirectPass(ShaderLibrary& shaders, const GpuScene& gpu, float shadowBias, float normalOffset,
+             bool sender = false);
+  // The direct light into targetImage; with `sender`, each surface's diffuse direct light (no
+  // emission) into senderImage (RGBA32F of the same size).
+  void shade(const GBuffer& gbuffer, const LightMaps& maps, const FrameCamera& camera, unsigned targetImage,
+             unsigned senderImage = 0);
 
  private:
   ShaderLibrary& shaders_;
   const GpuScene& gpu_;
   unsigned prog_ = 0;
+  bool sender_ = false;
 };
 
 }  // namespace vgi

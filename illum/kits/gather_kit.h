@@ -1,5 +1,5 @@
 // The screen-space gather kit that hemisphere-gathering GL modules share
-// (nearfield, voxel_ao, vct, vct_ao, vpl; shaders/illum/gather/): a gather buffer at 1, ½ or ¼
+// (nearfield, ssdo, voxel_ao, vct, vct_ao, vpl; shaders/illum/gather/): a gather buffer at 1, ½ or ¼
 // of the image resolution, the interleaved direction sets its gather pass
 // reads (GATHER_DIRECTIONS in gather.glsl), the geometry-aware blur over the
 // interleave window and the joint bilateral upsampling with its composite

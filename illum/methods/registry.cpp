@@ -9,6 +9,7 @@
 #include "illum/methods/nearfield.h"
 #include "illum/methods/reference.h"
 #include "illum/methods/reference_gl.h"
+#include "illum/methods/ssdo.h"
 #include "illum/methods/vct.h"
 #include "illum/methods/vct_ao.h"
 #include "illum/methods/voxel_ao.h"
@@ -33,9 +34,9 @@ std::vector<std::string> fullPathReference(const std::string& envChannel) {
 
 const std::vector<MethodInfo>& methodRegistry() {
   static const std::vector<MethodInfo> table = {
-      directMethod(),    nearFieldMethod(), voxelAoMethod(),     voxelPathMethod(),
-      vplMethod(),       avgMethod(),       vctMethod(),         vctAoMethod(),
-      voxelViewMethod(), referenceMethod(), referenceGlMethod(),
+      directMethod(), nearFieldMethod(), voxelAoMethod(),   voxelPathMethod(),
+      vplMethod(),    avgMethod(),       vctMethod(),       vctAoMethod(),
+      ssdoMethod(),   voxelViewMethod(), referenceMethod(), referenceGlMethod(),
   };
   return table;
 }

@@ -16,32 +16,14 @@ namespace vgi {
 
 using test::render;
 
-namespace {
-glm::dvec3 mean(const Image& im) {
-  glm::dvec3 s(0.0);
-  for (auto& p : im.pixels) s += glm::dvec3(p);
-  return s / double(im.pixels.size());
-}
-
-// One red triangle (albedo 0.8, 0.1, 0.1) facing the camera under a constant
-// grey sky and no lights: every gathering ray escapes, so the indirect light
-// is albedo × sky wherever the triangle is seen.
-std::string openTriangleScene(bool env) {
-  std::string path = testing::TempDir() + (env ? "/sky_triangle.json" : "/sky_triangle_noenv.json");
-  std::ofstream(path) << R"({
-    "meshes": [ {"path": ")"
-                      << test::dataPath("triangle.gltf") << R"("} ],
-    "environment": {"color": [0.5, 0.25, 1.0]},
-    "camera": {"position": [0.3, 0.3, 0], "target": [0.3, 0.3, 2], "fov_deg": 30} })";
-  return path;
-}
-}  // namespace
+using test::meanColor;
+using test::writeSkyTriangleScene;
 
 TEST(NearField, EscapingRaysReadTheEnvironmentExactly) {
   const glm::vec3 expect = glm::vec3(0.8f, 0.1f, 0.1f) * glm::vec3(0.5f, 0.25f, 1.0f);
   for (const char* res : {"1", "0.25"}) {
     RenderOutput nf =
-        render(openTriangleScene(true), "nearfield", {std::string("resolution=") + res}, 32, 1, {"indirect"});
+        render(writeSkyTriangleScene(), "nearfield", {std::string("resolution=") + res}, 32, 1, {"indirect"});
     const Image& ind = nf.result.aovs.at("indirect");
     // The camera looks at the triangle's interior: the centre 8×8 pixels see only it.
     for (int y = 12; y < 20; ++y)
@@ -51,7 +33,7 @@ TEST(NearField, EscapingRaysReadTheEnvironmentExactly) {
           EXPECT_NEAR(nf.result.image.at(x, y)[k], expect[k], 1e-6f) << res;
         }
   }
-  RenderOutput off = render(openTriangleScene(true), "nearfield", {"env=false"}, 32, 1, {"indirect"});
+  RenderOutput off = render(writeSkyTriangleScene(), "nearfield", {"env=false"}, 32, 1, {"indirect"});
   EXPECT_EQ(off.result.aovs.at("indirect").at(16, 16), glm::vec3(0.0f));
 }
 
@@ -77,7 +59,7 @@ TEST(NearField, CornellBoxMatchesTheExactNearFieldIntegral) {
   // whose own noise is ≈ 0.07 (two seeds differ by 0.096). VGI's voxel-entry
   // back-projection with its offset (backprojection=entry) gives 0.306,
   // +17 / +8 / +18 % and relMSE 1.6e-4: it fails all three bounds.
-  glm::dvec3 a = mean(nf.result.aovs.at("indirect")), b = mean(ref.result.aovs.at("indirect"));
+  glm::dvec3 a = meanColor(nf.result.aovs.at("indirect")), b = meanColor(ref.result.aovs.at("indirect"));
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], 1.0, 0.05) << "channel " << k;
   ImageDiff di = compareImages(nf.result.aovs.at("indirect"), ref.result.aovs.at("indirect"));
   EXPECT_LT(di.relMae, 0.15);
@@ -97,7 +79,8 @@ TEST(NearField, ReducedResolutionStaysCloseToFullResolution) {
                              128, 8, {"indirect"});
   RenderOutput shipped = render("builtin:cornell", "nearfield", {}, 128, 4, {"indirect"});
   EXPECT_LT(compareImages(shipped.result.image, full.result.image).relMse, 0.002);  // measured 0.00046
-  glm::dvec3 a = mean(shipped.result.aovs.at("indirect")), b = mean(full.result.aovs.at("indirect"));
+  glm::dvec3 a = meanColor(shipped.result.aovs.at("indirect")),
+             b = meanColor(full.result.aovs.at("indirect"));
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k] / b[k], 1.0, 0.08) << "channel " << k;
 }
 

@@ -1,7 +1,9 @@
 // Deferred direct lighting: per pixel, every delta light through the shared
 // light and BRDF kernels, visibility from the shadow maps, plus emission; the
 // environment where no surface was seen. Writes one jittered sample into uSample
-// (the sample loop accumulates it).
+// (the sample loop accumulates it). With DIRECT_SENDER also the diffuse direct light alone (no
+// emission, the diffuse lobe: what a surface sends every way) into uSender, 0 where no surface was
+// seen: the senders of the screen-space methods (ssdo).
 #include "shared/constants.glsl"
 #include "shared/sampling.glsl"
 #include "shared/brdf.glsl"
@@ -12,6 +14,9 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform writeonly image2D uSample;
+#ifdef DIRECT_SENDER
+layout(rgba32f, binding = IMAGE_OUTPUT2) uniform writeonly image2D uSender;
+#endif
 
 uniform vec3 uCameraPosition;
 uniform mat4 uInvViewProj;
@@ -24,6 +29,7 @@ void main() {
   if (px.x >= size.x || px.y >= size.y) return;
   vec4 P = texelFetch(gPosition, px, 0);
   vec3 L = vec3(0.0f);
+  vec3 sender = vec3(0.0f);
   if (P.w == 0.0f) {
     vec2 ndc = (vec2(px) + 0.5f) / vec2(size) * 2.0f - 1.0f;  // inverse of the jittered matrix
     vec4 q = uInvViewProj * vec4(ndc, 1.0f, 1.0f);  // a point on the pixel's ray (reversed-Z: the near plane)
@@ -39,7 +45,15 @@ void main() {
     vec3 wo = normalize(uCameraPosition - p);
     // One-sided emitters (emission.w = 0) emit on their front side (NG.w = 1).
     if (materials[m].emission.w > 0.5f || NG.w > 0.5f) L = materials[m].emission.xyz;
-    L += lightMapsDirect(brdf, p, n, ng, wo, uShadowBias, uNormalOffset);
+    vec3 reflected = lightMapsDirect(brdf, p, n, ng, wo, uShadowBias, uNormalOffset);
+    L += reflected;
+#ifdef DIRECT_SENDER
+    sender = brdf.ks == vec3(0.0f) ? reflected
+                                   : lightMapsDirect(diffusePart(brdf), p, n, ng, wo, uShadowBias, uNormalOffset);
+#endif
   }
   imageStore(uSample, px, vec4(L, 1.0f));
+#ifdef DIRECT_SENDER
+  imageStore(uSender, px, vec4(sender, 1.0f));
+#endif
 }

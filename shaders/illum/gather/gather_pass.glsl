@@ -1,5 +1,5 @@
 // The gather pass's one entry (illum/kits/gather_kit.h): every gather shader — nearfield's indirect
-// rays, voxel_ao's and vct_ao's AO, vct's diffuse cones, vpl's gather — runs this main() over its
+// rays, ssdo's directions, voxel_ao's and vct_ao's AO, vct's diffuse cones, vpl's gather — runs this main() over its
 // gather pixels q: nothing outside the output; where no surface was seen at q, gatherEmpty(q) (the
 // pass stores 0 in its outputs); else gatherPixel(q, p, n) with the receiver's point and normal
 // (gatherReceiver). The including shader declares its outputs and defines
