@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "illum/resources/gpu_bvh.h"
 #include "illum/resources/or_mip_pyramid.h"
+#include "illum/resources/value_grids.h"
 #include "shaders/shared/bindings.glsl"
 #include "traverse/gl_ray_tracer.h"
 #include "traverse/gpu_bvh.h"
@@ -12,6 +13,13 @@ namespace vgi {
 void addTracerNeeds(SceneNeeds& n, const BinaryGridNeed& grid, const std::string& tracer) {
   n.add(OrMipPyramidNeed{grid});
   if (tracer == "bvh") n.add(GpuBvhNeed{});
+}
+
+void addVoxelHitNeeds(SceneNeeds& needs, BinaryGridNeed grid, const std::string& tracer,
+                      std::vector<std::string> values) {
+  grid.values = std::move(values);
+  addTracerNeeds(needs, grid, tracer);
+  needs.add(ValueGridNeed{grid, ValueMips::None, std::nullopt});
 }
 
 void bindTracer(const SceneResources& res, ShaderLibrary& shaders, unsigned program) {

@@ -7,6 +7,7 @@
 // error split: the visibility stage without leaving the device).
 #pragma once
 #include <string>
+#include <vector>
 
 #include "illum/framework/compute_pass.h"
 #include "illum/resources/binary_grid.h"
@@ -18,6 +19,11 @@ class ShaderLibrary;
 
 // The pyramid over `grid` (the cells hits are reported in) and, with tracer=bvh, the BVH.
 void addTracerNeeds(SceneNeeds& needs, const BinaryGridNeed& grid, const std::string& tracer);
+// What illum/voxel_hits.glsl's path vertices read (voxelpath, vpl's bounces, ddgi's probe rays): the
+// tracer over `grid` and the value grids of `values` (normal, albedo; glossy where the vertices' Phong
+// lobes are lit) at full resolution.
+void addVoxelHitNeeds(SceneNeeds& needs, BinaryGridNeed grid, const std::string& tracer,
+                      std::vector<std::string> values);
 // Binds what addTracerNeeds declared for `program` (in use).
 void bindTracer(const SceneResources& resources, ShaderLibrary& shaders, unsigned program);
 

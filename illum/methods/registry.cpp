@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "illum/framework/method.h"
 #include "illum/methods/avg.h"
+#include "illum/methods/ddgi.h"
 #include "illum/methods/direct.h"
 #include "illum/methods/nearfield.h"
 #include "illum/methods/reference.h"
@@ -34,9 +35,9 @@ std::vector<std::string> fullPathReference(const std::string& envChannel) {
 
 const std::vector<MethodInfo>& methodRegistry() {
   static const std::vector<MethodInfo> table = {
-      directMethod(), nearFieldMethod(), voxelAoMethod(),   voxelPathMethod(),
-      vplMethod(),    avgMethod(),       vctMethod(),       vctAoMethod(),
-      ssdoMethod(),   voxelViewMethod(), referenceMethod(), referenceGlMethod(),
+      directMethod(),    nearFieldMethod(), voxelAoMethod(),     voxelPathMethod(), vplMethod(),
+      avgMethod(),       vctMethod(),       vctAoMethod(),       ssdoMethod(),      ddgiMethod(),
+      voxelViewMethod(), referenceMethod(), referenceGlMethod(),
   };
   return table;
 }

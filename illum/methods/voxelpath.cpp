@@ -84,10 +84,7 @@ class VoxelPathMethod : public Method {
     SceneNeeds n;
     needGBuffer(n);
     n.add(LightMapNeed{shadow_.resolution, true});
-    BinaryGridNeed grid = grid_;
-    grid.values = {"normal", "albedo", "glossy"};
-    addTracerNeeds(n, grid, tracer_);
-    n.add(ValueGridNeed{grid, ValueMips::None, std::nullopt});
+    addVoxelHitNeeds(n, grid_, tracer_, {"normal", "albedo", "glossy"});
     return n;
   }
   void prepareFrame(Frame& f) override {

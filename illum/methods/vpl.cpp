@@ -107,10 +107,10 @@ class VplMethod : public Method {
     SceneNeeds n;
     needGBuffer(n);
     n.add(LightMapNeed{shadow_.resolution, true});
-    BinaryGridNeed grid = grid_;
-    if (s_.bounces > 1) grid.values = {"normal", "albedo"};
-    if (s_.visibility == VplVisibility::Voxels || s_.bounces > 1) addTracerNeeds(n, grid, tracer_);
-    if (s_.bounces > 1) n.add(ValueGridNeed{grid, ValueMips::None, std::nullopt});
+    if (s_.bounces > 1)
+      addVoxelHitNeeds(n, grid_, tracer_, {"normal", "albedo"});
+    else if (s_.visibility == VplVisibility::Voxels)
+      addTracerNeeds(n, grid_, tracer_);
     if (s_.visibility == VplVisibility::Exact) n.add(BvhNeed{});
     return n;
   }

@@ -137,6 +137,12 @@ TEST(AnalyticSphere, EveryLightTransportMethodGivesItsTruncation) {
       // Cones (128³, anisotropic, |d| face weights): the image is 0.974 of direct + one bounce, i.e.
       // the bounce 0.92 of ρ²I/(πR²) (isotropic: 0.72 of the image); docs/BENCHMARKS.md.
       {"vct", {"shadow_res=256"}, 4, 2, 0.04, "voxel cone tracing, one bounce"},
+      {"ddgi",
+       {"shadow_res=256"},
+       32,
+       10000,
+       0.02,
+       "probes: 8 bounces of warm-up, then the mean of 32 updates"},
       {"voxelpath",
        {"maxdepth=6", "rr_depth=1", "shadow_res=256"},
        128,
