@@ -55,6 +55,8 @@ RENDERS = [
     ("ddgi", "cornell", ["--method", "ddgi", "--set", GRID, "--set", "probes=4", "--set", "rays=32"]),
     ("ddgi_bvh", "cornell", ["--method", "ddgi", "--set", GRID, "--set", "probes=4", "--set", "rays=32",
                              "--set", "tracer=bvh"]),
+    ("ddgi_relocate", "cornell", ["--method", "ddgi", "--set", GRID, "--set", "probes=4", "--set", "rays=32",
+                                  "--set", "relocate=true"]),
     ("ddgi_parity", "parity", ["--method", "ddgi", "--set", GRID, "--set", "probes=4", "--set", "rays=32",
                                "--frames", "2", "--time-step", "1"]),
     ("voxel_ao", "cornell", ["--method", "voxel_ao", "--set", GRID]),

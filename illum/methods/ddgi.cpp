@@ -3,8 +3,10 @@
 // §4 the update (rays per probe under a random rotation each frame, octahedral irradiance and
 // distance-moment textures with a one-texel border, blended with hysteresis), §5 the query (trilinear
 // weights, the smooth backface term, the Chebyshev visibility test from a biased point, the crush of
-// small weights). This first part has no probe relocation or classification (§6; the paper's 2021
-// sequel): a probe inside a wall sees only its own wall, and the visibility test shuts it out.
+// small weights). Probe relocation and classification (`relocate`, off by default; the rule is ours,
+// after the RTXGI SDK's that Majercik, Marrs, Spjut, McGuire, JCGT 10(2), 2021 describe;
+// shaders/illum/ddgi/relocate.comp.glsl): back faces are told apart, probes inside geometry move out
+// during the warm-up, and those still inside are left out of the shading.
 //
 // Needs: the G-buffer, reflective shadow maps of every light (the hits' direct light), the binary grid
 // with its OR-mip pyramid and the value grids (normal, albedo) — or tracer=bvh, the scene's triangles,
@@ -74,6 +76,14 @@ class DdgiMethod : public Method {
                        "query points move this many probe spacings along 0.2 n + 0.8 v before the "
                        "visibility test (the paper's normal and view bias)",
                        0.0f, 1.0f);
+    // Off by default: a back face is told by the mesh's normal, and the framework shades one-sided
+    // surfaces from both sides; a one-sided surface seen from its back (tests/illum/ddgi_test.cpp's sky
+    // triangle) makes the probes on the camera's side look inside, and dropping them darkens what the
+    // camera sees (0.17–0.82 of the light there).
+    relocate_ = p.getBool("relocate", false,
+                          "tell back faces apart by the meshes' normals, move probes out of geometry during "
+                          "the warm-up and leave out those still inside (for closed, consistently oriented "
+                          "meshes; false: every probe at its grid point, all used)");
     warmup_ = p.getInt("warmup", 8,
                        "updates of the field before a run's first sample, each replacing it (a bounce each)",
                        0, 1000);
@@ -101,12 +111,13 @@ class DdgiMethod : public Method {
  private:
   // The grid of probes over the scene box, each at the centre of its cell.
   void placeProbes(const Bounds& box);
-  // One update of the field: the rays, then both atlases.
-  void update(Frame& f, uint32_t seed, float hysteresis);
+  // One update of the field: the rays, then both atlases; with relocate, the probes' states (moved
+  // when `move`).
+  void update(Frame& f, uint32_t seed, float hysteresis, bool move);
 
   int probes_ = 8, rays_ = 128, warmup_ = 8;
   float hysteresis_ = 0.97f, bias_ = 0.25f, traceLength_ = 0;
-  bool env_ = true;
+  bool env_ = true, relocate_ = false;
   std::string tracer_;
   BinaryGridNeed grid_;
   ShadowParams shadow_;
@@ -117,10 +128,11 @@ class DdgiMethod : public Method {
 
   // The field (kept across the frames of a run) and the rays of the last update.
   GlTexture irradiance_, distance_, rays_image_;
+  GlBuffer probeStates_;  // per probe: its offset (xyz) and state (w: 1 used, 0 inside geometry)
   glm::ivec2 irradianceSize_{0}, distanceSize_{0};
   // Per frame (prepareFrame).
   std::unique_ptr<DirectPass> direct_;
-  ComputePass<shared::DdgiParams> trace_, updateIrradiance_, updateDistance_, shade_;
+  ComputePass<shared::DdgiParams> trace_, updateIrradiance_, updateDistance_, relocateProbes_, shade_;
   VoxelHits hits_;
   shared::DdgiParams params_{};
 };
@@ -152,6 +164,7 @@ void DdgiMethod::prepareFrame(Frame& f) {
   trace_.create(f, {"illum/ddgi/trace.comp.glsl"}, defs, {gpuSceneInput, lightMapsInput, valueTexturesInput});
   updateIrradiance_.create(f, {"illum/ddgi/update.comp.glsl"}, {}, {});
   updateDistance_.create(f, {"illum/ddgi/update.comp.glsl"}, {{"DDGI_DISTANCE", "1"}}, {});
+  relocateProbes_.create(f, {"illum/ddgi/relocate.comp.glsl"}, {}, {});
   shade_.create(f, {"illum/ddgi/shade.comp.glsl"}, {}, {gbufferInput});
   shared::VoxelHitParams h{};
   h.offset = 0.0f;
@@ -178,6 +191,9 @@ void DdgiMethod::prepareFrame(Frame& f) {
       glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
       glClearTexImage(t, 0, GL_RGBA, GL_FLOAT, nullptr);
     }
+    const std::vector<glm::vec4> states(size_t(total), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    probeStates_ = makeBuffer(states.size() * sizeof(glm::vec4));
+    glNamedBufferSubData(probeStates_.get(), 0, GLsizeiptr(states.size() * sizeof(glm::vec4)), states.data());
     irradianceSize_ = irr;
     distanceSize_ = dist;
     updates_ = 0;
@@ -191,9 +207,10 @@ void DdgiMethod::prepareFrame(Frame& f) {
   p.env = env_ ? 1 : 0;
   p.writeDirect = f.wants("direct") ? 1 : 0;
   p.writeIndirect = f.wants("indirect") ? 1 : 0;
+  p.relocate = relocate_ ? 1 : 0;
 }
 
-void DdgiMethod::update(Frame& f, uint32_t seed, float hysteresis) {
+void DdgiMethod::update(Frame& f, uint32_t seed, float hysteresis, bool move) {
   shared::DdgiParams& p = params_;
   // A random rotation of the directions (Shoemake's uniform quaternion from three points of a
   // low-discrepancy sequence, shifted by the seed), so the updates' rays cover the sphere.
@@ -206,7 +223,9 @@ void DdgiMethod::update(Frame& f, uint32_t seed, float hysteresis) {
   const glm::mat3 R = glm::mat3_cast(glm::normalize(q));
   for (int r = 0; r < 3; ++r) p.rotation[r] = glm::vec4(R[0][r], R[1][r], R[2][r], 0.0f);  // rows
   p.hysteresis = hysteresis;
+  p.move = move ? 1 : 0;
   const int total = counts_.x * counts_.y * counts_.z;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_DDGI_PROBES, probeStates_.get());
   {
     auto s = f.profiler.scope("probe_rays");
     trace_.params() = p;
@@ -232,15 +251,23 @@ void DdgiMethod::update(Frame& f, uint32_t seed, float hysteresis) {
       pass->dispatch(size.x, size.y, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
   }
+  if (relocate_) {
+    // After the atlases: they were filled from where the rays started.
+    auto s = f.profiler.scope("probe_relocate");
+    relocateProbes_.params() = p;
+    relocateProbes_.use(f);
+    glBindImageTexture(IMAGE_OUTPUT2, rays_image_.get(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    relocateProbes_.dispatch(total, 1, GL_SHADER_STORAGE_BARRIER_BIT);
+  }
   ++updates_;
 }
 
 bool DdgiMethod::addSample(Frame& f, int) {
   if (updates_ == 0) {
     auto s = f.profiler.scope("probe_warmup");
-    for (int w = 0; w < warmup_; ++w) update(f, f.request.seed, 0.0f);
+    for (int w = 0; w < warmup_; ++w) update(f, f.request.seed, 0.0f, true);
   }
-  update(f, f.request.seed, std::min(hysteresis_, 1.0f - 1.0f / float(++averaged_)));
+  update(f, f.request.seed, std::min(hysteresis_, 1.0f - 1.0f / float(++averaged_)), false);
   const unsigned sample = f.sampleImage("image");
   {
     auto s = f.profiler.scope("direct");
@@ -253,6 +280,7 @@ bool DdgiMethod::addSample(Frame& f, int) {
     f.shaders().setUniform(shade_.program(), "uCameraPosition", f.camera.position);
     glBindTextureUnit(TEXUNIT_PASS_INPUT, irradiance_.get());
     glBindTextureUnit(TEXUNIT_PASS_INPUT2, distance_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_DDGI_PROBES, probeStates_.get());
     bindSampleAndSplitImages(f);
     shade_.dispatch(f.width(), f.height());
   }
@@ -263,10 +291,21 @@ void DdgiMethod::finishFrame(Frame& f) {
   f.extra["probe_counts"] = {counts_.x, counts_.y, counts_.z};
   f.extra["probe_spacing"] = {spacing_.x, spacing_.y, spacing_.z};
   f.extra["probe_updates"] = updates_;
+  std::vector<glm::vec4> states(size_t(counts_.x) * counts_.y * counts_.z);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(probeStates_.get(), 0, GLsizeiptr(states.size() * sizeof(glm::vec4)),
+                          states.data());
+  int inside = 0, moved = 0;
+  for (const glm::vec4& st : states) {
+    inside += st.w == 0.0f;
+    moved += st.x != 0.0f || st.y != 0.0f || st.z != 0.0f;
+  }
+  f.extra["probes_inside"] = inside;  // left out of the shading
+  f.extra["probes_moved"] = moved;
   f.extra["rays_per_update"] = uint64_t(counts_.x) * counts_.y * counts_.z * rays_;
-  const double texels = double(irradianceSize_.x) * irradianceSize_.y * 16.0 +
-                        double(distanceSize_.x) * distanceSize_.y * 8.0 +
-                        double(rays_) * counts_.x * counts_.y * counts_.z * 16.0;
+  const double texels =
+      double(irradianceSize_.x) * irradianceSize_.y * 16.0 + double(distanceSize_.x) * distanceSize_.y * 8.0 +
+      double(rays_) * counts_.x * counts_.y * counts_.z * 16.0 + double(states.size()) * 16.0;
   f.addStateBytes(texels);
 }
 

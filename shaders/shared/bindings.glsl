@@ -27,6 +27,7 @@
 #define BINDING_VALUE_RADIANCE 15  // SSBO multi-valued grid: radiance sums
 #define BINDING_VALUE_RADIANCE_MAX 16  // SSBO uint: the radiance pass's maximum (float bits)
 #define BINDING_VPL_FLUX 17        // SSBO float[]: the RSM flux tree (shared/vpl.glsl)
+#define BINDING_DDGI_PROBES 17     // SSBO vec4[]: ddgi's probe offsets (xyz) and states (w) (illum/ddgi/probes.glsl; vpl's flux tree elsewhere)
 #define BINDING_VPLS 18            // SSBO Vpl[] (shared/vpl.glsl): bounce-major, chain-minor
 #define BINDING_AVG 19             // SSBO uint[]: the approximate visibility grid's cells (shared/avg.glsl)
 #define BINDING_BVH_NODES 20       // SSBO vec4[]: the BVH's nodes (shared/trace_bvh.glsl, traverse/gpu_bvh.h)

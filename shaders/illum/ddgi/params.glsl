@@ -20,9 +20,9 @@ struct DdgiParams {
   float hysteresis;  // this update's weight of the old texel (0 on the first update)
   int writeDirect;   // the shading pass: 1 writes the direct part to its output channel
   int writeIndirect;  // … and the indirect part
+  int relocate;       // 1: back faces are told apart, probes move out of geometry and stuck ones are left out
+  int move;           // the relocation pass: 1 moves the probes (warm-up), 0 only classifies them
   int pad0;
-  int pad1;
-  int pad2;
 };
 
 SHARED_END

@@ -8,13 +8,17 @@
 // `bias` along 0.2 n + 0.8 v (the paper's normal and view bias, against self-shadowing); weights under
 // 0.2 crushed (w³ / 0.04) so that leaks through thin walls fade. Included by the trace pass (the hits'
 // indirect light: the last update's field, so each update adds a bounce) and the shading pass. The
-// including shader declares the block Pass { DdgiParams pass; }.
+// including shader declares the block Pass { DdgiParams pass; }. Each probe sits at its grid point plus
+// its offset, and with pass.relocate a probe classified inside geometry is left out (probeStates: xyz
+// the offset, w 1 for an active probe; the relocation pass, relocate.comp.glsl, writes them).
 #include "shared/octahedral.glsl"
 layout(binding = TEXUNIT_PASS_INPUT) uniform sampler2D uProbeIrradiance;  // RGBA32F atlas, rgb = E / π
 layout(binding = TEXUNIT_PASS_INPUT2) uniform sampler2D uProbeDistance;   // RG32F atlas: mean d, d²
 
-vec3 probePosition(ivec3 i) { return pass.origin.xyz + vec3(i) * pass.spacing.xyz; }
+layout(std430, binding = BINDING_DDGI_PROBES) readonly buffer DdgiProbes { vec4 probeStates[]; };
+
 int probeIndex(ivec3 i) { return i.x + pass.counts.x * (i.y + pass.counts.y * i.z); }
+vec3 probePosition(ivec3 i) { return pass.origin.xyz + vec3(i) * pass.spacing.xyz + probeStates[probeIndex(i)].xyz; }
 
 // Where direction d lies in probe p's tile of an atlas of `tile`-texel tiles (texture coordinates).
 vec2 probeUv(int p, vec3 d, int tile, vec2 atlasSize) {
@@ -35,6 +39,7 @@ vec3 probeIrradiance(vec3 X, vec3 n, vec3 v) {
     ivec3 off = ivec3(c & 1, (c >> 1) & 1, (c >> 2) & 1);
     ivec3 idx = min(base + off, pass.counts.xyz - 1);
     int p = probeIndex(idx);
+    if (probeStates[p].w == 0.0f) continue;  // inside geometry (classified by the relocation pass)
     vec3 P = probePosition(idx);
     vec3 tri = mix(vec3(1.0f) - alpha, alpha, vec3(off));
     vec3 toProbe = normalize(P - X);

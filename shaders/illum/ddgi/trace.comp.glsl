@@ -6,8 +6,13 @@
 // included as the emitters' lights) plus albedo × the field's E / π there (the last update's probes:
 // each update adds a bounce); a ray that meets nothing reads the environment (with env).
 //
+// With pass.relocate, a hit on a back face — the hit cell's mean normal faces along the ray: the ray
+// left a solid through its surface, so the probe is inside — gives no light and is marked by a
+// negative distance (the relocation pass counts them; the distance update stores a fifth of it, so the
+// probe sees a close occluder in that direction and the Chebyshev test shuts it out there).
+//
 // Output (x = ray, y = probe): rgb the radiance, w the distance to the hit (the longest stored
-// distance, pass.spacing.w, where there is none).
+// distance, pass.spacing.w, where there is none; negative for a back face).
 #include "shared/constants.glsl"
 #include "shared/sampling.glsl"
 #include "shared/brdf.glsl"
@@ -22,13 +27,10 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std140, binding = UBO_PASS) uniform Pass { DdgiParams pass; };
 #include "probes.glsl"
+#include "rays.glsl"
 layout(rgba32f, binding = IMAGE_OUTPUT) uniform writeonly image2D uRays;
 
 // Ray r's direction of this update.
-vec3 probeRayDirection(int r) {
-  vec3 f = sphericalFibonacci(float(r), float(pass.rays));
-  return normalize(vec3(dot(pass.rotation[0].xyz, f), dot(pass.rotation[1].xyz, f), dot(pass.rotation[2].xyz, f)));
-}
 
 void main() {
   int r = int(gl_GlobalInvocationID.x), p = int(gl_GlobalInvocationID.y);
@@ -43,8 +45,12 @@ void main() {
   BackProjection b;
   if (trace(o, d, d, t, voxel, b)) {  // (no pass-through: a probe has no surface of its own)
     dist = min(t, pass.spacing.w);
+    bool back = pass.relocate != 0 && dot(texelFetch(valueNormal, ivec3(voxel), 0).xyz, d) > 0.0f;
     Vertex y;
-    if (hitVertex(o, d, t, voxel, y)) L = b.radiance + y.brdf.albedo * probeIrradiance(y.p, y.n, -d);
+    if (back)
+      dist = -dist;
+    else if (hitVertex(o, d, t, voxel, y))
+      L = b.radiance + y.brdf.albedo * probeIrradiance(y.p, y.n, -d);
   } else if (pass.env != 0) {
     L = gpuEnvironmentRadiance(d);
   }

@@ -3,7 +3,8 @@
 // (its interior texel's: the border repeats the interior across the octahedral map's folds,
 // shared/octahedral.glsl); its new value is the mean of the probe's rays weighted by max(0, cos) —
 // the cosine-weighted mean radiance, E / π — or, for distances, by max(0, cos)^50 — the mean distance
-// and its square (the moments of the Chebyshev test) — blended with the old value by the hysteresis.
+// and its square (the moments of the Chebyshev test; a back face's distance counts a fifth) — blended
+// with the old value by the hysteresis.
 #include "shared/bindings.glsl"
 #include "shared/constants.glsl"
 #include "shared/octahedral.glsl"
@@ -19,11 +20,7 @@ layout(rgba32f, binding = IMAGE_OUTPUT) uniform image2D uAtlas;
 const int kTile = DDGI_IRRADIANCE_TILE;
 #endif
 layout(rgba32f, binding = IMAGE_OUTPUT2) uniform readonly image2D uRays;
-
-vec3 probeRayDirection(int r) {
-  vec3 f = sphericalFibonacci(float(r), float(pass.rays));
-  return normalize(vec3(dot(pass.rotation[0].xyz, f), dot(pass.rotation[1].xyz, f), dot(pass.rotation[2].xyz, f)));
-}
+#include "rays.glsl"
 
 void main() {
   ivec2 q = ivec2(gl_GlobalInvocationID.xy);
@@ -39,7 +36,8 @@ void main() {
     float w = max(0.0f, dot(dir, probeRayDirection(r)));
 #ifdef DDGI_DISTANCE
     w = pow(w, 50.0f);
-    sum += w * vec3(ray.w, ray.w * ray.w, 0.0f);
+    float d = ray.w < 0.0f ? -0.2f * ray.w : ray.w;  // a back face: a fifth of its distance
+    sum += w * vec3(d, d * d, 0.0f);
 #else
     sum += w * ray.xyz;
 #endif
