@@ -5,6 +5,7 @@
 // on the same counterpart.
 #include "core/image_metrics.h"
 #include "render_util.h"
+#include "shaders/shared/screen_space.glsl"
 #include "test_util.h"
 
 namespace vgi {
@@ -28,6 +29,32 @@ std::vector<std::string> with(std::vector<std::string> set, const std::vector<st
   return set;
 }
 }  // namespace
+
+// The shared tests on the CPU (the code the gather pass runs). A floor seen from above (y = 0, normal
+// +y towards the camera, which looks along −y): points above it, or on it, are never occluded; points
+// below it are, to the thickness; the paper's patch share is its form factor, clamped to 1.
+TEST(Ssdo, ScreenSpaceTestsOnTheCpu) {
+  using shared::screenOccluded;
+  const glm::vec3 P(0.0f), N(0.0f, 1.0f, 0.0f), forward(0.0f, -1.0f, 0.0f);
+  for (float x : {-1.0f, 0.0f, 2.0f}) {
+    EXPECT_FALSE(screenOccluded(glm::vec3(x, 0.5f, 0.3f), P, N, forward, 1e-3f, 0.0f));
+    EXPECT_FALSE(screenOccluded(glm::vec3(x, 0.0f, 0.3f), P, N, forward, 1e-3f, 0.0f));    // on the plane
+    EXPECT_FALSE(screenOccluded(glm::vec3(x, -5e-4f, 0.3f), P, N, forward, 1e-3f, 0.0f));  // within eps
+    EXPECT_TRUE(screenOccluded(glm::vec3(x, -0.2f, 0.3f), P, N, forward, 1e-3f, 0.0f));
+    EXPECT_TRUE(screenOccluded(glm::vec3(x, -100.0f, 0.3f), P, N, forward, 1e-3f, 0.0f));  // no limit
+    EXPECT_TRUE(screenOccluded(glm::vec3(x, -0.2f, 0.3f), P, N, forward, 1e-3f, 0.5f));
+    EXPECT_FALSE(screenOccluded(glm::vec3(x, -0.8f, 0.3f), P, N, forward, 1e-3f, 0.5f));  // beyond it
+  }
+  // A patch facing the receiver straight on at distance d: r² / d² while under 1.
+  const glm::vec3 p(0.0f), n(0.0f, 0.0f, 1.0f), ns(0.0f, 0.0f, -1.0f);
+  EXPECT_FLOAT_EQ(shared::ssdoPatchShare(p, n, glm::vec3(0.0f, 0.0f, 2.0f), ns, 1.0f), 0.25f);
+  EXPECT_FLOAT_EQ(shared::ssdoPatchShare(p, n, glm::vec3(0.0f, 0.0f, 0.5f), ns, 1.0f), 1.0f);  // clamped
+  // Tilted by 60° at the sender: cos θ_s = 1/2; behind the receiver or facing away: nothing.
+  const glm::vec3 tilted(0.0f, std::sin(glm::radians(60.0f)), -0.5f);
+  EXPECT_NEAR(shared::ssdoPatchShare(p, n, glm::vec3(0.0f, 0.0f, 2.0f), tilted, 1.0f), 0.125f, 1e-6f);
+  EXPECT_EQ(shared::ssdoPatchShare(p, n, glm::vec3(0.0f, 0.0f, -2.0f), -ns, 1.0f), 0.0f);
+  EXPECT_EQ(shared::ssdoPatchShare(p, n, glm::vec3(0.0f, 0.0f, 2.0f), -ns, 1.0f), 0.0f);
+}
 
 TEST(Ssdo, EscapingDirectionsReadTheEnvironmentExactly) {
   const glm::vec3 expect = glm::vec3(0.8f, 0.1f, 0.1f) * glm::vec3(0.5f, 0.25f, 1.0f);

@@ -6,15 +6,17 @@
 // them is read from the frame alone — the G-buffer (positions, normals) and the sample's direct light
 // (the sender image: diffuse direct radiance of each visible surface, DirectPass with a sender target).
 //
-// A point X is occluded where it lies below the tangent plane of the surface the camera sees at X's
-// pixel (for a point on that pixel's camera ray: behind it), within `thickness` behind it when that is
-// set (0: the paper's test, a surface extends without limit behind what the camera sees).
+// A point X is occluded (shared/screen_space.glsl: screenOccluded) where it lies below the tangent
+// plane of the surface the camera sees at X's pixel (for a point on that pixel's camera ray: behind
+// it), within `thickness` behind it when that is set (0: the paper's test, a surface extends without
+// limit behind what the camera sees).
 //
 // estimator = patch (the paper): direction i gets one point at a uniform distance λ·r; unoccluded, its
 // direction reads the environment (§3.1); occluded, the surface at its pixel is a sender patch of area
 // A_s = π r² / N facing along its normal, which adds L_s A_s cos θ_s cos θ_r / (π d²) (§3.2; the
-// per-sample share clamped to 1/N, the paper clamps d). Not a consistent estimator of the near field:
-// A_s is a heuristic and one point decides a whole direction.
+// per-sample share clamped to 1/N, the paper clamps d: shared/screen_space.glsl, ssdoPatchShare).
+// Not a consistent estimator of the near field: A_s is a heuristic and one point decides a whole
+// direction.
 // estimator = march: each direction is marched through `steps` points up to r (jittered) to the first
 // occluded one; the surface there gives its radiance L_s to the direction if it faces it, nothing if
 // the direction meets its back; a direction that meets nothing within r or leaves the screen reads the
@@ -28,6 +30,7 @@
 #include "shared/brdf.glsl"
 #include "shared/environment.glsl"
 #include "shared/gpu_scene.glsl"
+#include "shared/screen_space.glsl"
 #define GATHER_DIRECTIONS
 #include "illum/gather/gather_pass.glsl"
 #include "params.glsl"
@@ -75,9 +78,7 @@ Sender occluder(vec3 X) {
   // A tenth of a pixel's world size there: below the plane by less is the plane itself. (A whole
   // pixel's shifted hits at grazing angles: indirect energy −4 % / +4 % by region at 64².)
   float eps = 0.1f * gather.camera.w * distance(P.xyz, gather.camera.xyz);
-  float below = -dot(X - s.p, s.n);
-  float behind = dot(X - s.p, pass.forward.xyz);
-  s.occluded = below > eps && (pass.thickness <= 0.0f || behind < pass.thickness);
+  s.occluded = screenOccluded(X, s.p, s.n, pass.forward.xyz, eps, pass.thickness);
   return s;
 }
 
@@ -101,13 +102,7 @@ void gatherPixel(ivec2 q, vec3 p, vec3 n) {
         if (pass.env != 0) sum += gpuEnvironmentRadiance(d);
         continue;
       }
-      vec3 toSender = s.p - p;
-      float d2 = max(dot(toSender, toSender), 1e-30f);
-      float len = sqrt(d2);
-      float cosR = max(dot(n, toSender) / len, 0.0f);
-      float cosS = max(-dot(s.n, toSender) / len, 0.0f);
-      // A_s cos θ_s cos θ_r / (π d²) with A_s = π r² / N, as a share of the N directions' mean.
-      sum += senderRadiance(s) * min(r * r * cosS * cosR / d2, 1.0f);
+      sum += senderRadiance(s) * ssdoPatchShare(p, n, s.p, s.n, r);
     } else {
       bool hit = false;
       for (int j = 0; j < pass.steps; ++j) {
