@@ -114,9 +114,10 @@ inline glm::dvec3 meanColor(const Image& im) {
 
 // One red triangle (albedo 0.8, 0.1, 0.1) facing the camera under a constant grey sky (0.5, 0.25, 1)
 // and no lights: every gathering ray escapes, so the indirect light is albedo × sky wherever the
-// triangle is seen (the centre 8×8 pixels of a 32² image see only it). Returns its path.
-inline std::string writeSkyTriangleScene() {
-  std::string path = testing::TempDir() + "/sky_triangle.json";
+// triangle is seen (the centre 8×8 pixels of a 32² image see only it). Returns its path, TempDir/NAME.json:
+// one name per test, since the suite's tests run as parallel processes that share TempDir.
+inline std::string writeSkyTriangleScene(const std::string& name) {
+  std::string path = testing::TempDir() + "/" + name + ".json";
   std::ofstream(path) << R"({
     "meshes": [ {"path": ")"
                       << dataPath("triangle.gltf") << R"("} ],

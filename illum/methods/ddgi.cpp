@@ -275,9 +275,9 @@ bool DdgiMethod::addSample(Frame& f, int) {
   }
   {
     auto s = f.profiler.scope("shade");
+    params_.camera = glm::vec4(f.camera.position, 1.0f);
     shade_.params() = params_;
     shade_.use(f);
-    f.shaders().setUniform(shade_.program(), "uCameraPosition", f.camera.position);
     glBindTextureUnit(TEXUNIT_PASS_INPUT, irradiance_.get());
     glBindTextureUnit(TEXUNIT_PASS_INPUT2, distance_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BINDING_DDGI_PROBES, probeStates_.get());
@@ -291,21 +291,24 @@ void DdgiMethod::finishFrame(Frame& f) {
   f.extra["probe_counts"] = {counts_.x, counts_.y, counts_.z};
   f.extra["probe_spacing"] = {spacing_.x, spacing_.y, spacing_.z};
   f.extra["probe_updates"] = updates_;
-  std::vector<glm::vec4> states(size_t(counts_.x) * counts_.y * counts_.z);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glGetNamedBufferSubData(probeStates_.get(), 0, GLsizeiptr(states.size() * sizeof(glm::vec4)),
-                          states.data());
+  const size_t probes = size_t(counts_.x) * counts_.y * counts_.z;
   int inside = 0, moved = 0;
-  for (const glm::vec4& st : states) {
-    inside += st.w == 0.0f;
-    moved += st.x != 0.0f || st.y != 0.0f || st.z != 0.0f;
+  if (relocate_) {  // without it the states stay as prepareFrame wrote them: no read-back (a GPU sync)
+    std::vector<glm::vec4> states(probes);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(probeStates_.get(), 0, GLsizeiptr(states.size() * sizeof(glm::vec4)),
+                            states.data());
+    for (const glm::vec4& st : states) {
+      inside += st.w == 0.0f;
+      moved += st.x != 0.0f || st.y != 0.0f || st.z != 0.0f;
+    }
   }
   f.extra["probes_inside"] = inside;  // left out of the shading
   f.extra["probes_moved"] = moved;
   f.extra["rays_per_update"] = uint64_t(counts_.x) * counts_.y * counts_.z * rays_;
-  const double texels =
-      double(irradianceSize_.x) * irradianceSize_.y * 16.0 + double(distanceSize_.x) * distanceSize_.y * 8.0 +
-      double(rays_) * counts_.x * counts_.y * counts_.z * 16.0 + double(states.size()) * 16.0;
+  const double texels = double(irradianceSize_.x) * irradianceSize_.y * 16.0 +
+                        double(distanceSize_.x) * distanceSize_.y * 8.0 +
+                        double(rays_) * double(probes) * 16.0 + double(probes) * 16.0;
   f.addStateBytes(texels);
 }
 

@@ -59,14 +59,15 @@ TEST(Ddgi, SphericalFibonacciRaysSpreadOverTheSphere) {
 // the probes behind keep (the crushed Chebyshev floor). Measured: 0.994–0.999 of it.
 TEST(Ddgi, ProbesUnderASkyGiveAlbedoTimesTheSky) {
   const glm::vec3 expect = glm::vec3(0.8f, 0.1f, 0.1f) * glm::vec3(0.5f, 0.25f, 1.0f);
-  RenderOutput o = render(test::writeSkyTriangleScene(), "ddgi", {}, 32, 2, {"indirect"});
+  RenderOutput o = render(test::writeSkyTriangleScene("ddgi_sky_triangle"), "ddgi", {}, 32, 2, {"indirect"});
   EXPECT_EQ(o.stats["gl_errors"], 0);
   const Image& ind = o.result.aovs.at("indirect");
   for (int y = 12; y < 20; ++y)
     for (int x = 12; x < 20; ++x)
       for (int k = 0; k < 3; ++k)
         EXPECT_NEAR(ind.at(x, y)[k] / expect[k], 1.0f, 0.02f) << "at " << x << "," << y << " channel " << k;
-  RenderOutput off = render(test::writeSkyTriangleScene(), "ddgi", {"env=false"}, 32, 1, {"indirect"});
+  RenderOutput off =
+      render(test::writeSkyTriangleScene("ddgi_sky_triangle"), "ddgi", {"env=false"}, 32, 1, {"indirect"});
   EXPECT_EQ(off.result.aovs.at("indirect").at(16, 16), glm::vec3(0.0f));
 }
 

@@ -22,8 +22,8 @@ using test::writeSkyTriangleScene;
 TEST(NearField, EscapingRaysReadTheEnvironmentExactly) {
   const glm::vec3 expect = glm::vec3(0.8f, 0.1f, 0.1f) * glm::vec3(0.5f, 0.25f, 1.0f);
   for (const char* res : {"1", "0.25"}) {
-    RenderOutput nf =
-        render(writeSkyTriangleScene(), "nearfield", {std::string("resolution=") + res}, 32, 1, {"indirect"});
+    RenderOutput nf = render(writeSkyTriangleScene("nearfield_sky_triangle"), "nearfield",
+                             {std::string("resolution=") + res}, 32, 1, {"indirect"});
     const Image& ind = nf.result.aovs.at("indirect");
     // The camera looks at the triangle's interior: the centre 8×8 pixels see only it.
     for (int y = 12; y < 20; ++y)
@@ -33,7 +33,8 @@ TEST(NearField, EscapingRaysReadTheEnvironmentExactly) {
           EXPECT_NEAR(nf.result.image.at(x, y)[k], expect[k], 1e-6f) << res;
         }
   }
-  RenderOutput off = render(writeSkyTriangleScene(), "nearfield", {"env=false"}, 32, 1, {"indirect"});
+  RenderOutput off = render(writeSkyTriangleScene("nearfield_sky_triangle"), "nearfield", {"env=false"}, 32,
+                            1, {"indirect"});
   EXPECT_EQ(off.result.aovs.at("indirect").at(16, 16), glm::vec3(0.0f));
 }
 

@@ -60,7 +60,8 @@ TEST(Ssdo, EscapingDirectionsReadTheEnvironmentExactly) {
   const glm::vec3 expect = glm::vec3(0.8f, 0.1f, 0.1f) * glm::vec3(0.5f, 0.25f, 1.0f);
   for (const char* estimator : {"estimator=march", "estimator=patch"})
     for (const char* res : {"resolution=1", "resolution=0.25"}) {
-      RenderOutput o = render(test::writeSkyTriangleScene(), "ssdo", {estimator, res}, 32, 1, {"indirect"});
+      RenderOutput o = render(test::writeSkyTriangleScene("ssdo_sky_triangle"), "ssdo", {estimator, res}, 32,
+                              1, {"indirect"});
       EXPECT_EQ(o.stats["gl_errors"], 0);
       const Image& ind = o.result.aovs.at("indirect");
       for (int y = 12; y < 20; ++y)
@@ -69,7 +70,8 @@ TEST(Ssdo, EscapingDirectionsReadTheEnvironmentExactly) {
             EXPECT_NEAR(ind.at(x, y)[k], expect[k], 1e-6f)
                 << estimator << " " << res << " at " << x << "," << y;
     }
-  RenderOutput off = render(test::writeSkyTriangleScene(), "ssdo", {"env=false"}, 32, 1, {"indirect"});
+  RenderOutput off =
+      render(test::writeSkyTriangleScene("ssdo_sky_triangle"), "ssdo", {"env=false"}, 32, 1, {"indirect"});
   EXPECT_EQ(off.result.aovs.at("indirect").at(16, 16), glm::vec3(0.0f));
 }
 

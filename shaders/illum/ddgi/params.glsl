@@ -15,6 +15,7 @@ struct DdgiParams {
   vec4 spacing;    // xyz: between neighbouring probes; w: the longest distance a probe stores
   ivec4 counts;    // xyz: probes per axis; w: probes per row of the textures' atlas
   vec4 rotation[3];  // this update's random rotation of the ray directions (rows)
+  vec4 camera;       // xyz: the camera position (the shading pass's view bias); w: unused
   int rays;          // per probe per update
   int env;           // rays that meet nothing read the environment
   float hysteresis;  // this update's weight of the old texel (0 on the first update)

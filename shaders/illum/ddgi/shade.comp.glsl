@@ -10,7 +10,6 @@ layout(std140, binding = UBO_PASS) uniform Pass { DdgiParams pass; };
 layout(rgba32f, binding = IMAGE_SAMPLE) uniform image2D uSample;  // holds the direct light
 layout(rgba32f, binding = IMAGE_SAMPLE_AOV0) uniform writeonly image2D uIndirectAov;
 layout(rgba32f, binding = IMAGE_SAMPLE_AOV1) uniform writeonly image2D uDirectAov;
-uniform vec3 uCameraPosition;
 
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -20,7 +19,7 @@ void main() {
   vec3 indirect = vec3(0.0f);
   if (P.w != 0.0f) {
     vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
-    vec3 v = normalize(uCameraPosition - P.xyz);
+    vec3 v = normalize(pass.camera.xyz - P.xyz);
     indirect = texelFetch(gAlbedo, px, 0).xyz * probeIrradiance(P.xyz, n, v);
   }
   imageStore(uSample, px, vec4(direct.xyz + indirect, 1.0f));
